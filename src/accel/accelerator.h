@@ -1,0 +1,59 @@
+// The one narrow interface between the renderer and its ray-tracing backends.
+// Backends: "embree" (Embree 3: triangle geometry for meshes, user geometry
+// calling src/geometry for analytic shapes) and "bvh" (our own SAH BVH; not
+// available yet). Both return the same hit record.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/diagnostics.h"
+#include "core/math.h"
+#include "geometry/shapes.h"
+
+namespace pt {
+
+class WorkerPool;
+
+enum class AccelKind { Embree, Bvh };
+
+// Parses "embree" / "bvh"; returns false for anything else.
+bool parse_accel_kind(const std::string& name, AccelKind& out);
+const char* accel_kind_name(AccelKind kind);
+// Names accepted by parse_accel_kind, for help texts and error messages.
+std::vector<std::string> accel_kind_names();
+
+struct Hit {
+  float t = kInfinity;
+  uint32_t shape = UINT32_MAX;  // object id: index into SceneGeometry::shapes
+  uint32_t prim = 0;            // triangle index within a mesh, else 0
+  Vec2f uv;                     // as PrimHit::uv
+};
+
+struct AccelStats {
+  std::string backend;          // "embree 3.13.5 (AVX2)" etc.
+  double build_seconds = 0;
+  std::size_t memory_bytes = 0; // acceleration-structure memory, best estimate
+  std::size_t primitive_count = 0;
+};
+
+class Accelerator {
+ public:
+  virtual ~Accelerator() = default;
+  // Nearest hit with ray.tmin < t < ray.tmax. Thread-safe.
+  virtual bool intersect(const Ray& ray, Hit& hit) const = 0;
+  // Any hit with ray.tmin < t < ray.tmax. Thread-safe.
+  virtual bool occluded(const Ray& ray) const = 0;
+  virtual Bounds3f bounds() const = 0;
+  virtual AccelStats stats() const = 0;
+};
+
+// Builds the chosen backend over `geometry`, which must outlive the accelerator.
+// The build runs inside `pool`'s arena. On failure (e.g. "bvh" before it exists,
+// or an Embree device error) returns nullptr and reports to `diag`.
+std::unique_ptr<Accelerator> build_accelerator(AccelKind kind, const SceneGeometry& geometry,
+                                               WorkerPool& pool, Diagnostics& diag);
+
+}  // namespace pt

@@ -1,0 +1,36 @@
+// Image output, chosen by the file extension:
+//   .exr  linear float RGB (OpenImageIO/OpenEXR), no display transform;
+//   .png  8-bit, display transform applied;
+//   .ppm  8-bit binary P6, display transform applied (as the courses expect).
+// Files are written atomically: to a temporary file in the same directory,
+// then renamed, so a failed or killed run never leaves a partial image.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+#include "scene/scene_description.h"
+
+namespace pt {
+
+struct DisplaySettings {
+  DisplayTransform transform = DisplayTransform::Srgb;
+  float exposure = 0;  // stops
+};
+
+// Maps one linear value to an 8-bit code value under `settings`.
+unsigned char display_encode(float linear, const DisplaySettings& settings);
+
+// Extensions write_image accepts (".exr", ".png", ".ppm").
+std::vector<std::string> supported_image_extensions();
+bool is_supported_image_path(const std::string& path);
+
+// Returns false and fills `error` on failure (nothing is left at `path` then).
+bool write_image(const std::string& path, const Image& image, const DisplaySettings& settings,
+                 std::string& error);
+
+// Reads an image (any format OpenImageIO reads) as linear float RGB.
+bool read_image(const std::string& path, Image& out, std::string& error);
+
+}  // namespace pt

@@ -1,0 +1,57 @@
+// RenderScene: the immutable, render-time scene. Built once from a
+// SceneDescription (textures decoded, geometry converted, accelerator built);
+// integrators only read it.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "accel/accelerator.h"
+#include "core/diagnostics.h"
+#include "geometry/shapes.h"
+#include "render/camera/camera.h"
+#include "render/lights/light.h"
+#include "render/materials/material.h"
+#include "render/textures/texture.h"
+#include "scene/scene_description.h"
+
+namespace pt {
+
+class WorkerPool;
+
+// What a camera or bounce ray found.
+struct Intersection {
+  Hit hit;
+  SurfaceGeometry geo;
+  const Material* material = nullptr;
+};
+
+struct RenderScene {
+  int width = 0, height = 0;
+  Camera camera;
+  RGB background;
+  SceneGeometry geometry;
+  std::vector<int> shape_material;   // per shape, index into materials
+  std::vector<Material> materials;
+  std::vector<std::unique_ptr<Texture>> textures;  // stable addresses (materials point in)
+  std::vector<PointLight> point_lights;
+  std::unique_ptr<Accelerator> accel;
+
+  bool intersect(const Ray& ray, Intersection& out) const;
+  bool occluded(const Ray& ray) const { return accel->occluded(ray); }
+};
+
+struct BuildOptions {
+  AccelKind accel = AccelKind::Embree;
+  int width_override = 0;   // > 0 replaces the description's resolution
+  int height_override = 0;
+};
+
+// Builds the render scene, or returns nullptr after reporting to `diag`
+// (texture that fails to decode, accelerator failure, ...).
+std::unique_ptr<RenderScene> build_render_scene(const SceneDescription& desc, const BuildOptions& options,
+                                                WorkerPool& pool, Diagnostics& diag);
+
+}  // namespace pt

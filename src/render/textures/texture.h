@@ -1,0 +1,32 @@
+// Image textures: decoded once with OpenImageIO into linear float RGB,
+// looked up with bilinear filtering and repeat wrapping. uv (0,0) is the
+// image's top-left pixel corner, u to the right, v downwards.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/color.h"
+#include "core/math.h"
+
+namespace pt {
+
+class Texture {
+ public:
+  Texture() = default;
+  Texture(int width, int height, std::vector<RGB> pixels);
+
+  // Loads an image file; 8-bit sRGB-encoded images are linearised.
+  // Returns false and fills `error` if the file cannot be read.
+  static bool load(const std::string& path, Texture& out, std::string& error);
+
+  RGB lookup(Vec2f uv) const;  // bilinear, repeat wrap
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+ private:
+  int width_ = 0, height_ = 0;
+  std::vector<RGB> pixels_;  // row-major, row 0 at the top
+};
+
+}  // namespace pt

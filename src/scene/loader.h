@@ -1,0 +1,39 @@
+// Scene loading: reads a JSON scene file, detects its family (native, Path of
+// Light, CGR), and produces a validated SceneDescription. Meshes (PLY) are read
+// here; textures are only checked to exist (decoded once, later, by the
+// render-scene builder, and only if a material uses them).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "core/diagnostics.h"
+#include "scene/scene_description.h"
+
+namespace pt {
+
+struct LoadOptions {
+  // Legacy formats: unknown keys become errors instead of warnings.
+  bool strict = false;
+  // Largest accepted width or height.
+  int max_resolution = 32768;
+};
+
+// Returns the description, or std::nullopt if any error was reported. All
+// problems of the file are reported to `diag` (not only the first), each with
+// file:line:col. Never throws for bad input, never exits.
+std::optional<SceneDescription> load_scene(const std::string& path, const LoadOptions& options,
+                                           Diagnostics& diag);
+
+// Same, from text already in memory (`path` is used for messages and for
+// resolving relative paths).
+std::optional<SceneDescription> load_scene_from_string(const std::string& path, std::string text,
+                                                       const LoadOptions& options, Diagnostics& diag);
+
+// Resolves a relative path written in a scene file: first against the scene
+// file's directory, then against the working directory. Returns the existing
+// file's path, or std::nullopt if neither exists. Absolute paths are returned
+// as they are if they exist.
+std::optional<std::string> resolve_scene_path(const std::string& scene_path, const std::string& written);
+
+}  // namespace pt

@@ -1,0 +1,53 @@
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <mutex>
+#include <set>
+#include <thread>
+
+#include <tbb/parallel_for.h>
+
+#include "core/parallel.h"
+
+namespace pt {
+namespace {
+
+TEST(WorkerPool, HonoursThreadCount) {
+  WorkerPool pool(2);
+  EXPECT_EQ(pool.threads(), 2);
+  WorkerPool one(1);
+  std::mutex m;
+  std::set<std::thread::id> ids;
+  one.run([&] {
+    tbb::parallel_for(0, 1000, [&](int) {
+      std::lock_guard<std::mutex> lock(m);
+      ids.insert(std::this_thread::get_id());
+    });
+  });
+  EXPECT_EQ(ids.size(), 1u);
+}
+
+TEST(WorkerPool, EveryWorkerHasFlushToZero) {
+  WorkerPool pool(4);
+  std::atomic<int> without{0};
+  std::atomic<int> total{0};
+  pool.run([&] {
+    tbb::parallel_for(0, 20000, [&](int) {
+      ++total;
+      if (!flush_to_zero_enabled()) ++without;
+    });
+  });
+  EXPECT_EQ(total.load(), 20000);
+  EXPECT_EQ(without.load(), 0);
+}
+
+TEST(WorkerPool, DenormalsFlushInsideArena) {
+  WorkerPool pool(2);
+  volatile float tiny = 1e-39f;  // a denormal
+  float result = 1.0f;
+  pool.run([&] { result = tiny * 1.0f; });
+  EXPECT_EQ(result, 0.0f);  // DAZ: the denormal input reads as zero
+}
+
+}  // namespace
+}  // namespace pt
