@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Installs whatever Debian 12 packages are missing (toolchain included) and builds
+# the renderer in <repo>/build. Safe to re-run; works from any directory.
+# Used by tools/showcase.sh and tools/test.sh (the README's two commands).
+set -euo pipefail
+
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${PT_BUILD_DIR:-$repo/build}"
+
+packages=(
+  g++ cmake ninja-build pkg-config git
+  libembree-dev libtbb-dev
+  libopenimageio-dev openimageio-tools libopenexr-dev libopencolorio-dev
+  nlohmann-json3-dev libcli11-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  python3 python3-jsonschema
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if ((${#missing[@]})); then
+  echo "setup: installing missing packages: ${missing[*]}"
+  sudo_cmd=()
+  if [ "$(id -u)" -ne 0 ]; then
+    if command -v sudo >/dev/null 2>&1; then sudo_cmd=(sudo); else
+      echo "setup: need root (or sudo) to install: ${missing[*]}" >&2; exit 1
+    fi
+  fi
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get update -q
+  "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+jobs="$(nproc 2>/dev/null || echo 2)"
+cmake -S "$repo" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE="${PT_BUILD_TYPE:-Release}" ${PT_CMAKE_ARGS:-} >/dev/null
+cmake --build "$build" -j "$jobs"
