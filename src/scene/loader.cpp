@@ -1,1 +1,107 @@
-// placeholder (owner will replace)
+#include "scene/loader.h"
+
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <system_error>
+
+#include "scene/detect.h"
+#include "scene/importers.h"
+#include "scene/json.h"
+#include "scene/validate.h"
+
+namespace fs = std::filesystem;
+
+namespace pt {
+namespace {
+
+// Scene files larger than this are refused before they are read.
+constexpr std::uintmax_t kMaxSceneFileBytes = 256ull << 20;
+
+// A location naming only the file (for problems with the file as a whole).
+SourceLocation file_only(const std::string& path) {
+  SourceLocation loc;
+  loc.file = std::make_shared<const SourceFile>(SourceFile{path, {}});
+  return loc;
+}
+
+std::string too_large_message(std::uintmax_t bytes) {
+  return "the file is " + std::to_string(bytes >> 20) + " MiB; scene files larger than " +
+         std::to_string(kMaxSceneFileBytes >> 20) + " MiB are refused (put large meshes in PLY files)";
+}
+
+}  // namespace
+
+std::optional<std::string> resolve_scene_path(const std::string& scene_path, const std::string& written) {
+  if (written.empty()) return std::nullopt;
+  std::error_code ec;
+  const fs::path w(written);
+  if (w.is_absolute()) return fs::is_regular_file(w, ec) ? std::optional<std::string>(written) : std::nullopt;
+  const fs::path in_scene_dir = fs::path(scene_path).parent_path() / w;
+  if (fs::is_regular_file(in_scene_dir, ec)) return in_scene_dir.string();
+  if (fs::is_regular_file(w, ec)) return written;
+  return std::nullopt;
+}
+
+std::optional<SceneDescription> load_scene(const std::string& path, const LoadOptions& options,
+                                           Diagnostics& diag) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) {
+    diag.error(file_only(path), "scene file not found");
+    return std::nullopt;
+  }
+  if (fs::is_directory(path, ec)) {
+    diag.error(file_only(path), "is a directory, not a scene file");
+    return std::nullopt;
+  }
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (ec) {
+    diag.error(file_only(path), "cannot read the scene file: " + ec.message());
+    return std::nullopt;
+  }
+  if (size > kMaxSceneFileBytes) {
+    diag.error(file_only(path), too_large_message(size));
+    return std::nullopt;
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    diag.error(file_only(path), "cannot open the scene file");
+    return std::nullopt;
+  }
+  std::string text(static_cast<std::size_t>(size), '\0');
+  in.read(text.data(), static_cast<std::streamsize>(size));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  return load_scene_from_string(path, std::move(text), options, diag);
+}
+
+std::optional<SceneDescription> load_scene_from_string(const std::string& path, std::string text,
+                                                       const LoadOptions& options, Diagnostics& diag) {
+  if (text.size() > kMaxSceneFileBytes) {
+    diag.error(file_only(path), too_large_message(text.size()));
+    return std::nullopt;
+  }
+  const int errors_before = diag.error_count();
+  auto file = std::make_shared<const SourceFile>(SourceFile{path, std::move(text)});
+  const std::optional<JsonDocument> doc = parse_json(file, diag);
+  if (!doc) return std::nullopt;
+  const std::optional<SceneFormat> format = detect_scene_format(*doc, diag);
+  if (!format) return std::nullopt;
+
+  SceneDescription scene;
+  scene.source_path = path;
+  scene.format = *format;
+  const bool legacy = *format != SceneFormat::Native;
+  ReadContext read{*doc, diag,
+                   legacy && !options.strict ? UnknownKeyPolicy::Warning : UnknownKeyPolicy::Error};
+  ImportContext ctx{read, options, scene, {}, {}};
+  switch (*format) {
+    case SceneFormat::Native: import_native(ctx); break;
+    case SceneFormat::PathOfLight: import_path_of_light(ctx); break;
+    case SceneFormat::Cgr: import_cgr(ctx); break;
+  }
+  validate_scene(scene, options, diag);
+  if (diag.error_count() > errors_before) return std::nullopt;
+  return scene;
+}
+
+}  // namespace pt

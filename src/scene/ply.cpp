@@ -1,1 +1,538 @@
-// placeholder (owner will replace)
+// PLY reader. The header is parsed into elements and typed properties; the
+// body is read by one template over an ASCII or a binary value reader, so the
+// element logic (roles of vertex properties, face lists, skipping) is written
+// once. Every count is checked against the bytes that remain before anything
+// is allocated, and every read is bounds-checked: hostile files produce an
+// error message, never undefined behaviour.
+#include "scene/ply.h"
+
+#include <algorithm>
+#include <bit>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <string_view>
+#include <utility>
+
+namespace pt {
+
+namespace {
+
+enum class Format { Ascii, BinaryLittleEndian, BinaryBigEndian };
+enum class Type { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
+
+struct Property {
+  std::string name;
+  bool is_list = false;
+  Type count_type = Type::UInt8;  // lists only
+  Type type = Type::Float32;      // the value type (list items for lists)
+};
+
+struct Element {
+  std::string name;
+  uint64_t count = 0;
+  int line = 0;
+  std::vector<Property> properties;
+};
+
+struct Header {
+  Format format = Format::Ascii;
+  std::vector<Element> elements;
+  std::size_t body_offset = 0;
+};
+
+std::optional<Type> parse_type(std::string_view s) {
+  if (s == "char" || s == "int8") return Type::Int8;
+  if (s == "uchar" || s == "uint8") return Type::UInt8;
+  if (s == "short" || s == "int16") return Type::Int16;
+  if (s == "ushort" || s == "uint16") return Type::UInt16;
+  if (s == "int" || s == "int32") return Type::Int32;
+  if (s == "uint" || s == "uint32") return Type::UInt32;
+  if (s == "float" || s == "float32") return Type::Float32;
+  if (s == "double" || s == "float64") return Type::Float64;
+  return std::nullopt;
+}
+
+std::size_t type_size(Type t) {
+  switch (t) {
+    case Type::Int8:
+    case Type::UInt8: return 1;
+    case Type::Int16:
+    case Type::UInt16: return 2;
+    case Type::Int32:
+    case Type::UInt32:
+    case Type::Float32: return 4;
+    case Type::Float64: return 8;
+  }
+  return 1;
+}
+
+bool is_integer(Type t) { return t != Type::Float32 && t != Type::Float64; }
+
+std::vector<std::string_view> split_words(std::string_view line) {
+  std::vector<std::string_view> words;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+    const std::size_t start = i;
+    while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
+    if (i > start) words.push_back(line.substr(start, i - start));
+  }
+  return words;
+}
+
+bool fail(PlyError& error, std::string message, int line = 0) {
+  error.message = std::move(message);
+  error.line = line;
+  return false;
+}
+
+// ---------------------------------------------------------------- header
+bool parse_header(std::string_view bytes, Header& h, PlyError& error) {
+  std::size_t pos = 0;
+  int line_no = 0;
+  bool have_format = false;
+  for (;;) {
+    if (pos >= bytes.size()) {
+      if (line_no == 0) return fail(error, "not a PLY file: it is empty", 1);
+      return fail(error, "the header has no end_header line", line_no);
+    }
+    std::size_t nl = bytes.find('\n', pos);
+    if (nl == std::string_view::npos) nl = bytes.size();
+    std::string_view line = bytes.substr(pos, nl - pos);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    pos = nl + 1;
+    ++line_no;
+    const std::vector<std::string_view> w = split_words(line);
+
+    if (line_no == 1) {
+      if (w.size() != 1 || w[0] != "ply") return fail(error, "not a PLY file: the first line must be 'ply'", 1);
+      continue;
+    }
+    if (w.empty()) continue;
+    const std::string_view key = w[0];
+    if (key == "comment" || key == "obj_info") continue;
+    if (key == "end_header") {
+      if (!have_format) return fail(error, "the header has no format line", line_no);
+      h.body_offset = std::min(pos, bytes.size());
+      return true;
+    }
+    if (key == "format") {
+      if (w.size() != 3) return fail(error, "expected 'format <type> <version>'", line_no);
+      if (w[1] == "ascii") {
+        h.format = Format::Ascii;
+      } else if (w[1] == "binary_little_endian") {
+        h.format = Format::BinaryLittleEndian;
+      } else if (w[1] == "binary_big_endian") {
+        h.format = Format::BinaryBigEndian;
+      } else {
+        return fail(error, "unknown format '" + std::string(w[1]) + "'", line_no);
+      }
+      if (w[2] != "1.0") return fail(error, "unsupported PLY version '" + std::string(w[2]) + "'", line_no);
+      have_format = true;
+      continue;
+    }
+    if (key == "element") {
+      if (w.size() != 3) return fail(error, "expected 'element <name> <count>'", line_no);
+      Element e;
+      e.name = std::string(w[1]);
+      e.line = line_no;
+      const auto [end, ec] = std::from_chars(w[2].data(), w[2].data() + w[2].size(), e.count);
+      if (ec != std::errc() || end != w[2].data() + w[2].size()) {
+        return fail(error, "invalid element count '" + std::string(w[2]) + "'", line_no);
+      }
+      for (const Element& other : h.elements) {
+        if (other.name == e.name) return fail(error, "element '" + e.name + "' is declared twice", line_no);
+      }
+      h.elements.push_back(std::move(e));
+      continue;
+    }
+    if (key == "property") {
+      if (h.elements.empty()) return fail(error, "property before any element", line_no);
+      Property p;
+      if (w.size() >= 2 && w[1] == "list") {
+        if (w.size() != 5) return fail(error, "expected 'property list <count type> <item type> <name>'", line_no);
+        const auto ct = parse_type(w[2]);
+        const auto it = parse_type(w[3]);
+        if (!ct) return fail(error, "unknown type '" + std::string(w[2]) + "'", line_no);
+        if (!it) return fail(error, "unknown type '" + std::string(w[3]) + "'", line_no);
+        if (!is_integer(*ct)) return fail(error, "a list count must have an integer type", line_no);
+        p.is_list = true;
+        p.count_type = *ct;
+        p.type = *it;
+        p.name = std::string(w[4]);
+      } else {
+        if (w.size() != 3) return fail(error, "expected 'property <type> <name>'", line_no);
+        const auto t = parse_type(w[1]);
+        if (!t) return fail(error, "unknown type '" + std::string(w[1]) + "'", line_no);
+        p.type = *t;
+        p.name = std::string(w[2]);
+      }
+      h.elements.back().properties.push_back(std::move(p));
+      continue;
+    }
+    return fail(error, "unexpected header line '" + std::string(line) + "'", line_no);
+  }
+}
+
+// The fewest bytes one instance of `e` can take in the body (lists empty).
+std::size_t min_element_bytes(const Element& e, Format f) {
+  std::size_t n = 0;
+  for (const Property& p : e.properties) {
+    // ASCII: at least one character and one separator per value.
+    n += f == Format::Ascii ? 2 : type_size(p.is_list ? p.count_type : p.type);
+  }
+  return n;
+}
+
+// ---------------------------------------------------------------- value readers
+class BinaryReader {
+ public:
+  BinaryReader(std::string_view body, bool swap) : p_(body.data()), end_(body.data() + body.size()), swap_(swap) {}
+
+  std::size_t remaining() const { return static_cast<std::size_t>(end_ - p_); }
+  std::string where() const { return {}; }
+
+  bool read(Type t, double& out) {
+    const std::size_t n = type_size(t);
+    if (remaining() < n) return false;
+    unsigned char b[8];
+    std::memcpy(b, p_, n);
+    p_ += n;
+    if (swap_) {
+      for (std::size_t i = 0; i < n / 2; ++i) std::swap(b[i], b[n - 1 - i]);
+    }
+    switch (t) {
+      case Type::Int8: out = static_cast<int8_t>(b[0]); break;
+      case Type::UInt8: out = b[0]; break;
+      case Type::Int16: out = load<int16_t>(b); break;
+      case Type::UInt16: out = load<uint16_t>(b); break;
+      case Type::Int32: out = load<int32_t>(b); break;
+      case Type::UInt32: out = load<uint32_t>(b); break;
+      case Type::Float32: out = load<float>(b); break;
+      case Type::Float64: out = load<double>(b); break;
+    }
+    return true;
+  }
+
+  bool skip(Type t, uint64_t count) {
+    const std::size_t n = type_size(t);
+    if (count > remaining() / n) return false;
+    p_ += count * n;
+    return true;
+  }
+
+  // The most list items that can still follow.
+  uint64_t max_items(Type t) const { return remaining() / type_size(t); }
+
+ private:
+  template <class T>
+  static T load(const unsigned char* b) {
+    T v;
+    std::memcpy(&v, b, sizeof(T));
+    return v;
+  }
+
+  const char* p_;
+  const char* end_;
+  bool swap_;
+};
+
+class AsciiReader {
+ public:
+  AsciiReader(std::string_view body, int first_line) : s_(body), line_(first_line) {}
+
+  std::size_t remaining() const { return s_.size() - pos_; }
+  std::string where() const { return " (line " + std::to_string(line_) + ")"; }
+
+  // Reads one whitespace-separated number. Integer types accept only integers.
+  bool read(Type t, double& out) {
+    skip_space();
+    const std::size_t start = pos_;
+    while (pos_ < s_.size() && !is_space(s_[pos_])) ++pos_;
+    if (pos_ == start) return false;
+    std::string_view tok = s_.substr(start, pos_ - start);
+    if (tok.front() == '+') tok.remove_prefix(1);
+    const char* b = tok.data();
+    const char* e = b + tok.size();
+    if (is_integer(t)) {
+      int64_t v = 0;
+      const auto [end, ec] = std::from_chars(b, e, v);
+      if (ec != std::errc() || end != e) return bad(tok);
+      out = static_cast<double>(v);
+    } else {
+      const auto [end, ec] = std::from_chars(b, e, out);
+      if (ec == std::errc::result_out_of_range) {
+        out = std::numeric_limits<double>::infinity();  // reported as non-finite by the caller
+      } else if (ec != std::errc() || end != e) {
+        return bad(tok);
+      }
+    }
+    return true;
+  }
+
+  bool skip(Type t, uint64_t count) {
+    double unused;
+    for (uint64_t i = 0; i < count; ++i) {
+      if (!read(t, unused)) return false;
+    }
+    return true;
+  }
+
+  uint64_t max_items(Type) const { return remaining() / 2 + 1; }
+
+  // Set when the last failed read found a malformed token (not the end of file).
+  const std::string& bad_token() const { return bad_token_; }
+
+ private:
+  static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
+  void skip_space() {
+    while (pos_ < s_.size() && is_space(s_[pos_])) {
+      if (s_[pos_] == '\n') ++line_;
+      ++pos_;
+    }
+  }
+  bool bad(std::string_view tok) {
+    bad_token_ = std::string(tok.substr(0, 40));
+    return false;
+  }
+
+  std::string_view s_;
+  std::size_t pos_ = 0;
+  int line_;
+  std::string bad_token_;
+};
+
+std::string read_failure(const BinaryReader&, const char* what, uint64_t index, uint64_t count) {
+  return std::string("the file ends inside ") + what + " " + std::to_string(index) + " of " + std::to_string(count);
+}
+
+std::string read_failure(const AsciiReader& r, const char* what, uint64_t index, uint64_t count) {
+  if (!r.bad_token().empty()) {
+    return std::string(what) + " " + std::to_string(index) + ": '" + r.bad_token() + "' is not a valid number" +
+           r.where();
+  }
+  return std::string("the file ends inside ") + what + " " + std::to_string(index) + " of " + std::to_string(count);
+}
+
+// ---------------------------------------------------------------- body
+constexpr int kNoRole = -1;
+
+// Vertex property roles: 0..2 position, 3..5 normal, 6..7 uv.
+std::vector<int> vertex_roles(const Element& e, bool& has_normals, bool& has_uvs) {
+  std::vector<int> roles(e.properties.size(), kNoRole);
+  auto find = [&](std::string_view name) -> int {
+    for (std::size_t i = 0; i < e.properties.size(); ++i) {
+      if (!e.properties[i].is_list && e.properties[i].name == name) return static_cast<int>(i);
+    }
+    return kNoRole;
+  };
+  const int x = find("x"), y = find("y"), z = find("z");
+  if (x != kNoRole) roles[x] = 0;
+  if (y != kNoRole) roles[y] = 1;
+  if (z != kNoRole) roles[z] = 2;
+  const int nx = find("nx"), ny = find("ny"), nz = find("nz");
+  has_normals = nx != kNoRole && ny != kNoRole && nz != kNoRole;
+  if (has_normals) {
+    roles[nx] = 3;
+    roles[ny] = 4;
+    roles[nz] = 5;
+  }
+  has_uvs = false;
+  for (const auto& [un, vn] : {std::pair{"u", "v"}, std::pair{"s", "t"}, std::pair{"texture_u", "texture_v"},
+                               std::pair{"texture_s", "texture_t"}}) {
+    const int u = find(un), v = find(vn);
+    if (u != kNoRole && v != kNoRole) {
+      roles[u] = 6;
+      roles[v] = 7;
+      has_uvs = true;
+      break;
+    }
+  }
+  return roles;
+}
+
+template <class Reader>
+bool read_vertices(Reader& r, const Element& e, PlyMesh& out, PlyError& error) {
+  bool has_normals = false, has_uvs = false;
+  const std::vector<int> roles = vertex_roles(e, has_normals, has_uvs);
+  for (int axis = 0; axis < 3; ++axis) {
+    if (std::find(roles.begin(), roles.end(), axis) == roles.end()) {
+      return fail(error, std::string("the vertex element has no '") + "xyz"[axis] + "' property", e.line);
+    }
+  }
+  // Counts were checked against the file size: these allocations are bounded.
+  out.positions.resize(e.count);
+  if (has_normals) out.normals.resize(e.count);
+  if (has_uvs) out.uvs.resize(e.count);
+  double v[8] = {};
+  for (uint64_t i = 0; i < e.count; ++i) {
+    for (std::size_t k = 0; k < e.properties.size(); ++k) {
+      const Property& p = e.properties[k];
+      if (p.is_list) {
+        double n = 0;
+        if (!r.read(p.count_type, n) || n < 0 || !r.skip(p.type, static_cast<uint64_t>(n))) {
+          return fail(error, read_failure(r, "vertex", i, e.count));
+        }
+        continue;
+      }
+      double value = 0;
+      if (!r.read(p.type, value)) return fail(error, read_failure(r, "vertex", i, e.count));
+      if (roles[k] != kNoRole) v[roles[k]] = value;
+    }
+    const Vec3f pos{static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])};
+    if (!is_finite(pos)) return fail(error, "vertex " + std::to_string(i) + " has a non-finite position" + r.where());
+    out.positions[i] = pos;
+    if (has_normals) {
+      const Vec3f n{static_cast<float>(v[3]), static_cast<float>(v[4]), static_cast<float>(v[5])};
+      out.normals[i] = is_finite(n) ? n : Vec3f(0.0f);  // a zero normal falls back to the geometric one
+    }
+    if (has_uvs) {
+      const Vec2f uv{static_cast<float>(v[6]), static_cast<float>(v[7])};
+      out.uvs[i] = (std::isfinite(uv.x) && std::isfinite(uv.y)) ? uv : Vec2f{};
+    }
+  }
+  return true;
+}
+
+template <class Reader>
+bool read_faces(Reader& r, const Element& e, uint64_t vertex_count, PlyMesh& out, PlyError& error) {
+  int list = kNoRole;
+  for (std::size_t k = 0; k < e.properties.size(); ++k) {
+    const Property& p = e.properties[k];
+    if (p.name == "vertex_indices" || p.name == "vertex_index") {
+      if (!p.is_list) return fail(error, "'" + p.name + "' must be a list property", e.line);
+      if (!is_integer(p.type)) return fail(error, "'" + p.name + "' must have an integer item type", e.line);
+      list = static_cast<int>(k);
+      break;
+    }
+  }
+  if (list == kNoRole) return fail(error, "the face element has no 'vertex_indices' list", e.line);
+  out.indices.reserve(3 * e.count);  // bounded: e.count was checked against the file size
+  std::vector<uint32_t> polygon;
+  for (uint64_t i = 0; i < e.count; ++i) {
+    for (std::size_t k = 0; k < e.properties.size(); ++k) {
+      const Property& p = e.properties[k];
+      double n = 0;
+      if (!r.read(p.is_list ? p.count_type : p.type, n)) return fail(error, read_failure(r, "face", i, e.count));
+      if (!p.is_list) continue;
+      if (n < 0) return fail(error, "face " + std::to_string(i) + ": negative list length" + r.where());
+      const auto count = static_cast<uint64_t>(n);
+      if (count > r.max_items(p.type)) return fail(error, read_failure(r, "face", i, e.count));
+      if (static_cast<int>(k) != list) {
+        if (!r.skip(p.type, count)) return fail(error, read_failure(r, "face", i, e.count));
+        continue;
+      }
+      polygon.clear();
+      for (uint64_t j = 0; j < count; ++j) {
+        double idx = 0;
+        if (!r.read(p.type, idx)) return fail(error, read_failure(r, "face", i, e.count));
+        if (idx < 0 || idx >= static_cast<double>(vertex_count)) {
+          return fail(error, "face " + std::to_string(i) + " refers to vertex " +
+                                 std::to_string(static_cast<int64_t>(idx)) + " but there are only " +
+                                 std::to_string(vertex_count) + " vertices" + r.where());
+        }
+        polygon.push_back(static_cast<uint32_t>(idx));
+      }
+      // Fan triangulation; faces with fewer than three vertices add nothing.
+      for (std::size_t j = 1; j + 1 < polygon.size(); ++j) {
+        out.indices.push_back(polygon[0]);
+        out.indices.push_back(polygon[j]);
+        out.indices.push_back(polygon[j + 1]);
+      }
+    }
+  }
+  return true;
+}
+
+template <class Reader>
+bool read_body(Reader& r, const Header& h, PlyMesh& out, PlyError& error) {
+  uint64_t vertex_count = 0;
+  for (const Element& e : h.elements) {
+    if (e.name == "vertex") vertex_count = e.count;
+  }
+  for (const Element& e : h.elements) {
+    if (e.name == "vertex") {
+      if (!read_vertices(r, e, out, error)) return false;
+    } else if (e.name == "face") {
+      if (!read_faces(r, e, vertex_count, out, error)) return false;
+    } else if (!e.properties.empty()) {
+      for (uint64_t i = 0; i < e.count; ++i) {
+        for (const Property& p : e.properties) {
+          double n = 0;
+          if (!r.read(p.is_list ? p.count_type : p.type, n)) {
+            return fail(error, read_failure(r, e.name.c_str(), i, e.count));
+          }
+          if (p.is_list && (n < 0 || !r.skip(p.type, static_cast<uint64_t>(n)))) {
+            return fail(error, read_failure(r, e.name.c_str(), i, e.count));
+          }
+        }
+      }
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+bool parse_ply(const std::string& bytes, PlyMesh& out, PlyError& error) {
+  out = PlyMesh{};
+  error = PlyError{};
+  Header h;
+  if (!parse_header(bytes, h, error)) return false;
+
+  bool has_vertex = false, has_face = false;
+  for (const Element& e : h.elements) {
+    has_vertex = has_vertex || e.name == "vertex";
+    has_face = has_face || e.name == "face";
+  }
+  if (!has_vertex) return fail(error, "the header declares no vertex element");
+  if (!has_face) return fail(error, "the header declares no face element (point clouds cannot be rendered)");
+
+  // Refuse counts the remaining bytes cannot hold, before allocating anything.
+  const std::size_t body = bytes.size() - h.body_offset;
+  const std::size_t budget = h.format == Format::Ascii ? body + 1 : body;
+  std::size_t needed = 0;
+  for (const Element& e : h.elements) {
+    const std::size_t per = min_element_bytes(e, h.format);
+    if (per == 0) continue;
+    if (e.count > (budget - std::min(needed, budget)) / per) {
+      return fail(error,
+                  "the header declares " + std::to_string(e.count) + " " + e.name + " elements but only " +
+                      std::to_string(body) + " bytes of data follow",
+                  e.line);
+    }
+    needed += static_cast<std::size_t>(e.count) * per;
+    if (e.name == "vertex" && e.count > std::numeric_limits<uint32_t>::max()) {
+      return fail(error, "too many vertices for 32-bit indices", e.line);
+    }
+  }
+
+  const std::string_view rest(bytes.data() + h.body_offset, body);
+  if (h.format == Format::Ascii) {
+    int header_lines = 0;
+    for (std::size_t i = 0; i < h.body_offset; ++i) header_lines += bytes[i] == '\n';
+    AsciiReader reader(rest, header_lines + 1);
+    return read_body(reader, h, out, error);
+  }
+  const bool file_little = h.format == Format::BinaryLittleEndian;
+  const bool host_little = std::endian::native == std::endian::little;
+  BinaryReader reader(rest, file_little != host_little);
+  return read_body(reader, h, out, error);
+}
+
+bool load_ply(const std::string& path, PlyMesh& out, PlyError& error) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return fail(error, "cannot open '" + path + "'");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) return fail(error, "cannot read '" + path + "'");
+  return parse_ply(ss.str(), out, error);
+}
+
+}  // namespace pt

@@ -39,7 +39,7 @@ struct Sourced {
 };
 
 // ---------------------------------------------------------------- camera
-enum class CameraType { Pinhole };
+enum class CameraType { Pinhole, ThinLens };
 
 struct CameraDesc {
   SourceLocation where;
@@ -51,6 +51,10 @@ struct CameraDesc {
   // Right-handed: image right = forward x up. Left-handed (the CGR family):
   // image right = up x forward, i.e. the image is mirrored left-right.
   Sourced<bool> left_handed{false};
+  // Thin lens only (a pinhole ignores them): lens radius in scene units, and the
+  // distance along the view direction of the plane in focus.
+  Sourced<float> lens_radius{0.0f};
+  Sourced<float> focus_distance{1.0f};
 };
 
 // ---------------------------------------------------------------- film / output
@@ -109,6 +113,9 @@ struct PointLightDesc {
   Sourced<Vec3f> position;
   Sourced<RGB> intensity;           // radiant intensity; irradiance = I cos / r^2
   Sourced<RGB> specular_intensity;  // used by the specular lobe of the classic integrator
+  // true: irradiance I cos / r^2 (physical; native and Path of Light). false: I cos,
+  // no distance falloff (the CGR course's point lights).
+  Sourced<bool> inverse_square{true};
 };
 
 using LightDesc = std::variant<PointLightDesc>;

@@ -1,0 +1,175 @@
+// The "CGR" course format (see /work/shared/seed-scenes/CONVENTIONS.md and
+// docs/scene-format.md): Y-up, "lookAt" is a target point, left-handed image
+// frame, point lights without distance falloff, cylinder "height" is half the
+// length, "rendermode" picks the integrator.
+#include <cmath>
+#include <string>
+
+#include "scene/importers.h"
+#include "scene/legacy_common.h"
+
+namespace pt {
+namespace {
+
+constexpr int kDefaultBounces = 8;       // "nbounces" may be absent
+constexpr float kCourseExposure = 0.1f;  // the value in every course file
+
+void read_camera(ImportContext& ctx, const JsonValue& v) {
+  if (!expect_object(ctx.read, v, "camera")) return;
+  ObjectReader r(ctx.read, v, "camera");
+  CameraDesc& cam = ctx.scene.camera;
+  cam.where = r.where();
+  read_choice(r, "type", {"pinhole"});
+  r.read_required("width", ctx.scene.film.width);
+  r.read_required("height", ctx.scene.film.height);
+  r.read_required("position", cam.position);
+  r.read_required("lookAt", cam.look_at);  // a target point
+  r.read_required("upVector", cam.up);
+  r.read_required("fov", cam.fov_y_deg);   // vertical, degrees
+  cam.left_handed = true;                  // image right = up x forward
+  // The course never defines "exposure"; its display mapping (DisplayTransform::CgrCourse)
+  // is fitted to reference images that all use 0.1, so the value is not applied.
+  Sourced<float> exposure;
+  if (r.read("exposure", exposure) && exposure.where.valid() && exposure.value != kCourseExposure) {
+    ctx.diag().warning(exposure.where, "exposure " + format_number(exposure.value) +
+                                           " has no effect: the CGR display mapping is fixed (fitted to the "
+                                           "course's images, which use 0.1)");
+  }
+  r.finish();
+}
+
+void read_light(ImportContext& ctx, const JsonValue& v, std::size_t index) {
+  if (!expect_object(ctx.read, v, "lightsources[" + std::to_string(index) + "]")) return;
+  ObjectReader r(ctx.read, v, "light source");
+  const std::string type = read_legacy_type(r);
+  if (type.empty()) return;
+  if (type != "pointlight") {
+    warn_unsupported_type(r, "light", type, {"pointlight"});
+    return;
+  }
+  r.set_what("point light");
+  PointLightDesc light;
+  light.where = r.where();
+  r.read_required("position", light.position);
+  if (r.read_required("intensity", light.intensity)) light.specular_intensity = light.intensity;
+  light.inverse_square = false;  // the course's Phong lights do not fall off with distance
+  r.finish();
+  if (r.ok()) ctx.scene.lights.emplace_back(std::move(light));
+}
+
+// An inline material; returns its index in scene.materials, or -1 if it was bad.
+int read_material(ImportContext& ctx, const JsonValue& v) {
+  if (!expect_object(ctx.read, v, "material")) return -1;
+  ObjectReader r(ctx.read, v, "material");
+  MaterialDesc m;
+  m.where = r.where();
+  r.read("ks", m.ks);
+  r.read("kd", m.kd);
+  r.read("specularexponent", m.exponent);
+  r.read("diffusecolor", m.diffuse);
+  r.read("specularcolor", m.specular);
+  // "reflectivity" applies only when "isreflective" is true.
+  Sourced<bool> reflective{false};
+  Sourced<float> reflectivity{1.0f};
+  r.read("isreflective", reflective);
+  r.read("reflectivity", reflectivity);
+  m.reflectivity = reflective.value ? reflectivity : Sourced<float>(0.0f, reflective.where);
+  r.read("isrefractive", m.refractive);
+  r.read("refractiveindex", m.ior);
+  r.finish();
+  if (!r.ok()) return -1;
+  m.name = "material " + std::to_string(ctx.scene.materials.size());
+  ctx.scene.materials.push_back(std::move(m));
+  return static_cast<int>(ctx.scene.materials.size() - 1);
+}
+
+// "center", unit "axis", "radius", "height" = HALF the length: the cylinder
+// spans center +- height * axis.
+ShapeGeometry read_cylinder(ImportContext& ctx, ObjectReader& r) {
+  CylinderDesc c;
+  Sourced<Vec3f> center, axis;
+  Sourced<float> half_height;
+  const bool ok = r.read_required("center", center) & r.read_required("axis", axis) &
+                  r.read_required("radius", c.radius) & r.read_required("height", half_height);
+  if (!ok) return c;
+  if (length(axis.value) == 0.0f) {
+    ctx.diag().error(axis.where, "cylinder axis must not be zero");
+    r.fail();
+    return c;
+  }
+  if (half_height.value <= 0.0f) {
+    ctx.diag().error(half_height.where, "cylinder height must be > 0, got " + format_number(half_height.value));
+    r.fail();
+    return c;
+  }
+  const Vec3f offset = normalize(axis.value) * half_height.value;
+  c.p0 = Sourced<Vec3f>(center.value - offset, center.where);
+  c.p1 = Sourced<Vec3f>(center.value + offset, center.where);
+  return c;
+}
+
+void read_shape(ImportContext& ctx, const JsonValue& v, std::size_t index) {
+  if (!expect_object(ctx.read, v, "shapes[" + std::to_string(index) + "]")) return;
+  ObjectReader r(ctx.read, v, "shape");
+  const std::string type = read_legacy_type(r);
+  if (type.empty()) return;
+  r.set_what(type);
+  ShapeDesc shape;
+  shape.where = r.where();
+  if (type == "sphere") {
+    SphereDesc s;  // texture pole +Y, the default
+    r.read_required("center", s.center);
+    r.read_required("radius", s.radius);
+    shape.geometry = s;
+  } else if (type == "cylinder") {
+    shape.geometry = read_cylinder(ctx, r);
+  } else if (type == "triangle") {
+    TriangleDesc t;
+    read_corners(r, 3, t.v);
+    shape.geometry = t;
+  } else {
+    warn_unsupported_type(r, "shape", type, {"sphere", "cylinder", "triangle"});
+    return;
+  }
+  int material = -1;
+  const JsonValue* mv = r.get("material");
+  if (mv) material = read_material(ctx, *mv);
+  r.finish();
+  if (!r.ok() || (mv && material < 0)) return;
+  shape.material = mv ? material : default_material(ctx);
+  ctx.scene.shapes.push_back(std::move(shape));
+}
+
+void read_scene(ImportContext& ctx, const JsonValue& v) {
+  if (!expect_object(ctx.read, v, "scene")) return;
+  ObjectReader r(ctx.read, v, "scene");
+  r.read("backgroundcolor", ctx.scene.render.background);
+  if (const JsonValue* lights = r.get("lightsources"); lights && expect_array(ctx.read, *lights, "lightsources")) {
+    for (std::size_t i = 0; i < lights->as_array().size(); ++i) read_light(ctx, lights->as_array()[i], i);
+  }
+  if (const JsonValue* shapes = r.require("shapes"); shapes && expect_array(ctx.read, *shapes, "shapes")) {
+    for (std::size_t i = 0; i < shapes->as_array().size(); ++i) read_shape(ctx, shapes->as_array()[i], i);
+  }
+  r.finish();
+}
+
+}  // namespace
+
+void import_cgr(ImportContext& ctx) {
+  SceneDescription& scene = ctx.scene;
+  scene.film.display = DisplayTransform::CgrCourse;
+  scene.render.max_depth = kDefaultBounces;
+  ObjectReader top(ctx.read, ctx.doc().root(), "the scene file");
+  SourceLocation mode_at;
+  const int mode = read_choice(top, "rendermode", {"binary", "phong", "pathtracer"}, &mode_at);
+  if (mode >= 0) {
+    static const char* const kIntegrators[] = {"binary", "whitted", "path"};
+    scene.render.integrator = Sourced<std::string>(kIntegrators[mode], mode_at);
+  }
+  top.read("nbounces", scene.render.max_depth);
+  if (const JsonValue* v = top.require("camera")) read_camera(ctx, *v);
+  if (const JsonValue* v = top.require("scene")) read_scene(ctx, *v);
+  top.finish();
+}
+
+}  // namespace pt

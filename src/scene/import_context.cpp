@@ -1,0 +1,74 @@
+#include "scene/import_context.h"
+
+#include <filesystem>
+#include <system_error>
+
+#include "scene/ply.h"
+
+namespace fs = std::filesystem;
+
+namespace pt {
+
+std::string describe_search(const std::string& scene_path, const std::string& written) {
+  const fs::path w(written);
+  if (w.is_absolute()) return "the path is absolute and no file exists there";
+  std::error_code ec;
+  fs::path dir = fs::path(scene_path).parent_path();
+  if (dir.empty()) dir = ".";
+  const fs::path in_scene = fs::absolute(dir, ec) / w;
+  const fs::path in_cwd = fs::current_path(ec) / w;
+  return "looked in the scene's directory ('" + in_scene.lexically_normal().string() +
+         "') and the working directory ('" + in_cwd.lexically_normal().string() + "')";
+}
+
+std::optional<int> add_texture(ImportContext& ctx, const Sourced<std::string>& written) {
+  const std::optional<std::string> resolved = resolve_scene_path(ctx.scene.source_path, written.value);
+  if (!resolved) {
+    ctx.diag().error(written.where, "texture file '" + written.value + "' not found; " +
+                                        describe_search(ctx.scene.source_path, written.value));
+    return std::nullopt;
+  }
+  std::error_code ec;
+  fs::path canonical = fs::weakly_canonical(*resolved, ec);
+  const std::string key = ec ? *resolved : canonical.string();
+  if (const auto it = ctx.texture_ids.find(key); it != ctx.texture_ids.end()) return it->second;
+  const int id = static_cast<int>(ctx.scene.textures.size());
+  ctx.scene.textures.push_back(TextureDesc{written.where, written.value, *resolved});
+  ctx.texture_ids.emplace(key, id);
+  return id;
+}
+
+bool load_mesh_file(ImportContext& ctx, const Sourced<std::string>& written, MeshDesc& mesh) {
+  mesh.file = written;
+  const std::optional<std::string> resolved = resolve_scene_path(ctx.scene.source_path, written.value);
+  if (!resolved) {
+    ctx.diag().error(written.where, "mesh file '" + written.value + "' not found; " +
+                                        describe_search(ctx.scene.source_path, written.value));
+    return false;
+  }
+  PlyMesh ply;
+  PlyError error;
+  if (!load_ply(*resolved, ply, error)) {
+    std::string message = "cannot read mesh '" + written.value + "': " + error.message;
+    if (error.line > 0) message += " (header line " + std::to_string(error.line) + ")";
+    ctx.diag().error(written.where, std::move(message));
+    return false;
+  }
+  mesh.positions = std::move(ply.positions);
+  mesh.indices = std::move(ply.indices);
+  mesh.normals = std::move(ply.normals);
+  mesh.uvs = std::move(ply.uvs);
+  return true;
+}
+
+int default_material(ImportContext& ctx) {
+  if (!ctx.default_material) {
+    MaterialDesc m;  // the defaults documented in scene_description.h
+    m.name = "default";
+    ctx.default_material = static_cast<int>(ctx.scene.materials.size());
+    ctx.scene.materials.push_back(std::move(m));
+  }
+  return *ctx.default_material;
+}
+
+}  // namespace pt

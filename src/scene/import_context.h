@@ -1,0 +1,42 @@
+// State shared by the three importers while they fill a SceneDescription, and
+// the helpers they have in common: texture registration (each file once),
+// mesh files, and the default material.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+
+#include "scene/json_reader.h"
+#include "scene/loader.h"
+#include "scene/scene_description.h"
+
+namespace pt {
+
+struct ImportContext {
+  ReadContext read;
+  const LoadOptions& options;
+  SceneDescription& scene;
+  std::map<std::string, int> texture_ids;  // canonical path -> index in scene.textures
+  std::optional<int> default_material;     // index, once a shape needed it
+
+  Diagnostics& diag() { return read.diag; }
+  const JsonDocument& doc() { return read.doc; }
+};
+
+// Resolves a texture path written in the file (see resolve_scene_path) and
+// returns its index in scene.textures, adding it the first time. A missing
+// file is reported (saying where it was looked for) and gives std::nullopt.
+std::optional<int> add_texture(ImportContext& ctx, const Sourced<std::string>& written);
+
+// Resolves and reads a PLY file into `mesh` (positions, indices, normals, uvs).
+// Problems are reported at the path's location.
+bool load_mesh_file(ImportContext& ctx, const Sourced<std::string>& written, MeshDesc& mesh);
+
+// The index of the material used by shapes that name none (added on first use).
+int default_material(ImportContext& ctx);
+
+// "looked in '<scene dir>/x' and '<cwd>/x'" for messages about missing files.
+std::string describe_search(const std::string& scene_path, const std::string& written);
+
+}  // namespace pt

@@ -1,0 +1,171 @@
+// The native format (docs/scene-format.md): top level, camera, film, render
+// settings, materials and lights. Shapes are in import_native_shapes.cpp.
+#include <string>
+#include <vector>
+
+#include "scene/detect.h"
+#include "scene/importers.h"
+#include "scene/native_shapes.h"
+
+namespace pt {
+namespace {
+
+void read_camera(ImportContext& ctx, const JsonValue& v) {
+  if (!expect_object(ctx.read, v, "camera")) return;
+  ObjectReader r(ctx.read, v, "camera");
+  CameraDesc& cam = ctx.scene.camera;
+  cam.where = r.where();
+  SourceLocation type_at;
+  const int type = read_choice(r, "type", {"pinhole", "thin_lens"}, &type_at);
+  if (type == 1) cam.type = CameraType::ThinLens;
+  r.read_required("position", cam.position);
+  r.read_required("look_at", cam.look_at);
+  r.read("up", cam.up);
+  r.read("fov", cam.fov_y_deg);
+  SourceLocation handed_at;
+  const int handed = read_choice(r, "handedness", {"right", "left"}, &handed_at);
+  if (handed >= 0) cam.left_handed = Sourced<bool>(handed == 1, handed_at);
+  if (cam.type == CameraType::ThinLens) {
+    r.read_required("lens_radius", cam.lens_radius);
+    r.read_required("focus_distance", cam.focus_distance);
+  }
+  r.finish();
+}
+
+void read_film(ImportContext& ctx, const JsonValue& v) {
+  if (!expect_object(ctx.read, v, "film")) return;
+  ObjectReader r(ctx.read, v, "film");
+  FilmDesc& film = ctx.scene.film;
+  r.read("width", film.width);
+  r.read("height", film.height);
+  SourceLocation display_at;
+  const int display = read_choice(r, "display", {"srgb", "linear", "cgr"}, &display_at);
+  if (display >= 0) {
+    constexpr DisplayTransform kTransforms[] = {DisplayTransform::Srgb, DisplayTransform::Linear,
+                                                DisplayTransform::CgrCourse};
+    film.display = Sourced<DisplayTransform>(kTransforms[display], display_at);
+  }
+  r.read("exposure", film.exposure);
+  r.finish();
+}
+
+void read_render(ImportContext& ctx, const JsonValue& v) {
+  if (!expect_object(ctx.read, v, "render")) return;
+  ObjectReader r(ctx.read, v, "render");
+  RenderDesc& render = ctx.scene.render;
+  r.read("integrator", render.integrator);
+  r.read("max_depth", render.max_depth);
+  r.read("spp", render.spp);
+  r.read("background", render.background);
+  r.finish();
+}
+
+NativeMaterial read_material(ImportContext& ctx, const JsonMember& member) {
+  NativeMaterial out;
+  out.desc.name = member.key;
+  out.desc.where = ctx.doc().location(member.key_offset);
+  if (!expect_object(ctx.read, member.value, "material '" + member.key + "'")) {
+    out.ok = false;
+    return out;
+  }
+  ObjectReader r(ctx.read, member.value, "material '" + member.key + "'");
+  MaterialDesc& m = out.desc;
+  r.read("diffuse", m.diffuse);
+  r.read("kd", m.kd);
+  r.read("specular", m.specular);
+  r.read("ks", m.ks);
+  r.read("exponent", m.exponent);
+  r.read("reflectivity", m.reflectivity);
+  r.read("refractive", m.refractive);
+  r.read("ior", m.ior);
+  r.read("emission", m.emission);
+  Sourced<std::string> texture;
+  if (r.get("texture") && r.read("texture", texture)) out.texture = texture;
+  r.finish();
+  out.ok = r.ok();
+  return out;
+}
+
+std::vector<NativeMaterial> read_materials(ImportContext& ctx, const JsonValue& v) {
+  std::vector<NativeMaterial> materials;
+  if (!expect_object(ctx.read, v, "materials")) return materials;
+  for (const JsonMember& member : v.as_object())
+    if (!member.duplicate) materials.push_back(read_material(ctx, member));
+  return materials;
+}
+
+void read_light(ImportContext& ctx, const JsonValue& v, std::size_t index) {
+  const std::string label = "lights[" + std::to_string(index) + "]";
+  if (!expect_object(ctx.read, v, label)) return;
+  ObjectReader r(ctx.read, v, "light");
+  const int type = read_choice(r, "type", {"point"});
+  if (type == -1) r.require("type");
+  if (type != 0) return;  // the error is reported; the rest of this light cannot be checked
+  r.set_what("point light");
+  PointLightDesc light;
+  light.where = r.where();
+  r.read_required("position", light.position);
+  r.read_required("intensity", light.intensity);
+  light.specular_intensity = light.intensity;
+  r.read("specular_intensity", light.specular_intensity);
+  SourceLocation falloff_at;
+  const int falloff = read_choice(r, "falloff", {"inverse_square", "none"}, &falloff_at);
+  if (falloff >= 0) light.inverse_square = Sourced<bool>(falloff == 0, falloff_at);
+  r.finish();
+  if (r.ok()) ctx.scene.lights.emplace_back(std::move(light));
+}
+
+// Keeps the materials some shape uses (in declaration order), registers their
+// textures, and renumbers the shapes' material indices.
+void assemble_materials(ImportContext& ctx, std::vector<NativeMaterial>& materials,
+                        const std::vector<int>& shape_material) {
+  std::vector<int> final_index(materials.size(), -1);
+  for (std::size_t i = 0; i < materials.size(); ++i) {
+    NativeMaterial& m = materials[i];
+    if (!m.used) {
+      ctx.diag().warning(m.desc.where, "material '" + m.desc.name + "' is not used by any shape");
+      continue;
+    }
+    if (m.texture) m.desc.texture = add_texture(ctx, *m.texture);
+    final_index[i] = static_cast<int>(ctx.scene.materials.size());
+    ctx.scene.materials.push_back(std::move(m.desc));
+  }
+  for (std::size_t s = 0; s < ctx.scene.shapes.size(); ++s) {
+    const int m = shape_material[s];
+    ctx.scene.shapes[s].material = m >= 0 ? final_index[static_cast<std::size_t>(m)] : default_material(ctx);
+  }
+}
+
+}  // namespace
+
+void import_native(ImportContext& ctx) {
+  const JsonValue& root = ctx.doc().root();
+  ObjectReader top(ctx.read, root, "the scene file");
+  top.get("format");  // checked by detect_scene_format
+  Sourced<int> version;
+  if (top.read_required("version", version) && version.value != kNativeFormatVersion) {
+    ctx.diag().error(version.where, "unsupported version " + std::to_string(version.value) +
+                                        "; this build reads version " + std::to_string(kNativeFormatVersion));
+  }
+  if (const JsonValue* v = top.require("camera")) read_camera(ctx, *v);
+  if (const JsonValue* v = top.get("film")) read_film(ctx, *v);
+  if (const JsonValue* v = top.get("render")) read_render(ctx, *v);
+
+  std::vector<NativeMaterial> materials;
+  if (const JsonValue* v = top.get("materials")) materials = read_materials(ctx, *v);
+
+  if (const JsonValue* v = top.get("lights"); v && expect_array(ctx.read, *v, "lights")) {
+    const JsonValue::Array& lights = v->as_array();
+    for (std::size_t i = 0; i < lights.size(); ++i) read_light(ctx, lights[i], i);
+  }
+
+  std::vector<int> shape_material;  // per shape: index into `materials`, -1 for the default
+  if (const JsonValue* v = top.get("shapes"); v && expect_array(ctx.read, *v, "shapes")) {
+    const JsonValue::Array& shapes = v->as_array();
+    for (std::size_t i = 0; i < shapes.size(); ++i) read_native_shape(ctx, shapes[i], i, materials, shape_material);
+  }
+  top.finish();
+  assemble_materials(ctx, materials, shape_material);
+}
+
+}  // namespace pt

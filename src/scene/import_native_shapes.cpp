@@ -1,0 +1,151 @@
+// Native-format shapes: sphere, quad, triangle, cylinder, mesh.
+#include <string>
+
+#include "scene/json_lists.h"
+#include "scene/native_shapes.h"
+#include "scene/suggest.h"
+
+namespace pt {
+namespace {
+
+// "vertices": exactly n points.
+bool read_vertices(ObjectReader& r, std::size_t n, Sourced<Vec3f>* out) {
+  const JsonValue* v = r.require("vertices");
+  if (!v) return false;
+  ReadContext& ctx = r.context();
+  const std::string expected = "an array of " + std::to_string(n) + " points [x, y, z]";
+  if (!v->is_array() || v->as_array().size() != n) {
+    ctx.diag.error(ctx.at(*v), "expected " + expected + " for 'vertices' of a " + r.what());
+    r.fail();
+    return false;
+  }
+  bool ok = true;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::string label = "vertices[" + std::to_string(i) + "]";
+    ok = read_value(ctx, v->as_array()[i], label, out[i]) && ok;
+  }
+  if (!ok) r.fail();
+  return ok;
+}
+
+ShapeGeometry read_sphere(ObjectReader& r) {
+  SphereDesc s;
+  r.read_required("center", s.center);
+  r.read_required("radius", s.radius);
+  r.read("pole", s.pole);
+  return s;
+}
+
+ShapeGeometry read_quad(ObjectReader& r) {
+  QuadDesc q;
+  read_vertices(r, 4, q.v);
+  return q;
+}
+
+ShapeGeometry read_triangle(ObjectReader& r) {
+  TriangleDesc t;
+  read_vertices(r, 3, t.v);
+  return t;
+}
+
+ShapeGeometry read_cylinder(ObjectReader& r) {
+  CylinderDesc c;
+  r.read_required("p0", c.p0);
+  r.read_required("p1", c.p1);
+  r.read_required("radius", c.radius);
+  return c;
+}
+
+ShapeGeometry read_mesh(ImportContext& ctx, ObjectReader& r) {
+  MeshDesc m;
+  const JsonValue* file = r.get("file");
+  const JsonValue* positions = r.get("positions");
+  const JsonValue* indices = r.get("indices");
+  const JsonValue* normals = r.get("normals");
+  const JsonValue* uvs = r.get("uvs");
+  if (file && (positions || indices || normals || uvs)) {
+    ctx.diag().error(r.where(), "a mesh has either 'file' or inline 'positions' and 'indices', not both");
+    r.fail();
+    return m;
+  }
+  if (file) {
+    Sourced<std::string> path;
+    if (!read_value(ctx.read, *file, "file", path) || !load_mesh_file(ctx, path, m)) r.fail();
+    return m;
+  }
+  if (!positions || !indices) {
+    ctx.diag().error(r.where(), "a mesh needs 'file' (a PLY file) or inline 'positions' and 'indices'");
+    r.fail();
+    return m;
+  }
+  bool ok = read_vec3_list(ctx.read, *positions, "positions", m.positions);
+  ok = ok && read_index_list(ctx.read, *indices, "indices", m.positions.size(), /*allow_flat=*/false, m.indices);
+  if (normals && read_vec3_list(ctx.read, *normals, "normals", m.normals) && m.normals.size() != m.positions.size()) {
+    ctx.diag().error(ctx.read.at(*normals), "'normals' has " + std::to_string(m.normals.size()) +
+                                                " entries, but 'positions' has " + std::to_string(m.positions.size()));
+    ok = false;
+  }
+  if (uvs && read_vec2_list(ctx.read, *uvs, "uvs", m.uvs) && m.uvs.size() != m.positions.size()) {
+    ctx.diag().error(ctx.read.at(*uvs), "'uvs' has " + std::to_string(m.uvs.size()) + " entries, but 'positions' has " +
+                                            std::to_string(m.positions.size()));
+    ok = false;
+  }
+  if (!ok) r.fail();
+  return m;
+}
+
+// The material a shape names: index into `materials`, -1 for none, -2 if unknown.
+int resolve_material(ImportContext& ctx, ObjectReader& r, std::vector<NativeMaterial>& materials) {
+  Sourced<std::string> name;
+  const JsonValue* v = r.get("material");
+  if (!v) return -1;
+  if (!read_value(ctx.read, *v, "material", name)) return -2;
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < materials.size(); ++i) {
+    if (materials[i].desc.name == name.value) {
+      materials[i].used = true;
+      return static_cast<int>(i);
+    }
+    names.push_back(materials[i].desc.name);
+  }
+  std::string message = "unknown material '" + name.value + "'";
+  const std::string suggestion = closest_match(name.value, names);
+  if (!suggestion.empty()) message += "; did you mean '" + suggestion + "'?";
+  else if (names.empty()) message += "; the scene defines no materials";
+  else message += "; the scene defines " + quoted_list(names, "and");
+  ctx.diag().error(name.where, std::move(message));
+  return -2;
+}
+
+}  // namespace
+
+void read_native_shape(ImportContext& ctx, const JsonValue& v, std::size_t index,
+                       std::vector<NativeMaterial>& materials, std::vector<int>& shape_material) {
+  if (!expect_object(ctx.read, v, "shapes[" + std::to_string(index) + "]")) return;
+  ObjectReader r(ctx.read, v, "shape");
+  static const std::vector<std::string> kTypes = {"sphere", "quad", "triangle", "cylinder", "mesh"};
+  const int type = read_choice(r, "type", kTypes);
+  if (type == -1) r.require("type");
+  if (type < 0) return;
+  r.set_what(kTypes[static_cast<std::size_t>(type)]);
+
+  ShapeDesc shape;
+  shape.where = r.where();
+  Sourced<std::string> name;
+  r.read("name", name);
+  shape.name = name.value;
+  const int material = resolve_material(ctx, r, materials);
+  switch (type) {
+    case 0: shape.geometry = read_sphere(r); break;
+    case 1: shape.geometry = read_quad(r); break;
+    case 2: shape.geometry = read_triangle(r); break;
+    case 3: shape.geometry = read_cylinder(r); break;
+    default: shape.geometry = read_mesh(ctx, r); break;
+  }
+  r.finish();
+  if (!r.ok() || material == -2) return;
+  ctx.scene.shapes.push_back(std::move(shape));
+  shape_material.push_back(material);
+}
+
+}  // namespace pt

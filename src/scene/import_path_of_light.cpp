@@ -1,0 +1,181 @@
+// The "Path of Light" course format (see /work/shared/seed-scenes/CONVENTIONS.md
+// and docs/scene-format.md): Z-up, "lookat" is a direction, point lights give
+// "id"/"is" with a 1/(4 pi r^2) falloff, "plane" is a quad with named corners,
+// linear display (value * 255).
+#include <string>
+
+#include "scene/importers.h"
+#include "scene/json_lists.h"
+#include "scene/legacy_common.h"
+
+namespace pt {
+namespace {
+
+constexpr float kInv4Pi = 1.0f / (4.0f * kPi);
+
+void read_camera(ImportContext& ctx, const JsonValue& v) {
+  if (!expect_object(ctx.read, v, "camera")) return;
+  ObjectReader r(ctx.read, v, "camera");
+  CameraDesc& cam = ctx.scene.camera;
+  cam.where = r.where();
+  SourceLocation type_at;
+  const int type = read_choice(r, "type", {"pinhole", "thinlens"}, &type_at);
+  if (type == 1) cam.type = CameraType::ThinLens;
+  r.read_required("width", ctx.scene.film.width);
+  r.read_required("height", ctx.scene.film.height);
+  r.read_required("fov", cam.fov_y_deg);  // full angle; the course's images are square
+  r.read_required("position", cam.position);
+  Sourced<Vec3f> direction;
+  if (r.read_required("lookat", direction))  // a direction: the target is position + lookat
+    cam.look_at = Sourced<Vec3f>(cam.position.value + direction.value, direction.where);
+  r.read_required("up", cam.up);
+  cam.left_handed = false;  // image right = forward x up
+  if (cam.type == CameraType::ThinLens) {
+    // No official keys exist; these are ours (docs/scene-format.md).
+    r.read_required("lensradius", cam.lens_radius);
+    r.read_required("focusdistance", cam.focus_distance);
+  }
+  r.finish();
+}
+
+void read_light(ImportContext& ctx, const JsonValue& v, std::size_t index) {
+  if (!expect_object(ctx.read, v, "lightsources[" + std::to_string(index) + "]")) return;
+  ObjectReader r(ctx.read, v, "light source");
+  const std::string type = read_legacy_type(r);
+  if (type.empty()) return;
+  if (type != "pointlight") {
+    warn_unsupported_type(r, "light", type, {"pointlight"});
+    return;
+  }
+  r.set_what("point light");
+  PointLightDesc light;
+  light.where = r.where();
+  r.read_required("position", light.position);
+  Sourced<RGB> diffuse, specular;
+  // The course's intensities are radiant power-like with a 1/(4 pi r^2) falloff;
+  // native point lights have irradiance I / r^2, so I = id / (4 pi).
+  if (r.read_required("id", diffuse)) light.intensity = Sourced<RGB>(diffuse.value * kInv4Pi, diffuse.where);
+  if (r.read_required("is", specular))
+    light.specular_intensity = Sourced<RGB>(specular.value * kInv4Pi, specular.where);
+  r.finish();
+  if (r.ok()) ctx.scene.lights.emplace_back(std::move(light));
+}
+
+// An inline material; returns its index in scene.materials, or -1 if it was bad.
+int read_material(ImportContext& ctx, const JsonValue& v) {
+  if (!expect_object(ctx.read, v, "material")) return -1;
+  ObjectReader r(ctx.read, v, "material");
+  MaterialDesc m;
+  m.where = r.where();
+  r.read("ks", m.ks);
+  r.read("kd", m.kd);
+  r.read("specularexponent", m.exponent);
+  r.read("diffusecolor", m.diffuse);
+  r.read("kr", m.reflectivity);
+  Sourced<std::string> texture;
+  if (r.get("tPath") && r.read("tPath", texture)) m.texture = add_texture(ctx, texture);
+  r.allow({"tWidth", "tHeight"});  // the course's claimed image size; the real size is used
+  r.finish();
+  if (!r.ok()) return -1;
+  m.name = "material " + std::to_string(ctx.scene.materials.size());
+  ctx.scene.materials.push_back(std::move(m));
+  return static_cast<int>(ctx.scene.materials.size() - 1);
+}
+
+// "trimesh": inline "vertices" + "faces" (or "indices"), or a PLY path under
+// "mPath", "plyPath" or "filename" (keys seen in third-party files).
+ShapeGeometry read_trimesh(ImportContext& ctx, ObjectReader& r) {
+  MeshDesc m;
+  for (const char* key : {"mPath", "plyPath", "filename"}) {
+    if (const JsonValue* v = r.get(key)) {
+      Sourced<std::string> path;
+      if (!read_value(ctx.read, *v, key, path) || !load_mesh_file(ctx, path, m)) r.fail();
+      return m;
+    }
+  }
+  const JsonValue* vertices = r.require("vertices");
+  const JsonValue* faces = r.get("faces");
+  const char* faces_key = "faces";
+  if (!faces) {
+    faces = r.get("indices");
+    faces_key = "indices";
+  }
+  if (!faces) {
+    ctx.diag().error(r.where(), "a trimesh needs 'vertices' and 'faces' (or 'indices'), or a PLY file under "
+                                "'mPath', 'plyPath' or 'filename'");
+    r.fail();
+    return m;
+  }
+  if (!vertices || !read_vec3_list(ctx.read, *vertices, "vertices", m.positions) ||
+      !read_index_list(ctx.read, *faces, faces_key, m.positions.size(), /*allow_flat=*/true, m.indices))
+    r.fail();
+  return m;
+}
+
+void read_shape(ImportContext& ctx, const JsonValue& v, std::size_t index) {
+  if (!expect_object(ctx.read, v, "shapes[" + std::to_string(index) + "]")) return;
+  ObjectReader r(ctx.read, v, "shape");
+  const std::string type = read_legacy_type(r);
+  if (type.empty()) return;
+  r.set_what(type);
+  ShapeDesc shape;
+  shape.where = r.where();
+  if (type == "sphere") {
+    SphereDesc s;
+    r.read_required("center", s.center);
+    r.read_required("radius", s.radius);
+    s.pole = Vec3f(0, 0, 1);  // the course's world is Z-up
+    shape.geometry = s;
+  } else if (type == "plane") {
+    QuadDesc q;  // a planar quad; corners looked up by name (key order is scrambled)
+    read_corners(r, 4, q.v);
+    shape.geometry = q;
+  } else if (type == "triangle") {
+    TriangleDesc t;
+    read_corners(r, 3, t.v);
+    shape.geometry = t;
+  } else if (type == "trimesh") {
+    shape.geometry = read_trimesh(ctx, r);
+  } else {
+    warn_unsupported_type(r, "shape", type, {"sphere", "plane", "triangle", "trimesh"});
+    return;
+  }
+  Sourced<std::string> id;
+  r.read("id", id);
+  shape.name = id.value;
+  int material = -1;
+  const JsonValue* mv = r.get("material");
+  if (mv) material = read_material(ctx, *mv);
+  r.finish();
+  if (!r.ok() || (mv && material < 0)) return;
+  shape.material = mv ? material : default_material(ctx);
+  ctx.scene.shapes.push_back(std::move(shape));
+}
+
+void read_scene(ImportContext& ctx, const JsonValue& v) {
+  if (!expect_object(ctx.read, v, "scene")) return;
+  ObjectReader r(ctx.read, v, "scene");
+  r.read("backgroundcolor", ctx.scene.render.background);
+  if (const JsonValue* lights = r.get("lightsources"); lights && expect_array(ctx.read, *lights, "lightsources")) {
+    for (std::size_t i = 0; i < lights->as_array().size(); ++i) read_light(ctx, lights->as_array()[i], i);
+  }
+  if (const JsonValue* shapes = r.require("shapes"); shapes && expect_array(ctx.read, *shapes, "shapes")) {
+    for (std::size_t i = 0; i < shapes->as_array().size(); ++i) read_shape(ctx, shapes->as_array()[i], i);
+  }
+  r.finish();
+}
+
+}  // namespace
+
+void import_path_of_light(ImportContext& ctx) {
+  SceneDescription& scene = ctx.scene;
+  scene.film.display = DisplayTransform::Linear;  // the course writes value * 255, no gamma
+  scene.render.integrator = std::string("whitted");
+  ObjectReader top(ctx.read, ctx.doc().root(), "the scene file");
+  top.read("nbounces", scene.render.max_depth);
+  if (const JsonValue* v = top.require("camera")) read_camera(ctx, *v);
+  if (const JsonValue* v = top.require("scene")) read_scene(ctx, *v);
+  top.finish();
+}
+
+}  // namespace pt

@@ -1,0 +1,24 @@
+// "Did you mean ...?" for misspelt keys and names.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace pt {
+
+// Optimal-string-alignment distance (Levenshtein plus adjacent transpositions),
+// so "raduis" is one edit from "radius".
+int edit_distance(std::string_view a, std::string_view b);
+
+// The candidate closest to `word` if it is close enough to be a likely typo
+// (case differences are free), else an empty string.
+std::string closest_match(std::string_view word, const std::vector<std::string>& candidates);
+
+// "'word'"
+std::string quoted(std::string_view word);
+
+// "'a', 'b' or 'c'" (sorted, each once; `conjunction` replaces "or").
+std::string quoted_list(std::vector<std::string> items, std::string_view conjunction = "or");
+
+}  // namespace pt

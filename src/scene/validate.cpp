@@ -1,0 +1,185 @@
+#include "scene/validate.h"
+
+#include <cmath>
+#include <string>
+
+#include "scene/json_reader.h"
+
+namespace pt {
+namespace {
+
+std::string str(double d) { return format_number(d); }
+std::string str(RGB c) { return std::string(1, '[') + str(c.r) + ", " + str(c.g) + ", " + str(c.b) + "]"; }
+
+class Validator {
+ public:
+  Validator(const LoadOptions& options, Diagnostics& diag) : options_(options), diag_(diag) {}
+
+  void camera(const CameraDesc& cam) {
+    const Vec3f forward = cam.look_at.value - cam.position.value;
+    const Vec3f up = cam.up.value;
+    if (length(forward) == 0.0f)
+      diag_.error(cam.look_at.where, "the camera's view direction has zero length (it looks at its own position)");
+    if (length(up) == 0.0f) diag_.error(cam.up.where, "the camera's up vector has zero length");
+    if (length(forward) > 0.0f && length(up) > 0.0f &&
+        length(cross(normalize(forward), normalize(up))) < 1e-6f)
+      diag_.error(cam.up.where, "the camera's up vector is parallel to its view direction");
+    if (!(cam.fov_y_deg.value > 0.0f && cam.fov_y_deg.value < 180.0f))
+      diag_.error(cam.fov_y_deg.where, "fov must be between 0 and 180 degrees, got " + str(cam.fov_y_deg.value));
+    if (cam.type == CameraType::ThinLens) {
+      if (cam.lens_radius.value < 0.0f)
+        diag_.error(cam.lens_radius.where, "lens radius must be >= 0, got " + str(cam.lens_radius.value));
+      if (cam.focus_distance.value <= 0.0f)
+        diag_.error(cam.focus_distance.where, "focus distance must be > 0, got " + str(cam.focus_distance.value));
+    }
+  }
+
+  void film(const FilmDesc& film) {
+    resolution(film.width, "width");
+    resolution(film.height, "height");
+  }
+
+  void render(const RenderDesc& render) {
+    if (render.spp.value < 1) diag_.error(render.spp.where, "spp must be >= 1, got " + str(render.spp.value));
+    if (render.max_depth.value < 0)
+      diag_.error(render.max_depth.where, "max_depth must be >= 0, got " + str(render.max_depth.value));
+    colour(render.background, "background colour");
+  }
+
+  void material(const MaterialDesc& m) {
+    non_negative(m.kd, "kd");
+    non_negative(m.ks, "ks");
+    non_negative(m.exponent, "specular exponent");
+    if (m.reflectivity.value < 0.0f || m.reflectivity.value > 1.0f)
+      diag_.error(m.reflectivity.where, "reflectivity must be between 0 and 1, got " + str(m.reflectivity.value));
+    if (m.ior.value <= 0.0f) diag_.error(m.ior.where, "index of refraction must be > 0, got " + str(m.ior.value));
+    colour(m.diffuse, "diffuse colour");
+    colour(m.specular, "specular colour");
+    colour(m.emission, "emission");
+  }
+
+  void light(const PointLightDesc& l) {
+    colour(l.intensity, "light intensity");
+    colour(l.specular_intensity, "specular intensity");
+  }
+
+  void shape(const ShapeDesc& s) {
+    std::visit([&](const auto& g) { geometry(s, g); }, s.geometry);
+  }
+
+ private:
+  void resolution(const Sourced<int>& v, const char* name) {
+    if (v.value < 1 || v.value > options_.max_resolution)
+      diag_.error(v.where, std::string(name) + " must be between 1 and " + std::to_string(options_.max_resolution) +
+                               ", got " + std::to_string(v.value));
+  }
+
+  void non_negative(const Sourced<float>& v, const char* name) {
+    if (v.value < 0.0f) diag_.error(v.where, std::string(name) + " must be >= 0, got " + str(v.value));
+  }
+
+  void colour(const Sourced<RGB>& c, const char* name) {
+    if (c.value.r < 0.0f || c.value.g < 0.0f || c.value.b < 0.0f)
+      diag_.error(c.where, std::string(name) + " must not be negative, got " + str(c.value));
+  }
+
+  void geometry(const ShapeDesc&, const SphereDesc& s) {
+    if (!(s.radius.value > 0.0f)) diag_.error(s.radius.where, "radius must be > 0, got " + str(s.radius.value));
+    if (length(s.pole.value) == 0.0f) diag_.error(s.pole.where, "sphere pole must not be zero");
+  }
+
+  void geometry(const ShapeDesc& shape, const TriangleDesc& t) {
+    const Vec3f n = cross(t.v[1].value - t.v[0].value, t.v[2].value - t.v[0].value);
+    if (length(n) == 0.0f)
+      diag_.warning(shape.where, "triangle is degenerate (zero area, corners in a line); it will not be visible");
+  }
+
+  void geometry(const ShapeDesc& shape, const QuadDesc& q) {
+    Vec3f v[4];
+    float size = 0.0f;
+    for (int i = 0; i < 4; ++i) v[i] = q.v[i].value;
+    for (int i = 0; i < 4; ++i) size = std::max(size, length(v[(i + 1) % 4] - v[i]));
+    // Reference normal: the largest corner cross product (a bow-tie's corners
+    // then disagree with it in sign, which the order check below catches).
+    Vec3f n(0.0f);
+    for (int i = 0; i < 4; ++i) {
+      const Vec3f c = cross(v[(i + 1) % 4] - v[i], v[(i + 3) % 4] - v[i]);
+      if (length(c) > length(n)) n = c;
+    }
+    if (size == 0.0f || length(n) <= 1e-7f * size * size) {
+      diag_.warning(shape.where, "quad is degenerate (zero area); it will not be visible");
+      return;
+    }
+    n = normalize(n);
+    const Vec3f centre = (v[0] + v[1] + v[2] + v[3]) * 0.25f;
+    float off_plane = 0.0f;
+    for (int i = 0; i < 4; ++i) off_plane = std::max(off_plane, std::fabs(dot(v[i] - centre, n)));
+    const float tolerance = 1e-3f * size;
+    if (off_plane > tolerance) {
+      diag_.error(shape.where, "quad is not planar: its corners are up to " + str(off_plane) +
+                                   " away from a common plane (tolerance " + str(tolerance) + ")");
+      return;
+    }
+    for (int i = 0; i < 4; ++i) {
+      const Vec3f c = cross(v[(i + 1) % 4] - v[i], v[(i + 3) % 4] - v[i]);
+      if (dot(c, n) < -1e-6f * size * size) {
+        diag_.error(shape.where, "quad corners are not in perimeter order, or the quad is not convex");
+        return;
+      }
+    }
+  }
+
+  void geometry(const ShapeDesc& shape, const CylinderDesc& c) {
+    if (!(c.radius.value > 0.0f)) diag_.error(c.radius.where, "radius must be > 0, got " + str(c.radius.value));
+    if (length(c.p1.value - c.p0.value) == 0.0f)
+      diag_.warning(shape.where, "cylinder has zero length; it will not be visible");
+  }
+
+  void geometry(const ShapeDesc& shape, const MeshDesc& m) {
+    const SourceLocation& at = m.file.where.valid() ? m.file.where : shape.where;
+    const std::string what = m.file.value.empty() ? std::string("mesh") : "mesh '" + m.file.value + "'";
+    if (m.indices.size() % 3 != 0) {
+      diag_.error(at, what + " has " + std::to_string(m.indices.size()) + " indices, not a multiple of 3");
+      return;
+    }
+    std::size_t bad = 0;
+    uint32_t first_bad = 0;
+    for (uint32_t i : m.indices) {
+      if (i >= m.positions.size() && bad++ == 0) first_bad = i;
+    }
+    if (bad > 0)
+      diag_.error(at, what + ": " + std::to_string(bad) + " vertex indices are out of range (e.g. " +
+                          std::to_string(first_bad) + "; the mesh has " + std::to_string(m.positions.size()) +
+                          " vertices)");
+    for (const Vec3f& p : m.positions) {
+      if (!is_finite(p)) {
+        diag_.error(at, what + " has a vertex position that is not a finite number");
+        break;
+      }
+    }
+    if (!m.normals.empty() && m.normals.size() != m.positions.size())
+      diag_.error(at, what + " has " + std::to_string(m.normals.size()) + " normals for " +
+                          std::to_string(m.positions.size()) + " vertices");
+    if (!m.uvs.empty() && m.uvs.size() != m.positions.size())
+      diag_.error(at, what + " has " + std::to_string(m.uvs.size()) + " texture coordinates for " +
+                          std::to_string(m.positions.size()) + " vertices");
+    if (m.indices.empty()) diag_.warning(at, what + " has no triangles; it will not be visible");
+  }
+
+  const LoadOptions& options_;
+  Diagnostics& diag_;
+};
+
+}  // namespace
+
+void validate_scene(const SceneDescription& scene, const LoadOptions& options, Diagnostics& diag) {
+  Validator v(options, diag);
+  v.camera(scene.camera);
+  v.film(scene.film);
+  v.render(scene.render);
+  for (const MaterialDesc& m : scene.materials) v.material(m);
+  for (const LightDesc& l : scene.lights) std::visit([&](const auto& light) { v.light(light); }, l);
+  for (const ShapeDesc& s : scene.shapes) v.shape(s);
+}
+
+}  // namespace pt
