@@ -1,1 +1,40 @@
-// placeholder (owner will replace)
+#include "accel/accelerator.h"
+
+#include "accel/embree/embree_accel.h"
+
+namespace pt {
+
+bool parse_accel_kind(const std::string& name, AccelKind& out) {
+  if (name == "embree") {
+    out = AccelKind::Embree;
+    return true;
+  }
+  if (name == "bvh") {
+    out = AccelKind::Bvh;
+    return true;
+  }
+  return false;
+}
+
+const char* accel_kind_name(AccelKind kind) {
+  switch (kind) {
+    case AccelKind::Embree: return "embree";
+    case AccelKind::Bvh: return "bvh";
+  }
+  return "unknown";
+}
+
+std::vector<std::string> accel_kind_names() { return {"embree", "bvh"}; }
+
+std::unique_ptr<Accelerator> build_accelerator(AccelKind kind, const SceneGeometry& geometry, WorkerPool& pool,
+                                               Diagnostics& diag) {
+  switch (kind) {
+    case AccelKind::Embree: return embree::build(geometry, pool, diag);
+    case AccelKind::Bvh:
+      diag.error(SourceLocation{}, "--accel=bvh: our own BVH backend is not available yet; use --accel=embree");
+      return nullptr;
+  }
+  return nullptr;
+}
+
+}  // namespace pt

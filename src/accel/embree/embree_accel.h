@@ -1,0 +1,12 @@
+// The Embree 3 backend behind build_accelerator(AccelKind::Embree, ...).
+#pragma once
+
+#include <memory>
+
+#include "accel/accelerator.h"
+
+namespace pt::embree {
+
+std::unique_ptr<Accelerator> build(const SceneGeometry& geometry, WorkerPool& pool, Diagnostics& diag);
+
+}  // namespace pt::embree

@@ -1,0 +1,139 @@
+// Capped cylinders. The solid is the intersection of an infinite cylinder and
+// the slab between the two cap planes; the ray's interval inside it is the
+// overlap of the two intervals (like a ray/box slab test), so side and caps
+// meet without a crack at the rims, and a ray starting inside finds its exit.
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "geometry/float_util.h"
+#include "geometry/shapes.h"
+
+namespace pt {
+
+namespace {
+
+enum Part { kSide = 0, kCap0 = 1, kCap1 = 2 };
+
+}  // namespace
+
+Bounds3f bounds(const Cylinder& c) {
+  Bounds3f b;
+  const Vec3f axis = c.p1 - c.p0;
+  const float len = length(axis);
+  const float r = c.radius > 0.0f ? c.radius : 0.0f;
+  Vec3f ext(r);
+  if (len > 0.0f && std::isfinite(len)) {
+    const Vec3f a = axis / len;
+    // A disc of radius r with unit normal a spans r * sqrt(1 - a_i^2) along axis i.
+    ext = {r * std::sqrt(std::max(0.0f, 1.0f - a.x * a.x)), r * std::sqrt(std::max(0.0f, 1.0f - a.y * a.y)),
+           r * std::sqrt(std::max(0.0f, 1.0f - a.z * a.z))};
+  }
+  b.extend(min(c.p0, c.p1) - ext);
+  b.extend(max(c.p0, c.p1) + ext);
+  return fp::pad(b);
+}
+
+bool intersect(const Cylinder& cyl, const Ray& ray, PrimHit& hit) {
+  const float r = cyl.radius;
+  const float len = length(cyl.p1 - cyl.p0);
+  if (!(r > 0.0f) || !(len > 0.0f) || !std::isfinite(len)) return false;
+  const Vec3f a = (cyl.p1 - cyl.p0) / len;
+  const Vec3f f = ray.origin - cyl.p0;
+  const Vec3f d = ray.dir;
+  const float fa = dot(f, a);
+  const float da = dot(d, a);
+
+  // Interval inside the slab 0 <= h <= len, and which cap bounds each end.
+  float s_in = -kInfinity, s_out = kInfinity;
+  Part cap_in = kCap0, cap_out = kCap1;
+  if (da != 0.0f) {
+    const float t0 = -fa / da;
+    const float t1 = (len - fa) / da;
+    if (da > 0.0f) {
+      s_in = t0;
+      s_out = t1;
+    } else {
+      s_in = t1;
+      s_out = t0;
+      std::swap(cap_in, cap_out);
+    }
+  } else if (!(fa >= 0.0f && fa <= len)) {
+    return false;  // parallel to the caps and outside the slab (or NaN)
+  }
+
+  // Interval inside the infinite cylinder: the stable quadratic of the sphere
+  // applied to the components perpendicular to the axis.
+  const Vec3f fp = f - a * fa;
+  const Vec3f dp = d - a * da;
+  const float qa = dot(dp, dp);
+  const double c = static_cast<double>(fp.x) * fp.x + static_cast<double>(fp.y) * fp.y +
+                   static_cast<double>(fp.z) * fp.z - static_cast<double>(r) * r;  // see sphere.cpp
+  float c_in = -kInfinity, c_out = kInfinity;
+  if (qa > 0.0f) {
+    const float qb = dot(fp, dp);
+    const float len_l = length(fp - (qb / qa) * dp);
+    const float disc = qa * ((r + len_l) * (r - len_l));
+    if (!(disc >= 0.0f)) return false;
+    const float q = -(qb + std::copysign(std::sqrt(disc), qb));
+    c_in = static_cast<float>(c / q);
+    c_out = q / qa;
+    if (c_in > c_out) std::swap(c_in, c_out);
+  } else if (!(c < 0.0)) {
+    return false;  // parallel to the axis and outside the cylinder (or NaN)
+  }
+
+  const bool side_in = c_in > s_in;
+  const bool side_out = c_out < s_out;
+  const float t_enter = side_in ? c_in : s_in;
+  const float t_exit = side_out ? c_out : s_out;
+  if (!(t_enter <= t_exit)) return false;
+  Part part;
+  if (t_enter > ray.tmin && t_enter < ray.tmax) {
+    hit.t = t_enter;
+    part = side_in ? kSide : cap_in;
+  } else if (t_exit > ray.tmin && t_exit < ray.tmax) {
+    hit.t = t_exit;
+    part = side_out ? kSide : cap_out;
+  } else {
+    return false;
+  }
+  hit.uv = {static_cast<float>(part), 0.0f};
+  return true;
+}
+
+SurfaceGeometry surface(const Cylinder& cyl, const Ray& ray, const PrimHit& hit) {
+  const Vec3f axis = cyl.p1 - cyl.p0;
+  const float len = length(axis);
+  const Vec3f a = axis / len;
+  Vec3f e0, e1;
+  fp::axis_frame(a, e0, e1);
+
+  // Reproject the ray's point onto the part it hit.
+  const Vec3f q = ray.at(hit.t) - cyl.p0;
+  const float h = dot(q, a);
+  const Vec3f radial = q - a * h;
+  const float rl = length(radial);
+  const Vec3f dir = (rl > 0.0f && std::isfinite(rl)) ? radial / rl : e0;
+
+  SurfaceGeometry sg;
+  const int part = static_cast<int>(hit.uv.x);
+  float v;
+  if (part == kSide) {
+    const float hc = std::clamp(h, 0.0f, len);
+    sg.p = cyl.p0 + a * hc + dir * cyl.radius;
+    sg.ng = dir;
+    v = hc / len;
+  } else {
+    const float rc = std::min(rl, cyl.radius);
+    sg.p = (part == kCap0 ? cyl.p0 : cyl.p1) + dir * rc;
+    sg.ng = part == kCap0 ? -a : a;
+    v = part == kCap0 ? 0.0f : 1.0f;
+  }
+  sg.ns = sg.ng;
+  sg.uv = {fp::longitude_fraction(dot(dir, e0), dot(dir, e1)), v};
+  sg.p_error = fp::gamma(8) * (abs(sg.p) + abs(cyl.p0) + Vec3f(len + cyl.radius));
+  return sg;
+}
+
+}  // namespace pt

@@ -1,0 +1,84 @@
+// Spheres: the numerically stable quadratic of Haines et al., "Precision
+// Improvements for Ray/Sphere Intersection" (Ray Tracing Gems, ch. 7), and a
+// longitude/latitude parameterisation about the sphere's pole.
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "geometry/float_util.h"
+#include "geometry/shapes.h"
+
+namespace pt {
+
+namespace {
+
+Vec3f unit_pole(Vec3f pole) {
+  const float len = length(pole);
+  return (len > 0.0f && std::isfinite(len)) ? pole / len : Vec3f(0, 1, 0);
+}
+
+}  // namespace
+
+Bounds3f bounds(const Sphere& s) {
+  Bounds3f b;
+  const float r = s.radius > 0.0f ? s.radius : 0.0f;
+  b.extend(s.center - Vec3f(r));
+  b.extend(s.center + Vec3f(r));
+  return fp::pad(b);
+}
+
+bool intersect(const Sphere& s, const Ray& ray, PrimHit& hit) {
+  const float r = s.radius;
+  if (!(r > 0.0f)) return false;
+  const Vec3f f = ray.origin - s.center;
+  const Vec3f d = ray.dir;
+  const float a = dot(d, d);
+  const float b = dot(f, d);  // half of the textbook b
+  // Discriminant from the distance of the closest approach to the centre
+  // (|l|), factored as (r + |l|)(r - |l|): accurate for tiny spheres far away
+  // and for grazing rays, where b^2 - ac cancels catastrophically.
+  const Vec3f l = f - (b / a) * d;
+  const float len_l = length(l);
+  const float disc = a * ((r + len_l) * (r - len_l));
+  if (!(disc >= 0.0f)) return false;  // also rejects NaN (a == 0, non-finite rays)
+  // c = |f|^2 - r^2 cancels for a ray starting near a large sphere; in double
+  // the squares of the float components are exact.
+  const double c = static_cast<double>(f.x) * f.x + static_cast<double>(f.y) * f.y +
+                   static_cast<double>(f.z) * f.z - static_cast<double>(r) * r;
+  // q has the sign of -b, so neither root below suffers cancellation.
+  const float q = -(b + std::copysign(std::sqrt(disc), b));
+  float t0 = static_cast<float>(c / q);
+  float t1 = q / a;
+  if (t0 > t1) std::swap(t0, t1);
+  if (t0 > ray.tmin && t0 < ray.tmax) {
+    hit.t = t0;
+  } else if (t1 > ray.tmin && t1 < ray.tmax) {
+    hit.t = t1;  // origin inside (or t0 behind tmin): the far side
+  } else {
+    return false;
+  }
+  hit.uv = {0.0f, 0.0f};
+  return true;
+}
+
+SurfaceGeometry surface(const Sphere& s, const Ray& ray, const PrimHit& hit) {
+  SurfaceGeometry sg;
+  // Reproject the ray's point onto the sphere: the error of p then depends on
+  // the sphere alone, not on the length of the ray that found it.
+  const Vec3f d = ray.at(hit.t) - s.center;
+  const float len = length(d);
+  const Vec3f n = (len > 0.0f && std::isfinite(len)) ? d / len : unit_pole(s.pole);
+  sg.p = s.center + n * s.radius;
+  sg.ng = n;
+  sg.ns = n;
+  sg.p_error = fp::gamma(8) * (abs(sg.p) + abs(s.center) + Vec3f(s.radius));
+
+  const Vec3f pole = unit_pole(s.pole);
+  Vec3f e0, e1;
+  fp::axis_frame(pole, e0, e1);
+  const float cos_theta = std::clamp(dot(n, pole), -1.0f, 1.0f);
+  sg.uv = {fp::longitude_fraction(dot(n, e0), dot(n, e1)), std::acos(cos_theta) * kInvPi};
+  return sg;
+}
+
+}  // namespace pt
