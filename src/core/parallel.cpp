@@ -31,9 +31,18 @@ class FtzObserver : public tbb::task_scheduler_observer {
 }  // namespace
 
 struct WorkerPool::Impl {
-  explicit Impl(int n) : arena(n), observer(arena) {}
+  explicit Impl(int n) : arena(n), observer(arena) {
+    // oneTBB captures the floating-point settings of the thread that initialises
+    // an arena and restores them around every task it runs there, which would
+    // undo the observer's setting. So initialise it with FTZ/DAZ on, then give
+    // the calling thread its own settings back.
+    const unsigned int saved = _mm_getcsr();
+    enable_flush_to_zero();
+    arena.initialize();
+    _mm_setcsr(saved);
+  }
   tbb::task_arena arena;
-  FtzObserver observer;
+  FtzObserver observer;  // threads entering the arena outside tasks
 };
 
 static int resolve_threads(int threads) {
@@ -49,9 +58,12 @@ int WorkerPool::threads() const { return impl_->arena.max_concurrency(); }
 
 void WorkerPool::run_impl(FunctionRef f) {
   impl_->arena.execute([&] {
-    // The calling (master) thread may not pass through on_scheduler_entry.
+    // The calling thread runs f itself: give it FTZ/DAZ too, and its own
+    // settings back afterwards.
+    const unsigned int saved = _mm_getcsr();
     enable_flush_to_zero();
     f.call(f.obj);
+    _mm_setcsr(saved);
   });
 }
 

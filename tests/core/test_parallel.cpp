@@ -51,3 +51,16 @@ TEST(WorkerPool, DenormalsFlushInsideArena) {
 
 }  // namespace
 }  // namespace pt
+
+namespace pt {
+namespace {
+
+TEST(WorkerPool, CallerKeepsItsOwnFloatingPointSettings) {
+  const bool before = flush_to_zero_enabled();
+  WorkerPool pool(2);
+  pool.run([] {});
+  EXPECT_EQ(flush_to_zero_enabled(), before);
+}
+
+}  // namespace
+}  // namespace pt
