@@ -1,1 +1,212 @@
-int main() { return 0; }  // placeholder (owner will replace)
+// pathtracer: renders a scene file to one or more images.
+//
+//   pathtracer SCENE -o OUT [-o OUT2 ...] [--accel embree|bvh] [--threads N] [--spp N]
+//              [--seed N] [--integrator NAME] [--width W] [--height H] [--strict] [--quiet]
+//
+// Exit status: 0 success; 1 the scene, the render or an output failed (nothing
+// is written for a bad scene); 2 a bad command line (CLI11's message).
+#include <chrono>
+#include <cstdint>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <set>
+#include <stdexcept>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <OpenImageIO/imageio.h>
+#include <embree3/rtcore_config.h>
+#include <oneapi/tbb/version.h>
+
+#include "accel/accelerator.h"
+#include "core/diagnostics.h"
+#include "core/parallel.h"
+#include "io/image_io.h"
+#include "render/film/film.h"
+#include "render/integrators/integrator.h"
+#include "render/render_scene.h"
+#include "scene/loader.h"
+
+namespace {
+
+struct Options {
+  std::string scene;
+  std::vector<std::string> outputs;
+  std::string accel = "embree";
+  int threads = 0;     // 0: all hardware threads
+  int spp = 0;         // 0: the scene's value
+  uint64_t seed = 0;
+  std::string integrator;  // empty: the scene's value
+  int width = 0, height = 0;
+  bool strict = false;
+  bool quiet = false;
+};
+
+constexpr int kExitFailure = 1;
+constexpr int kExitUsage = 2;
+constexpr int kMaxThreads = 4096;
+constexpr int kMaxSpp = 1 << 20;
+constexpr int kMaxResolution = 32768;  // as pt::LoadOptions::max_resolution
+
+std::string version_text() {
+  const int oiio = OIIO::openimageio_version();
+  std::ostringstream os;
+  os << "pathtracer " << PT_VERSION << '\n'
+     << "  Embree " << RTC_VERSION_STRING << '\n'
+     << "  OpenImageIO " << oiio / 10000 << '.' << oiio / 100 % 100 << '.' << oiio % 100 << '\n'
+     << "  oneTBB " << TBB_runtime_version();
+  return os.str();
+}
+
+std::string join(const std::vector<std::string>& items, const char* sep) {
+  std::string s;
+  for (const std::string& item : items) s += (s.empty() ? "" : sep) + item;
+  return s;
+}
+
+void add_options(CLI::App& app, Options& o) {
+  app.add_option("scene", o.scene, "Scene file (native, Path of Light or CGR JSON)")->required();
+  app.add_option("-o,--output", o.outputs,
+                 "Output image (.exr, .png, .ppm); repeat to write several formats from one render")
+      ->required()
+      ->allow_extra_args(false);
+  app.add_option("--accel", o.accel, "Acceleration structure")
+      ->check(CLI::IsMember(pt::accel_kind_names()))
+      ->capture_default_str();
+  app.add_option("--threads", o.threads, "Worker threads (default: all hardware threads)")
+      ->check(CLI::Range(1, kMaxThreads));
+  app.add_option("--spp", o.spp, "Samples per pixel (default: the scene's)")->check(CLI::Range(1, kMaxSpp));
+  app.add_option("--seed", o.seed, "Random seed")->capture_default_str();
+  app.add_option("--integrator", o.integrator,
+                 "Integrator (default: the scene's)")
+      ->check(CLI::IsMember(pt::integrator_names()));
+  app.add_option("--width", o.width, "Image width (alone: keeps the scene's aspect ratio)")
+      ->check(CLI::Range(1, kMaxResolution));
+  app.add_option("--height", o.height, "Image height (alone: keeps the scene's aspect ratio)")
+      ->check(CLI::Range(1, kMaxResolution));
+  app.add_flag("--strict", o.strict, "Treat warnings (e.g. unknown keys in legacy files) as errors");
+  app.add_flag("--quiet", o.quiet, "Print errors only");
+  app.set_version_flag("--version", version_text());
+}
+
+// Checks every output path before any work is done. Returns false after printing why.
+bool check_outputs(const std::vector<std::string>& outputs) {
+  std::set<std::string> seen;
+  for (const std::string& path : outputs) {
+    if (!pt::is_supported_image_path(path)) {
+      std::cerr << "error: cannot write '" << path << "': unsupported image extension (supported: "
+                << join(pt::supported_image_extensions(), ", ") << ")\n";
+      return false;
+    }
+    if (!seen.insert(path).second) {
+      std::cerr << "error: output '" << path << "' is given more than once\n";
+      return false;
+    }
+  }
+  return true;
+}
+
+void print_diagnostics(const pt::Diagnostics& diag, bool quiet) {
+  if (diag.all().empty() || (quiet && !diag.has_errors())) return;
+  std::cerr << diag.format();
+}
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+int run(const Options& o) {
+  if (!check_outputs(o.outputs)) return kExitUsage;
+  pt::AccelKind accel = pt::AccelKind::Embree;
+  pt::parse_accel_kind(o.accel, accel);  // already validated by CLI11
+
+  // Parse.
+  auto t0 = Clock::now();
+  pt::Diagnostics diag;
+  diag.set_warnings_as_errors(o.strict);
+  pt::LoadOptions load_options;
+  load_options.strict = o.strict;
+  const std::optional<pt::SceneDescription> desc = pt::load_scene(o.scene, load_options, diag);
+  print_diagnostics(diag, o.quiet);
+  if (!desc || diag.has_errors()) return kExitFailure;
+  const double parse_s = seconds_since(t0);
+
+  // Integrator (checked before the expensive build).
+  pt::IntegratorSettings settings;
+  settings.max_depth = desc->render.max_depth;
+  settings.spp = o.spp > 0 ? o.spp : desc->render.spp.value;
+  settings.seed = o.seed;
+  const std::string integrator_name = o.integrator.empty() ? desc->render.integrator.value : o.integrator;
+  std::string error;
+  const std::unique_ptr<pt::Integrator> integrator = pt::make_integrator(integrator_name, settings, error);
+  if (!integrator) {
+    pt::Diagnostics d;
+    d.error(o.integrator.empty() ? desc->render.integrator.where : pt::SourceLocation{}, error);
+    std::cerr << d.format();
+    return kExitFailure;
+  }
+
+  // Build.
+  t0 = Clock::now();
+  pt::WorkerPool pool(o.threads);
+  pt::Diagnostics build_diag;
+  build_diag.set_warnings_as_errors(o.strict);
+  pt::BuildOptions build_options;
+  build_options.accel = accel;
+  build_options.width_override = o.width;
+  build_options.height_override = o.height;
+  const std::unique_ptr<pt::RenderScene> scene = pt::build_render_scene(*desc, build_options, pool, build_diag);
+  print_diagnostics(build_diag, o.quiet);
+  if (!scene) return kExitFailure;
+  const double build_s = seconds_since(t0);
+
+  // Render.
+  t0 = Clock::now();
+  pt::Film film(scene->width, scene->height);
+  integrator->render(*scene, film, pool);
+  const double render_s = seconds_since(t0);
+
+  // Write.
+  t0 = Clock::now();
+  const pt::DisplaySettings display{desc->film.display, desc->film.exposure};
+  for (const std::string& path : o.outputs) {
+    if (!pt::write_image(path, film.image(), display, error)) {
+      std::cerr << "error: " << error << '\n';
+      return kExitFailure;
+    }
+  }
+  const double write_s = seconds_since(t0);
+
+  if (!o.quiet) {
+    std::cout << std::fixed << std::setprecision(3) << "wrote " << join(o.outputs, ", ") << " ("
+              << scene->width << "x" << scene->height << ", " << integrator_name << ", " << settings.spp
+              << " spp, " << pool.threads() << " threads): parse " << parse_s << " s, build " << build_s
+              << " s, render " << render_s << " s, write " << write_s << " s\n";
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"pathtracer: renders a scene file (native, Path of Light or CGR JSON) to EXR/PNG/PPM"};
+  Options options;
+  add_options(app, options);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);  // prints help, version or the error
+    return code == 0 ? 0 : kExitUsage;
+  }
+  try {
+    return run(options);
+  } catch (const std::exception& e) {  // e.g. std::bad_alloc for an absurdly large scene
+    std::cerr << "error: " << e.what() << '\n';
+    return kExitFailure;
+  }
+}

@@ -30,7 +30,10 @@ bool is_supported_image_path(const std::string& path);
 bool write_image(const std::string& path, const Image& image, const DisplaySettings& settings,
                  std::string& error);
 
-// Reads an image (any format OpenImageIO reads) as linear float RGB.
+// Reads an image (any format OpenImageIO reads) as float RGB: float files (EXR)
+// as they are; integer files (PNG, PPM) as code / max code, i.e. the display
+// encoding is not undone (the file does not say which transform wrote it).
+// Grey images are expanded to RGB; channels past the third are ignored.
 bool read_image(const std::string& path, Image& out, std::string& error);
 
 }  // namespace pt

@@ -1,1 +1,219 @@
-// placeholder (owner will replace)
+#include "render/render_scene.h"
+
+#include <cmath>
+#include <type_traits>
+#include <utility>
+
+namespace pt {
+
+bool RenderScene::intersect(const Ray& ray, Intersection& out) const {
+  if (!accel->intersect(ray, out.hit)) return false;
+  const Shape& shape = geometry.shapes[out.hit.shape];
+  PrimHit prim_hit;
+  prim_hit.t = out.hit.t;
+  prim_hit.uv = out.hit.uv;
+  out.geo = surface(shape, out.hit.prim, ray, prim_hit);
+  out.material = &materials[static_cast<std::size_t>(shape_material[out.hit.shape])];
+  return true;
+}
+
+namespace {
+
+// ---------------------------------------------------------------- resolution
+// An override replaces the description's size; if only one of width/height is
+// overridden, the other follows the description's aspect ratio.
+void resolve_resolution(const FilmDesc& film, const BuildOptions& options, int& width, int& height) {
+  width = film.width;
+  height = film.height;
+  const double aspect = static_cast<double>(film.width.value) / static_cast<double>(film.height.value);
+  if (options.width_override > 0 && options.height_override > 0) {
+    width = options.width_override;
+    height = options.height_override;
+  } else if (options.width_override > 0) {
+    width = options.width_override;
+    height = std::max(1, static_cast<int>(std::lround(width / aspect)));
+  } else if (options.height_override > 0) {
+    height = options.height_override;
+    width = std::max(1, static_cast<int>(std::lround(height * aspect)));
+  }
+}
+
+// ---------------------------------------------------------------- shapes
+Shape to_shape(const SphereDesc& d) {
+  Sphere s;
+  s.center = d.center;
+  s.radius = d.radius;
+  const Vec3f pole = d.pole;
+  s.pole = length(pole) > 0 ? normalize(pole) : Vec3f(0, 1, 0);
+  return s;
+}
+
+Shape to_shape(const QuadDesc& d) {
+  Quad q;
+  for (int i = 0; i < 4; ++i) q.v[i] = d.v[i];
+  return q;
+}
+
+Shape to_shape(const TriangleDesc& d) {
+  TriangleMesh m;
+  m.positions = {d.v[0], d.v[1], d.v[2]};
+  m.indices = {0, 1, 2};
+  return m;
+}
+
+Shape to_shape(const CylinderDesc& d) {
+  Cylinder c;
+  c.p0 = d.p0;
+  c.p1 = d.p1;
+  c.radius = d.radius;
+  return c;
+}
+
+Shape to_shape(const MeshDesc& d) {
+  TriangleMesh m;
+  m.positions = d.positions;
+  m.indices = d.indices;
+  m.normals = d.normals;
+  m.uvs = d.uvs;
+  return m;
+}
+
+// Meshes from files were checked by the loader; a mesh built in code is checked
+// here too, so that no accelerator ever sees an out-of-range index.
+bool check_shape(const ShapeDesc& shape, std::size_t index, Diagnostics& diag) {
+  const auto* mesh = std::get_if<MeshDesc>(&shape.geometry);
+  if (mesh == nullptr) return true;
+  const std::string what = "shape " + std::to_string(index) + (shape.name.empty() ? "" : " ('" + shape.name + "')");
+  if (mesh->indices.size() % 3 != 0) {
+    diag.error(shape.where, what + ": mesh index count " + std::to_string(mesh->indices.size()) +
+                                " is not a multiple of 3");
+    return false;
+  }
+  for (uint32_t i : mesh->indices) {
+    if (i >= mesh->positions.size()) {
+      diag.error(shape.where, what + ": mesh index " + std::to_string(i) + " is out of range (" +
+                                  std::to_string(mesh->positions.size()) + " vertices)");
+      return false;
+    }
+  }
+  if (!mesh->normals.empty() && mesh->normals.size() != mesh->positions.size()) {
+    diag.error(shape.where, what + ": mesh has " + std::to_string(mesh->normals.size()) + " normals for " +
+                                std::to_string(mesh->positions.size()) + " vertices");
+    return false;
+  }
+  if (!mesh->uvs.empty() && mesh->uvs.size() != mesh->positions.size()) {
+    diag.error(shape.where, what + ": mesh has " + std::to_string(mesh->uvs.size()) +
+                                " texture coordinates for " + std::to_string(mesh->positions.size()) +
+                                " vertices");
+    return false;
+  }
+  return true;
+}
+
+// ---------------------------------------------------------------- textures and materials
+// Decodes each texture some material references, once. Unreferenced textures
+// are never read. Returns false if any referenced texture failed to decode.
+bool load_textures(const SceneDescription& desc, RenderScene& scene, Diagnostics& diag) {
+  std::vector<bool> used(desc.textures.size(), false);
+  for (const MaterialDesc& m : desc.materials) {
+    if (!m.texture) continue;
+    if (*m.texture < 0 || static_cast<std::size_t>(*m.texture) >= desc.textures.size()) {
+      diag.error(m.where, "material" + (m.name.empty() ? std::string() : " '" + m.name + "'") +
+                              " refers to texture " + std::to_string(*m.texture) + ", but the scene has " +
+                              std::to_string(desc.textures.size()));
+      return false;
+    }
+    used[static_cast<std::size_t>(*m.texture)] = true;
+  }
+  bool ok = true;
+  scene.textures.resize(desc.textures.size());
+  for (std::size_t i = 0; i < desc.textures.size(); ++i) {
+    if (!used[i]) continue;
+    const TextureDesc& t = desc.textures[i];
+    auto tex = std::make_unique<Texture>();
+    std::string error;
+    if (!Texture::load(t.resolved, *tex, error)) {
+      diag.error(t.where, "cannot read texture '" + t.written + "': " + error);
+      ok = false;
+      continue;
+    }
+    scene.textures[i] = std::move(tex);
+  }
+  return ok;
+}
+
+Material to_material(const MaterialDesc& d, const RenderScene& scene) {
+  Material m;
+  m.kd = d.kd;
+  m.ks = d.ks;
+  m.diffuse = d.diffuse;
+  m.specular = d.specular;
+  m.exponent = d.exponent;
+  m.reflectivity = std::clamp(d.reflectivity.value, 0.0f, 1.0f);
+  m.refractive = d.refractive;
+  m.ior = d.ior;
+  m.emission = d.emission;
+  if (d.texture) m.texture = scene.textures[static_cast<std::size_t>(*d.texture)].get();
+  return m;
+}
+
+PointLight to_light(const PointLightDesc& d) {
+  return PointLight{d.position, d.intensity, d.specular_intensity, d.inverse_square};
+}
+
+}  // namespace
+
+std::unique_ptr<RenderScene> build_render_scene(const SceneDescription& desc, const BuildOptions& options,
+                                                WorkerPool& pool, Diagnostics& diag) {
+  if (desc.film.width.value <= 0 || desc.film.height.value <= 0) {
+    diag.error(desc.film.width.where, "film resolution must be positive, got " +
+                                          std::to_string(desc.film.width.value) + "x" +
+                                          std::to_string(desc.film.height.value));
+    return nullptr;
+  }
+  auto scene = std::make_unique<RenderScene>();
+  resolve_resolution(desc.film, options, scene->width, scene->height);
+  scene->camera = Camera(desc.camera, scene->width, scene->height);
+  scene->background = desc.render.background;
+
+  bool ok = load_textures(desc, *scene, diag);
+  if (ok) {
+    scene->materials.reserve(desc.materials.size());
+    for (const MaterialDesc& m : desc.materials) scene->materials.push_back(to_material(m, *scene));
+  }
+  // Shapes without a valid material get a default one, so a description built
+  // in code with no materials still renders (reported as an error otherwise).
+  const bool need_default = desc.materials.empty();
+  if (need_default) scene->materials.emplace_back();
+
+  scene->geometry.shapes.reserve(desc.shapes.size());
+  scene->shape_material.reserve(desc.shapes.size());
+  for (std::size_t i = 0; i < desc.shapes.size(); ++i) {
+    const ShapeDesc& s = desc.shapes[i];
+    if (!check_shape(s, i, diag)) {
+      ok = false;
+      continue;
+    }
+    int material = s.material;
+    if (need_default) {
+      material = 0;
+    } else if (material < 0 || static_cast<std::size_t>(material) >= desc.materials.size()) {
+      diag.error(s.where, "shape " + std::to_string(i) + " refers to material " + std::to_string(material) +
+                              ", but the scene has " + std::to_string(desc.materials.size()));
+      ok = false;
+      continue;
+    }
+    scene->geometry.shapes.push_back(std::visit([](const auto& g) { return to_shape(g); }, s.geometry));
+    scene->shape_material.push_back(material);
+  }
+
+  for (const LightDesc& l : desc.lights)
+    std::visit([&](const auto& light) { scene->point_lights.push_back(to_light(light)); }, l);
+
+  if (!ok) return nullptr;
+  scene->accel = build_accelerator(options.accel, scene->geometry, pool, diag);
+  if (!scene->accel) return nullptr;
+  return scene;
+}
+
+}  // namespace pt

@@ -1,6 +1,11 @@
 // Cameras. A camera maps a point on the film (in pixels, (0,0) = top-left
 // corner of the top-left pixel, y down) to a world-space ray. Built from
 // CameraDesc + film resolution; knows nothing of JSON.
+//
+// Pinhole, or thin lens (CameraType::ThinLens with lens_radius > 0): rays leave
+// a point of the lens disk and pass through the point where the pinhole ray
+// meets the plane in focus (perpendicular to the view direction, at
+// focus_distance), so that plane is sharp and everything else is blurred.
 #pragma once
 
 #include "core/math.h"
@@ -13,10 +18,17 @@ class Camera {
   Camera() = default;
   Camera(const CameraDesc& desc, int width, int height);
 
-  // Ray through film position (px, py) in pixel units. Direction is unit length.
+  // Ray through film position (px, py) in pixel units from the lens centre
+  // (the pinhole ray). Direction is unit length.
   Ray generate_ray(Vec2f film_px) const;
+  // Same, leaving the lens at `lens_sample` in [0,1)^2 (mapped onto the lens
+  // disk); a pinhole camera ignores the sample.
+  Ray generate_ray(Vec2f film_px, Vec2f lens_sample) const;
+  // True for a thin lens with a non-zero aperture (rays depend on the lens sample).
+  bool has_lens() const { return lens_radius_ > 0.0f; }
 
-  // Projects a world point to film pixel coordinates; false if behind the camera.
+  // Projects a world point to film pixel coordinates (through the lens
+  // centre); false if behind the camera.
   bool project(Vec3f world, Vec2f& film_px) const;
 
   Vec3f position() const { return origin_; }
@@ -25,6 +37,8 @@ class Camera {
  private:
   Vec3f origin_, forward_, right_, up_;  // right_/up_ scaled to the image-plane half extents at distance 1
   int width_ = 1, height_ = 1;
+  float lens_radius_ = 0.0f;
+  float focus_distance_ = 1.0f;
 };
 
 }  // namespace pt

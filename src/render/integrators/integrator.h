@@ -18,6 +18,7 @@ struct IntegratorSettings {
   int max_depth = 5;    // recursion limit
   int spp = 1;          // samples per pixel
   uint64_t seed = 0;
+  int tile_size = 16;   // pixels per tile side; the image does not depend on it
 };
 
 class Integrator {

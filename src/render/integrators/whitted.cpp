@@ -1,0 +1,133 @@
+// The classic recursive (Whitted-style) integrator of the course scene files:
+// Blinn-Phong direct lighting from point lights with hard shadows, mirror
+// reflection blended by the material's reflectivity, and Fresnel-weighted
+// reflection/refraction for dielectrics. Equations: docs/rendering.md.
+#include <algorithm>
+#include <cmath>
+
+#include "geometry/shapes.h"
+#include "render/integrators/builtin.h"
+#include "render/integrators/render_loop.h"
+#include "render/render_scene.h"
+
+namespace pt {
+
+namespace {
+
+// Direct light from every point light: ambient-free Blinn-Phong with hard shadows.
+// `n` is the shading normal facing the viewer, `wo` the unit direction to the viewer.
+RGB direct_lighting(const RenderScene& scene, const Intersection& isect, Vec3f n, Vec3f wo) {
+  const Material& m = *isect.material;
+  const SurfaceGeometry& geo = isect.geo;
+  RGB result;
+  for (const PointLight& light : scene.point_lights) {
+    const Vec3f to_light = light.position - geo.p;
+    const float r2 = length_squared(to_light);
+    if (!(r2 > 0.0f)) continue;
+    const Vec3f l = to_light / std::sqrt(r2);
+    const float cos_theta = dot(n, l);
+    if (cos_theta <= 0.0f) continue;
+    if (scene.occluded(spawn_ray_to(geo, light.position))) continue;
+    const float falloff = light.falloff(r2);
+    result += m.kd * cos_theta * falloff * (m.diffuse_at(geo.uv) * light.intensity);
+    if (m.ks > 0.0f) {
+      const Vec3f h = normalize(l + wo);
+      const float spec = std::pow(std::max(0.0f, dot(n, h)), m.exponent);
+      result += m.ks * spec * falloff * (m.specular * light.specular_intensity);
+    }
+  }
+  return result;
+}
+
+// Refraction direction of unit `d` through a surface with unit normal `n`
+// facing the incoming ray (dot(d, n) < 0); eta = eta_i / eta_t; cos_t > 0.
+Vec3f refract_dir(Vec3f d, Vec3f n, float eta, float cos_i, float cos_t) {
+  return normalize(d * eta + n * (eta * cos_i - cos_t));
+}
+
+class Whitted {
+ public:
+  Whitted(const RenderScene& scene, int max_depth) : scene_(scene), max_depth_(max_depth) {}
+
+  RGB trace(const Ray& ray, int depth) const {
+    Intersection isect;
+    if (!scene_.intersect(ray, isect)) return scene_.background;
+    const Material& m = *isect.material;
+    if (m.refractive) return dielectric(ray, isect, depth);
+
+    // Both normals flipped to the viewer's side of the surface.
+    const Vec3f wo = -ray.dir;
+    Vec3f n = isect.geo.ns;
+    if (dot(isect.geo.ng, wo) < 0.0f) n = -n;
+
+    RGB local = m.emission + direct_lighting(scene_, isect, n, wo);
+    if (m.reflectivity <= 0.0f) return local;
+    RGB mirrored;  // beyond the depth limit a ray carries nothing
+    if (depth < max_depth_) mirrored = trace(spawn_ray(isect.geo, reflect(wo, n)), depth + 1);
+    return local * (1.0f - m.reflectivity) + mirrored * m.reflectivity;
+  }
+
+ private:
+  // Smooth dielectric: F * reflected + (1 - F) * transmitted, F exact Fresnel.
+  // The side is decided by the geometric normal: the ray enters when dot(dir, ng) < 0.
+  RGB dielectric(const Ray& ray, const Intersection& isect, int depth) const {
+    if (depth >= max_depth_) return RGB();
+    const Material& m = *isect.material;
+    const bool entering = dot(ray.dir, isect.geo.ng) < 0.0f;
+    const Vec3f n = entering ? isect.geo.ns : -isect.geo.ns;  // faces the incoming ray
+    const float eta_i = entering ? 1.0f : m.ior;
+    const float eta_t = entering ? m.ior : 1.0f;
+    const float cos_i = std::clamp(-dot(ray.dir, n), 0.0f, 1.0f);
+    const float F = fresnel_dielectric(cos_i, eta_i, eta_t);
+
+    RGB result = trace(spawn_ray(isect.geo, reflect(-ray.dir, n)), depth + 1) * F;
+    if (F < 1.0f) {
+      const float eta = eta_i / eta_t;
+      const float sin2_t = eta * eta * std::max(0.0f, 1.0f - cos_i * cos_i);
+      const float cos_t = std::sqrt(std::max(0.0f, 1.0f - sin2_t));
+      const Vec3f t = refract_dir(ray.dir, n, eta, cos_i, cos_t);
+      result += trace(spawn_ray(isect.geo, t), depth + 1) * (1.0f - F);
+    }
+    return result;
+  }
+
+  const RenderScene& scene_;
+  int max_depth_;
+};
+
+class WhittedIntegrator final : public Integrator {
+ public:
+  explicit WhittedIntegrator(const IntegratorSettings& settings) : settings_(settings) {}
+
+  void render(const RenderScene& scene, Film& film, WorkerPool& pool) const override {
+    const Whitted whitted(scene, settings_.max_depth);
+    render_pixels(scene, film, pool, settings_, [&](const Ray& ray) { return whitted.trace(ray, 0); });
+  }
+
+ private:
+  IntegratorSettings settings_;
+};
+
+}  // namespace
+
+float fresnel_dielectric(float cos_i, float eta_i, float eta_t) {
+  cos_i = std::clamp(cos_i, 0.0f, 1.0f);
+  const float sin2_i = 1.0f - cos_i * cos_i;
+  const float eta = eta_i / eta_t;
+  const float sin2_t = eta * eta * sin2_i;
+  if (sin2_t >= 1.0f) return 1.0f;  // total internal reflection
+  const float cos_t = std::sqrt(1.0f - sin2_t);
+  const float r_s = (eta_i * cos_i - eta_t * cos_t) / (eta_i * cos_i + eta_t * cos_t);
+  const float r_p = (eta_t * cos_i - eta_i * cos_t) / (eta_t * cos_i + eta_i * cos_t);
+  return 0.5f * (r_s * r_s + r_p * r_p);
+}
+
+RGB whitted_radiance(const RenderScene& scene, const Ray& ray, int max_depth) {
+  return Whitted(scene, max_depth).trace(ray, 0);
+}
+
+std::unique_ptr<Integrator> make_whitted_integrator(const IntegratorSettings& settings) {
+  return std::make_unique<WhittedIntegrator>(settings);
+}
+
+}  // namespace pt

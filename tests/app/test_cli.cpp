@@ -1,0 +1,220 @@
+// The pathtracer command line, run as a process in a temporary folder.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "io/image_io.h"
+
+namespace pt {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A small CGR-format scene (see ../shared/seed-scenes/CONVENTIONS.md).
+std::string cgr_scene(const std::string& mode, const std::string& extra_camera_key = "") {
+  return R"({
+  "nbounces": 3,
+  "rendermode": ")" + mode + R"(",
+  "camera": {
+    "type": "pinhole", "width": 32, "height": 24,
+    "position": [0, 0, 0], "lookAt": [0, 0, 1], "upVector": [0, 1, 0],
+    "fov": 45.0, "exposure": 0.1)" + extra_camera_key + R"(
+  },
+  "scene": {
+    "backgroundcolor": [0.25, 0.25, 0.25],
+    "lightsources": [{"type": "pointlight", "position": [0, 1, 0.5], "intensity": [0.75, 0.75, 0.75]}],
+    "shapes": [
+      {"type": "sphere", "center": [-0.3, 0.1, 1], "radius": 0.2},
+      {"type": "triangle", "v0": [0, 0, 1], "v1": [0.5, 0, 1], "v2": [0.25, 0.25, 1]}
+    ]
+  }
+}
+)";
+}
+
+struct Result {
+  int status = -1;
+  std::string out, err;
+};
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("pt_cli_test_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+    write("binary.json", cgr_scene("binary"));
+    write("phong.json", cgr_scene("phong"));
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  void write(const std::string& name, const std::string& text) const { std::ofstream(path(name)) << text; }
+  static std::string slurp(const std::string& p) {
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  }
+
+  // Runs the executable in the temporary folder with `args` (a shell word list).
+  Result run(const std::string& args) const {
+    const std::string cmd = "cd '" + dir_.string() + "' && '" PT_PATHTRACER_EXE "' " + args + " > stdout.txt 2> stderr.txt";
+    const int raw = std::system(cmd.c_str());
+    Result r;
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    r.out = slurp(path("stdout.txt"));
+    r.err = slurp(path("stderr.txt"));
+    fs::remove(path("stdout.txt"));
+    fs::remove(path("stderr.txt"));
+    return r;
+  }
+
+  // Files in the folder other than the scenes the fixture wrote.
+  std::vector<std::string> outputs() const {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir_)) {
+      const std::string n = e.path().filename().string();
+      if (e.path().extension() != ".json") names.push_back(n);
+    }
+    return names;
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(Cli, RendersAndWritesTheImage) {
+  const Result r = run("phong.json -o out.ppm");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("out.ppm"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("render"), std::string::npos) << r.out;
+  Image img;
+  std::string error;
+  ASSERT_TRUE(read_image(path("out.ppm"), img, error)) << error;
+  EXPECT_EQ(img.width, 32);
+  EXPECT_EQ(img.height, 24);
+  EXPECT_EQ(outputs(), std::vector<std::string>{"out.ppm"});
+}
+
+TEST_F(Cli, SeveralOutputsFromOneRender) {
+  const Result r = run("phong.json -o a.exr -o b.png --quiet");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_TRUE(fs::exists(path("a.exr")));
+  EXPECT_TRUE(fs::exists(path("b.png")));
+}
+
+TEST_F(Cli, BinaryModeIsPureRedAndBlack) {
+  const Result r = run("binary.json -o b.ppm --spp 4");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string bytes = slurp(path("b.ppm"));
+  const std::string header = "P6\n32 24\n255\n";
+  ASSERT_EQ(bytes.substr(0, header.size()), header);
+  int red = 0, black = 0;
+  for (std::size_t i = header.size(); i + 2 < bytes.size(); i += 3) {
+    const auto p = [&](std::size_t k) { return static_cast<unsigned char>(bytes[i + k]); };
+    if (p(0) == 255 && p(1) == 0 && p(2) == 0) ++red;
+    else if (p(0) == 0 && p(1) == 0 && p(2) == 0) ++black;
+    else ADD_FAILURE() << "impure pixel at byte " << i;
+  }
+  EXPECT_GT(red, 10);
+  EXPECT_GT(black, 10);
+}
+
+TEST_F(Cli, ResolutionOverride) {
+  ASSERT_EQ(run("phong.json -o o.exr --width 16 --height 10").status, 0);
+  Image img;
+  std::string error;
+  ASSERT_TRUE(read_image(path("o.exr"), img, error)) << error;
+  EXPECT_EQ(img.width, 16);
+  EXPECT_EQ(img.height, 10);
+  ASSERT_EQ(run("phong.json -o p.exr --width 64").status, 0);
+  ASSERT_TRUE(read_image(path("p.exr"), img, error)) << error;
+  EXPECT_EQ(img.height, 48);  // keeps 32:24
+}
+
+TEST_F(Cli, SameImageForAnyThreadCount) {
+  ASSERT_EQ(run("phong.json -o one.exr --threads 1 --spp 3").status, 0);
+  ASSERT_EQ(run("phong.json -o two.exr --threads 2 --spp 3").status, 0);
+  Image a, b;
+  std::string error;
+  ASSERT_TRUE(read_image(path("one.exr"), a, error)) << error;
+  ASSERT_TRUE(read_image(path("two.exr"), b, error)) << error;
+  EXPECT_EQ(a.pixels, b.pixels);
+}
+
+TEST_F(Cli, BadSceneWritesNothing) {
+  write("bad.json", "{\n  \"camera\": {\n    \"width\": 32,,\n  }\n}\n");
+  const Result r = run("bad.json -o out.png");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("bad.json:3:"), std::string::npos) << r.err;  // file:line:col
+  EXPECT_TRUE(outputs().empty());
+}
+
+TEST_F(Cli, MissingSceneWritesNothing) {
+  const Result r = run("nowhere.json -o out.png");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("nowhere.json"), std::string::npos) << r.err;
+  EXPECT_TRUE(outputs().empty());
+}
+
+TEST_F(Cli, StrictTurnsWarningsIntoErrors) {
+  write("extra.json", cgr_scene("phong", ",\n    \"aperture\": 0.5"));
+  const Result lenient = run("extra.json -o a.png");
+  EXPECT_EQ(lenient.status, 0) << lenient.err;
+  EXPECT_NE(lenient.err.find("aperture"), std::string::npos) << lenient.err;  // the warning is printed
+  const Result strict = run("extra.json -o b.png --strict");
+  EXPECT_EQ(strict.status, 1);
+  EXPECT_NE(strict.err.find("aperture"), std::string::npos) << strict.err;
+  EXPECT_FALSE(fs::exists(path("b.png")));
+}
+
+TEST_F(Cli, BadCommandLinesExitWithTwo) {
+  for (const char* args : {"phong.json -o out.png --frobnicate", "phong.json -o out.png --threads 0",
+                           "phong.json -o out.png --threads -2", "phong.json -o out.png --spp 0",
+                           "phong.json -o out.png --integrator nope", "phong.json -o out.png --accel=optix",
+                           "phong.json", "-o out.png"}) {
+    const Result r = run(args);
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
+    EXPECT_FALSE(r.err.empty()) << args;
+  }
+  EXPECT_TRUE(outputs().empty());
+}
+
+TEST_F(Cli, UnsupportedExtensionIsRefusedBeforeRendering) {
+  const Result r = run("phong.json -o out.jpg");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find(".exr"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(".ppm"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out.find("render"), std::string::npos) << r.out;
+  EXPECT_TRUE(outputs().empty());
+}
+
+TEST_F(Cli, BvhIsNotAvailableYet) {
+  const Result r = run("phong.json -o out.png --accel=bvh");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("not available"), std::string::npos) << r.err;
+  EXPECT_TRUE(outputs().empty());
+}
+
+TEST_F(Cli, VersionAndHelp) {
+  const Result v = run("--version");
+  EXPECT_EQ(v.status, 0);
+  for (const char* what : {"pathtracer", "Embree", "OpenImageIO", "TBB"})
+    EXPECT_NE(v.out.find(what), std::string::npos) << what << "\n" << v.out;
+  const Result h = run("--help");
+  EXPECT_EQ(h.status, 0);
+  for (const char* what : {"--output", "--accel", "--threads", "--spp", "--seed", "--integrator", "--strict"})
+    EXPECT_NE(h.out.find(what), std::string::npos) << what;
+}
+
+}  // namespace
+}  // namespace pt

@@ -1,0 +1,155 @@
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "render/camera/camera.h"
+
+namespace pt {
+namespace {
+
+CameraDesc make_desc(Vec3f eye, Vec3f target, Vec3f up, float fov, bool left_handed = false) {
+  CameraDesc d;
+  d.position = eye;
+  d.look_at = target;
+  d.up = up;
+  d.fov_y_deg = fov;
+  d.left_handed = left_handed;
+  return d;
+}
+
+void expect_near(Vec3f a, Vec3f b, float eps) {
+  EXPECT_NEAR(a.x, b.x, eps);
+  EXPECT_NEAR(a.y, b.y, eps);
+  EXPECT_NEAR(a.z, b.z, eps);
+}
+
+TEST(Camera, ImageCentreLooksAlongForward) {
+  const Vec3f eye(1, 2, 3), target(4, 6, 3);
+  const Camera cam(make_desc(eye, target, Vec3f(0, 0, 2), 35), 640, 480);
+  const Ray r = cam.generate_ray({320, 240});
+  expect_near(r.origin, eye, 0);
+  expect_near(r.dir, normalize(target - eye), 1e-6f);
+  EXPECT_NEAR(length(r.dir), 1.0f, 1e-6f);
+  expect_near(cam.forward(), normalize(target - eye), 1e-6f);
+}
+
+TEST(Camera, DirectionsAreUnitLength) {
+  const Camera cam(make_desc({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 90), 200, 100);
+  for (Vec2f px : {Vec2f(0, 0), Vec2f(200, 100), Vec2f(13.5f, 77.25f)})
+    EXPECT_NEAR(length(cam.generate_ray(px).dir), 1.0f, 1e-6f);
+}
+
+// Path of Light: Z up, right-handed (right = forward x up). Looking along +Y
+// with +Z up, world +X is on the right of the image and +Z at the top.
+TEST(Camera, PathOfLightConvention) {
+  const Camera cam(make_desc({0, 0, 0}, {0, 1, 0}, {0, 0, 0.5f}, 40), 100, 100);
+  Vec2f px;
+  ASSERT_TRUE(cam.project({1, 5, 0}, px));
+  EXPECT_GT(px.x, 50.0f);
+  EXPECT_NEAR(px.y, 50.0f, 1e-4f);
+  ASSERT_TRUE(cam.project({0, 5, 1}, px));
+  EXPECT_NEAR(px.x, 50.0f, 1e-4f);
+  EXPECT_LT(px.y, 50.0f);  // row 0 is the top
+}
+
+// CGR: Y up, left-handed (right = up x forward). Looking down +Z with +Y up,
+// world +X is on the right of the image.
+TEST(Camera, CgrConvention) {
+  const Camera cam(make_desc({0, 0, 0}, {0, 0, 1}, {0, 1, 0}, 45, /*left_handed=*/true), 120, 80);
+  Vec2f right, top;
+  ASSERT_TRUE(cam.project({1, 0, 5}, right));
+  EXPECT_GT(right.x, 60.0f);
+  EXPECT_NEAR(right.y, 40.0f, 1e-4f);
+  ASSERT_TRUE(cam.project({0, 1, 5}, top));
+  EXPECT_NEAR(top.x, 60.0f, 1e-4f);
+  EXPECT_LT(top.y, 40.0f);
+  // The same description right-handed is the mirror image.
+  const Camera rh(make_desc({0, 0, 0}, {0, 0, 1}, {0, 1, 0}, 45, false), 120, 80);
+  Vec2f mirrored;
+  ASSERT_TRUE(rh.project({1, 0, 5}, mirrored));
+  EXPECT_NEAR(mirrored.x, 120.0f - right.x, 1e-3f);
+  EXPECT_NEAR(mirrored.y, right.y, 1e-4f);
+}
+
+// fov is the vertical full angle: a point at half that angle above the axis
+// lands on the top edge; the horizontal extent follows the aspect ratio.
+TEST(Camera, VerticalFovEdges) {
+  const float fov = 60.0f, d = 4.0f;
+  const float h = d * std::tan(0.5f * fov * kPi / 180.0f);
+  const Camera cam(make_desc({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, fov), 300, 150);
+  Vec2f px;
+  ASSERT_TRUE(cam.project({0, h, -d}, px));
+  EXPECT_NEAR(px.x, 150.0f, 1e-3f);
+  EXPECT_NEAR(px.y, 0.0f, 1e-3f);
+  ASSERT_TRUE(cam.project({0, -h, -d}, px));
+  EXPECT_NEAR(px.y, 150.0f, 1e-3f);
+  ASSERT_TRUE(cam.project({2 * h, 0, -d}, px));  // aspect 2
+  EXPECT_NEAR(px.x, 300.0f, 1e-3f);
+  // And the corner ray points exactly at the corner of the frustum.
+  expect_near(cam.generate_ray({300, 0}).dir, normalize(Vec3f(2 * h, h, -d)), 1e-6f);
+}
+
+TEST(Camera, ProjectInvertsGenerateRay) {
+  for (bool lh : {false, true}) {
+    const Camera cam(make_desc({0.5f, -3, 2}, {0.2f, 1, 1.4f}, {0, 0, 1}, 50, lh), 160, 90);
+    for (Vec2f px : {Vec2f(0.5f, 0.5f), Vec2f(80, 45), Vec2f(159.5f, 3.25f), Vec2f(17, 88)}) {
+      const Ray r = cam.generate_ray(px);
+      Vec2f back;
+      ASSERT_TRUE(cam.project(r.at(3.7f), back));
+      EXPECT_NEAR(back.x, px.x, 2e-3f);
+      EXPECT_NEAR(back.y, px.y, 2e-3f);
+    }
+  }
+}
+
+TEST(Camera, PointsBehindDoNotProject) {
+  const Camera cam(make_desc({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 45), 64, 64);
+  Vec2f px;
+  EXPECT_FALSE(cam.project({0, 0, 1}, px));
+  EXPECT_FALSE(cam.project({0, 0, 0}, px));
+}
+
+TEST(Camera, UpNeedNotBeUnitOrOrthogonal) {
+  const Camera a(make_desc({0, 0, 0}, {0, 1, 0}, {0, 0, 1}, 40), 64, 48);
+  const Camera b(make_desc({0, 0, 0}, {0, 1, 0}, {0, 0.7f, 3}, 40), 64, 48);
+  for (Vec2f px : {Vec2f(0, 0), Vec2f(64, 48), Vec2f(10, 40)})
+    expect_near(a.generate_ray(px).dir, b.generate_ray(px).dir, 1e-6f);
+}
+
+TEST(Camera, PinholeIgnoresTheLensSample) {
+  const Camera cam(make_desc({1, 2, 3}, {0, 0, 0}, {0, 1, 0}, 45), 64, 48);
+  EXPECT_FALSE(cam.has_lens());
+  const Ray a = cam.generate_ray({10, 20});
+  const Ray b = cam.generate_ray({10, 20}, {0.9f, 0.1f});
+  expect_near(a.origin, b.origin, 0);
+  expect_near(a.dir, b.dir, 0);
+}
+
+// Thin lens: every ray for one film position leaves a point of the lens disk
+// and passes through the same point of the plane in focus.
+TEST(Camera, ThinLensFocusesOnTheFocalPlane) {
+  CameraDesc d = make_desc({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 45);
+  d.type = CameraType::ThinLens;
+  d.lens_radius = 0.2f;
+  d.focus_distance = 5.0f;
+  const Camera cam(d, 64, 48);
+  ASSERT_TRUE(cam.has_lens());
+  const Vec2f px(13.25f, 40.5f);
+  const Ray pinhole = cam.generate_ray(px);
+  const Vec3f focus = pinhole.at(5.0f / -pinhole.dir.z);
+  expect_near(cam.generate_ray(px, {0.5f, 0.5f}).dir, pinhole.dir, 1e-6f);  // the lens centre
+  for (Vec2f lens : {Vec2f(0, 0), Vec2f(0.99f, 0.5f), Vec2f(0.3f, 0.8f), Vec2f(0.7f, 0.05f)}) {
+    const Ray r = cam.generate_ray(px, lens);
+    EXPECT_NEAR(length(r.dir), 1.0f, 1e-6f);
+    EXPECT_NEAR(r.origin.z, 0.0f, 1e-6f);                   // on the lens plane
+    EXPECT_LE(length(r.origin), 0.2f + 1e-6f);               // inside the aperture
+    const Vec3f hit = r.at((focus.z - r.origin.z) / r.dir.z);
+    expect_near(hit, focus, 1e-4f);
+  }
+  // Off the focal plane, different lens points see different places (blur).
+  const Ray a = cam.generate_ray(px, {0.05f, 0.5f}), b = cam.generate_ray(px, {0.95f, 0.5f});
+  EXPECT_GT(length(a.at(2.0f / -a.dir.z) - b.at(2.0f / -b.dir.z)), 0.05f);
+}
+
+}  // namespace
+}  // namespace pt

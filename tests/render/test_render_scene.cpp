@@ -1,0 +1,166 @@
+// build_render_scene: conversion, resolution, textures decoded only when used,
+// errors reported at their source location.
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include "core/parallel.h"
+#include "test_scenes.h"
+
+namespace pt {
+namespace {
+
+using test::add_material;
+using test::add_sphere;
+using test::add_z_square;
+
+namespace fs = std::filesystem;
+
+class RenderSceneBuild : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("pt_render_scene_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+    file_ = std::make_shared<SourceFile>(SourceFile{"scene.json", "{\n  \"texture\": \"wood.png\"\n}\n"});
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write_png(const std::string& name) {
+    const std::string path = (dir_ / name).string();
+    const unsigned char px[] = {255, 0, 0, 0, 255, 0};
+    auto out = OIIO::ImageOutput::create(path);
+    out->open(path, OIIO::ImageSpec(2, 1, 3, OIIO::TypeDesc::UINT8));
+    out->write_image(OIIO::TypeDesc::UINT8, px);
+    out->close();
+    return path;
+  }
+
+  TextureDesc texture(const std::string& written, const std::string& resolved) {
+    TextureDesc t;
+    t.where = SourceLocation{file_, 2, 15};
+    t.written = written;
+    t.resolved = resolved;
+    return t;
+  }
+
+  WorkerPool pool_{1};
+  fs::path dir_;
+  std::shared_ptr<SourceFile> file_;
+};
+
+TEST_F(RenderSceneBuild, ConvertsShapesMaterialsAndLights) {
+  SceneDescription d = test::empty_scene(20, 10, {0, 0, 5}, {0, 0, 0}, {0, 1, 0});
+  d.render.background = RGB(0.1f, 0.2f, 0.3f);
+  add_material(d, test::diffuse_material(RGB(1, 0, 0)));
+  const int blue = add_material(d, test::diffuse_material(RGB(0, 0, 1)));
+  add_sphere(d, {0, 0, 0}, 1.0f, blue);
+  TriangleDesc tri;
+  tri.v[0] = Vec3f(5, 0, 0);
+  tri.v[1] = Vec3f(6, 0, 0);
+  tri.v[2] = Vec3f(5, 1, 0);
+  test::add_shape(d, tri, 0);
+  test::add_point_light(d, {1, 2, 3}, RGB(4), RGB(5));
+  auto scene = test::build(d, pool_);
+  ASSERT_TRUE(scene);
+  EXPECT_EQ(scene->width, 20);
+  EXPECT_EQ(scene->height, 10);
+  EXPECT_EQ(scene->background, RGB(0.1f, 0.2f, 0.3f));
+  ASSERT_EQ(scene->geometry.shapes.size(), 2u);
+  EXPECT_TRUE(std::holds_alternative<Sphere>(scene->geometry.shapes[0]));
+  ASSERT_TRUE(std::holds_alternative<TriangleMesh>(scene->geometry.shapes[1]));
+  EXPECT_EQ(std::get<TriangleMesh>(scene->geometry.shapes[1]).triangle_count(), 1u);
+  ASSERT_EQ(scene->point_lights.size(), 1u);
+  EXPECT_EQ(scene->point_lights[0].specular_intensity, RGB(5));
+
+  Intersection isect;
+  ASSERT_TRUE(scene->intersect(Ray{{0, 0, 5}, {0, 0, -1}}, isect));
+  EXPECT_EQ(isect.hit.shape, 0u);
+  EXPECT_NEAR(isect.hit.t, 4.0f, 1e-5f);
+  EXPECT_NEAR(isect.geo.p.z, 1.0f, 1e-5f);
+  ASSERT_NE(isect.material, nullptr);
+  EXPECT_EQ(isect.material->diffuse, RGB(0, 0, 1));
+  EXPECT_FALSE(scene->intersect(Ray{{0, 3, 5}, {0, 0, 1}}, isect));
+  EXPECT_TRUE(scene->occluded(Ray{{5.2f, 0.2f, 1}, {0, 0, -1}}));
+}
+
+TEST_F(RenderSceneBuild, ResolutionOverrides) {
+  SceneDescription d = test::empty_scene(800, 400, {0, 0, 5}, {0, 0, 0}, {0, 1, 0});
+  auto size = [&](int w, int h) {
+    BuildOptions o;
+    o.width_override = w;
+    o.height_override = h;
+    auto s = test::build(d, pool_, o);
+    return s ? std::pair{s->width, s->height} : std::pair{-1, -1};
+  };
+  EXPECT_EQ(size(0, 0), (std::pair{800, 400}));
+  EXPECT_EQ(size(160, 120), (std::pair{160, 120}));
+  EXPECT_EQ(size(160, 0), (std::pair{160, 80}));   // keeps the aspect ratio
+  EXPECT_EQ(size(0, 100), (std::pair{200, 100}));
+}
+
+TEST_F(RenderSceneBuild, UsedTexturesAreDecodedOnceUnusedOnesNever) {
+  SceneDescription d = test::empty_scene(8, 8, {0, 0, 5}, {0, 0, 0}, {0, 1, 0});
+  d.textures.push_back(texture("missing.png", (dir_ / "missing.png").string()));  // never used
+  d.textures.push_back(texture("wood.png", write_png("wood.png")));
+  MaterialDesc m = test::diffuse_material(RGB(1));
+  m.texture = 1;
+  add_material(d, m);
+  add_material(d, m);
+  add_z_square(d, 0, 1, 0);
+  add_z_square(d, -1, 1, 1);
+  auto scene = test::build(d, pool_);
+  ASSERT_TRUE(scene);
+  EXPECT_EQ(scene->textures[0], nullptr);
+  ASSERT_NE(scene->textures[1], nullptr);
+  EXPECT_EQ(scene->materials[0].texture, scene->textures[1].get());
+  EXPECT_EQ(scene->materials[1].texture, scene->textures[1].get());
+  EXPECT_EQ(scene->materials[0].diffuse_at({0.25f, 0.5f}), RGB(1, 0, 0));
+}
+
+TEST_F(RenderSceneBuild, TextureThatFailsToDecodeIsReportedWhereItWasWritten) {
+  SceneDescription d = test::empty_scene(8, 8, {0, 0, 5}, {0, 0, 0}, {0, 1, 0});
+  const std::string bad = (dir_ / "wood.png").string();
+  { std::FILE* f = std::fopen(bad.c_str(), "wb"); std::fputs("garbage", f); std::fclose(f); }
+  d.textures.push_back(texture("wood.png", bad));
+  MaterialDesc m = test::diffuse_material(RGB(1));
+  m.texture = 0;
+  add_z_square(d, 0, 1, add_material(d, m));
+  Diagnostics diag;
+  EXPECT_EQ(build_render_scene(d, {}, pool_, diag), nullptr);
+  ASSERT_EQ(diag.error_count(), 1);
+  const Diagnostic& e = diag.all()[0];
+  EXPECT_EQ(e.where.to_string(), "scene.json:2:15");
+  EXPECT_NE(e.message.find("wood.png"), std::string::npos) << e.message;
+}
+
+TEST_F(RenderSceneBuild, BadMaterialIndexIsAnError) {
+  SceneDescription d = test::empty_scene(8, 8, {0, 0, 5}, {0, 0, 0}, {0, 1, 0});
+  add_material(d, test::diffuse_material(RGB(1)));
+  add_z_square(d, 0, 1, 3);
+  d.shapes.back().where = SourceLocation{file_, 1, 1};
+  Diagnostics diag;
+  EXPECT_EQ(build_render_scene(d, {}, pool_, diag), nullptr);
+  ASSERT_TRUE(diag.has_errors());
+  EXPECT_EQ(diag.all()[0].where.to_string(), "scene.json:1:1");
+}
+
+TEST_F(RenderSceneBuild, MeshWithOutOfRangeIndexIsAnError) {
+  SceneDescription d = test::empty_scene(8, 8, {0, 0, 5}, {0, 0, 0}, {0, 1, 0});
+  MeshDesc mesh;
+  mesh.positions = {Vec3f(0, 0, 0), Vec3f(1, 0, 0), Vec3f(0, 1, 0)};
+  mesh.indices = {0, 1, 3};
+  test::add_shape(d, mesh, 0);
+  Diagnostics diag;
+  EXPECT_EQ(build_render_scene(d, {}, pool_, diag), nullptr);
+  EXPECT_TRUE(diag.has_errors());
+}
+
+}  // namespace
+}  // namespace pt

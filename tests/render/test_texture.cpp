@@ -1,0 +1,127 @@
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include "render/textures/texture.h"
+
+namespace pt {
+namespace {
+
+namespace fs = std::filesystem;
+
+float srgb_decode(float v) { return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f); }
+
+class TextureFiles : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("pt_texture_test_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write(const std::string& name, int w, int h, int nc, OIIO::TypeDesc type, const void* data) {
+    const std::string path = (dir_ / name).string();
+    auto out = OIIO::ImageOutput::create(path);
+    EXPECT_TRUE(out != nullptr);
+    OIIO::ImageSpec spec(w, h, nc, type);
+    EXPECT_TRUE(out->open(path, spec)) << out->geterror();
+    EXPECT_TRUE(out->write_image(type, data)) << out->geterror();
+    out->close();
+    return path;
+  }
+
+  fs::path dir_;
+};
+
+TEST(Texture, BilinearAtTexelCentresAndBetween) {
+  const Texture t(2, 2, {RGB(1, 0, 0), RGB(0, 1, 0), RGB(0, 0, 1), RGB(1, 1, 1)});
+  // uv (0,0) is the top-left corner of the top-left texel; centres are at 0.25 and 0.75.
+  EXPECT_EQ(t.lookup({0.25f, 0.25f}), RGB(1, 0, 0));
+  EXPECT_EQ(t.lookup({0.75f, 0.25f}), RGB(0, 1, 0));
+  EXPECT_EQ(t.lookup({0.25f, 0.75f}), RGB(0, 0, 1));
+  const RGB mid = t.lookup({0.5f, 0.25f});
+  EXPECT_NEAR(mid.r, 0.5f, 1e-6f);
+  EXPECT_NEAR(mid.g, 0.5f, 1e-6f);
+  EXPECT_NEAR(mid.b, 0.0f, 1e-6f);
+}
+
+TEST(Texture, RepeatWrap) {
+  const Texture t(2, 2, {RGB(1, 0, 0), RGB(0, 1, 0), RGB(0, 0, 1), RGB(1, 1, 1)});
+  for (Vec2f uv : {Vec2f(0.25f, 0.25f), Vec2f(0.6f, 0.1f), Vec2f(0.9f, 0.7f)}) {
+    const RGB a = t.lookup(uv);
+    for (Vec2f shift : {Vec2f(1, 0), Vec2f(-1, 0), Vec2f(0, 3), Vec2f(-2, -5)}) {
+      const RGB b = t.lookup(uv + shift);
+      EXPECT_NEAR(a.r, b.r, 1e-5f);
+      EXPECT_NEAR(a.g, b.g, 1e-5f);
+      EXPECT_NEAR(a.b, b.b, 1e-5f);
+    }
+  }
+  // The corner blends the four texels across the wrap.
+  const RGB c = t.lookup({0, 0});
+  EXPECT_NEAR(c.r, 0.5f, 1e-6f);
+  EXPECT_NEAR(c.g, 0.5f, 1e-6f);
+  EXPECT_NEAR(c.b, 0.5f, 1e-6f);
+}
+
+TEST_F(TextureFiles, EightBitIsLinearised) {
+  const unsigned char px[] = {255, 128, 0, 0, 64, 255};
+  const std::string path = write("t.png", 2, 1, 3, OIIO::TypeDesc::UINT8, px);
+  Texture t;
+  std::string error;
+  ASSERT_TRUE(Texture::load(path, t, error)) << error;
+  ASSERT_EQ(t.width(), 2);
+  ASSERT_EQ(t.height(), 1);
+  const RGB a = t.lookup({0.25f, 0.5f});
+  EXPECT_NEAR(a.r, 1.0f, 1e-5f);
+  EXPECT_NEAR(a.g, srgb_decode(128 / 255.0f), 1e-5f);
+  EXPECT_NEAR(a.b, 0.0f, 1e-6f);
+  const RGB b = t.lookup({0.75f, 0.5f});
+  EXPECT_NEAR(b.g, srgb_decode(64 / 255.0f), 1e-5f);
+  EXPECT_NEAR(b.b, 1.0f, 1e-5f);
+}
+
+TEST_F(TextureFiles, FloatIsLinearAsItIs) {
+  const float px[] = {2.5f, 0.25f, 0.0f};
+  const std::string path = write("t.exr", 1, 1, 3, OIIO::TypeDesc::FLOAT, px);
+  Texture t;
+  std::string error;
+  ASSERT_TRUE(Texture::load(path, t, error)) << error;
+  EXPECT_EQ(t.lookup({0.5f, 0.5f}), RGB(2.5f, 0.25f, 0.0f));
+}
+
+TEST_F(TextureFiles, GreyAndAlphaBecomeRgb) {
+  const unsigned char grey[] = {128};
+  Texture t;
+  std::string error;
+  ASSERT_TRUE(Texture::load(write("g.png", 1, 1, 1, OIIO::TypeDesc::UINT8, grey), t, error)) << error;
+  const float g = srgb_decode(128 / 255.0f);
+  EXPECT_NEAR(t.lookup({0.5f, 0.5f}).r, g, 1e-5f);
+  EXPECT_NEAR(t.lookup({0.5f, 0.5f}).b, g, 1e-5f);
+  // Alpha does not darken the colour.
+  const unsigned char rgba[] = {255, 255, 255, 0};
+  ASSERT_TRUE(Texture::load(write("a.png", 1, 1, 4, OIIO::TypeDesc::UINT8, rgba), t, error)) << error;
+  EXPECT_NEAR(t.lookup({0.5f, 0.5f}).g, 1.0f, 1e-5f);
+}
+
+TEST_F(TextureFiles, MissingOrCorruptFileFails) {
+  Texture t;
+  std::string error;
+  EXPECT_FALSE(Texture::load((dir_ / "nope.png").string(), t, error));
+  EXPECT_FALSE(error.empty());
+  const std::string junk = (dir_ / "junk.png").string();
+  { std::FILE* f = std::fopen(junk.c_str(), "wb"); std::fputs("not a png", f); std::fclose(f); }
+  error.clear();
+  EXPECT_FALSE(Texture::load(junk, t, error));
+  EXPECT_FALSE(error.empty());
+}
+
+}  // namespace
+}  // namespace pt
