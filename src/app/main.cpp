@@ -26,6 +26,7 @@
 #include "core/diagnostics.h"
 #include "core/parallel.h"
 #include "io/image_io.h"
+#include "io/run_record.h"
 #include "render/film/film.h"
 #include "render/integrators/integrator.h"
 #include "render/render_scene.h"
@@ -44,6 +45,7 @@ struct Options {
   int width = 0, height = 0;
   bool strict = false;
   bool quiet = false;
+  std::string report;  // run record (JSON); empty: none
 };
 
 constexpr int kExitFailure = 1;
@@ -90,6 +92,7 @@ void add_options(CLI::App& app, Options& o) {
       ->check(CLI::Range(1, kMaxResolution));
   app.add_flag("--strict", o.strict, "Treat warnings (e.g. unknown keys in legacy files) as errors");
   app.add_flag("--quiet", o.quiet, "Print errors only");
+  app.add_option("--report", o.report, "Write a run record (JSON: settings, backend, time per phase)");
   app.set_version_flag("--version", version_text());
 }
 
@@ -181,6 +184,29 @@ int run(const Options& o) {
     }
   }
   const double write_s = seconds_since(t0);
+
+  if (!o.report.empty()) {
+    pt::RunRecord record;
+    record.scene = o.scene;
+    record.integrator = integrator_name;
+    record.width = scene->width;
+    record.height = scene->height;
+    record.spp = settings.spp;
+    record.max_depth = settings.max_depth;
+    record.seed = settings.seed;
+    record.threads = pool.threads();
+    const pt::AccelStats stats = scene->accel->stats();
+    record.accel_backend = stats.backend;
+    record.accel_memory_bytes = stats.memory_bytes;
+    record.primitive_count = stats.primitive_count;
+    record.timings = {parse_s, build_s - stats.build_seconds, stats.build_seconds, render_s, write_s,
+                      parse_s + build_s + render_s + write_s};
+    record.software_version = PT_VERSION;
+    if (!pt::write_run_record(o.report, record, error)) {
+      std::cerr << "error: " << error << '\n';
+      return kExitFailure;
+    }
+  }
 
   if (!o.quiet) {
     std::cout << std::fixed << std::setprecision(3) << "wrote " << join(o.outputs, ", ") << " ("

@@ -1,6 +1,7 @@
 #include "io/image_io.h"
 
-#include <unistd.h>
+#include "io/atomic_file.h"
+
 
 #include <algorithm>
 #include <cctype>
@@ -143,26 +144,18 @@ bool write_image(const std::string& path, const Image& image, const DisplaySetti
     return false;
   }
 
-  // Write next to the destination, then rename: a failed or killed run never
-  // leaves a partial image at `path`, and an existing file is replaced whole.
-  const std::string tmp = path + ".tmp-" + std::to_string(static_cast<long>(::getpid()));
-  std::string why;
-  bool ok = false;
-  switch (kind) {
-    case FileKind::Exr: ok = write_oiio(tmp, "openexr", image, settings, why); break;
-    case FileKind::Png: ok = write_oiio(tmp, "png", image, settings, why); break;
-    case FileKind::Ppm: ok = write_ppm(tmp, image, settings, why); break;
-    case FileKind::Unsupported: break;
-  }
-  if (ok && std::rename(tmp.c_str(), path.c_str()) != 0) {
-    why = std::strerror(errno);
-    ok = false;
-  }
-  if (!ok) {
-    std::remove(tmp.c_str());
-    error = "cannot write '" + path + "': " + (why.empty() ? std::string("unknown error") : why);
-  }
-  return ok;
+  return write_atomically(
+      path,
+      [&](const std::string& tmp, std::string& why) {
+        switch (kind) {
+          case FileKind::Exr: return write_oiio(tmp, "openexr", image, settings, why);
+          case FileKind::Png: return write_oiio(tmp, "png", image, settings, why);
+          case FileKind::Ppm: return write_ppm(tmp, image, settings, why);
+          case FileKind::Unsupported: break;
+        }
+        return false;
+      },
+      error);
 }
 
 bool read_image(const std::string& path, Image& out, std::string& error) {

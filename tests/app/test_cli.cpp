@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "io/image_io.h"
 
@@ -149,6 +150,34 @@ TEST_F(Cli, SameImageForAnyThreadCount) {
   ASSERT_TRUE(read_image(path("one.exr"), a, error)) << error;
   ASSERT_TRUE(read_image(path("two.exr"), b, error)) << error;
   EXPECT_EQ(a.pixels, b.pixels);
+}
+
+TEST_F(Cli, ReportRecordsSettingsAndPhases) {
+  const Result r = run("phong.json -o out.exr --threads 2 --spp 3 --seed 7 --report run.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(slurp(path("run.json")));
+  EXPECT_EQ(j["image"]["width"], 32);
+  EXPECT_EQ(j["image"]["height"], 24);
+  EXPECT_EQ(j["image"]["spp"], 3);
+  EXPECT_EQ(j["image"]["seed"], 7);
+  EXPECT_EQ(j["image"]["integrator"], "whitted");
+  EXPECT_EQ(j["threads"], 2);
+  EXPECT_EQ(j["accel"]["primitive_count"], 2);
+  EXPECT_NE(j["accel"]["backend"].get<std::string>().find("embree"), std::string::npos);
+  double sum = 0;
+  for (const char* phase : {"parse", "scene_build", "accel_build", "render", "write"}) {
+    const double t = j["timings"][phase];
+    EXPECT_GE(t, 0.0) << phase;
+    sum += t;
+  }
+  EXPECT_NEAR(j["timings"]["total"].get<double>(), sum, 1e-9);
+}
+
+TEST_F(Cli, NoReportForABadScene) {
+  write("bad.json", "{ \"camera\": ");
+  const Result r = run("bad.json -o out.png --report run.json");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_FALSE(fs::exists(path("run.json")));
 }
 
 TEST_F(Cli, BadSceneWritesNothing) {
