@@ -3,9 +3,12 @@
 #include <pmmintrin.h>
 #include <xmmintrin.h>
 
+#include <optional>
 #include <thread>
 
+#include <tbb/global_control.h>
 #include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 #include <tbb/task_scheduler_observer.h>
 
 namespace pt {
@@ -30,17 +33,21 @@ class FtzObserver : public tbb::task_scheduler_observer {
 };
 }  // namespace
 
+// TBB caps its workers at the hardware concurrency unless told otherwise:
+// --threads N above the core count must still get N threads (thread-count
+// determinism tests rely on it). Only ever raises the cap: TBB applies the
+// smallest of all live limits, process-wide. Must exist before the arena
+// initialises (the observer initialises it).
+std::optional<tbb::global_control> raise_parallelism_cap(int n) {
+  const auto cap = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+  if (static_cast<std::size_t>(n) <= cap) return std::nullopt;
+  return std::make_optional<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                 static_cast<std::size_t>(n));
+}
+
 struct WorkerPool::Impl {
-  explicit Impl(int n) : arena(n), observer(arena) {
-    // oneTBB captures the floating-point settings of the thread that initialises
-    // an arena and restores them around every task it runs there, which would
-    // undo the observer's setting. So initialise it with FTZ/DAZ on, then give
-    // the calling thread its own settings back.
-    const unsigned int saved = _mm_getcsr();
-    enable_flush_to_zero();
-    arena.initialize();
-    _mm_setcsr(saved);
-  }
+  explicit Impl(int n) : allow(raise_parallelism_cap(n)), arena(n), observer(arena) {}
+  std::optional<tbb::global_control> allow;
   tbb::task_arena arena;
   FtzObserver observer;  // threads entering the arena outside tasks
 };
@@ -57,14 +64,20 @@ WorkerPool::~WorkerPool() = default;
 int WorkerPool::threads() const { return impl_->arena.max_concurrency(); }
 
 void WorkerPool::run_impl(FunctionRef f) {
+  const unsigned int saved = _mm_getcsr();
   impl_->arena.execute([&] {
-    // The calling thread runs f itself: give it FTZ/DAZ too, and its own
-    // settings back afterwards.
-    const unsigned int saved = _mm_getcsr();
+    // oneTBB runs each task with the floating-point settings of its task group
+    // context, which a nested parallel algorithm inherits from its parent
+    // context. So f runs in a task group whose context captured FTZ/DAZ: every
+    // task under it, on any thread, gets them. The caller's settings are
+    // restored afterwards (outside the arena: TBB may set them on the way out).
     enable_flush_to_zero();
-    f.call(f.obj);
-    _mm_setcsr(saved);
+    tbb::task_group_context context;
+    context.capture_fp_settings();
+    tbb::task_group group(context);
+    group.run_and_wait([&] { f.call(f.obj); });
   });
+  _mm_setcsr(saved);
 }
 
 }  // namespace pt

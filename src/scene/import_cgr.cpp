@@ -131,26 +131,7 @@ void read_shape(ImportContext& ctx, const JsonValue& v, std::size_t index) {
     warn_unsupported_type(r, "shape", type, {"sphere", "cylinder", "triangle"});
     return;
   }
-  int material = -1;
-  const JsonValue* mv = r.get("material");
-  if (mv) material = read_material(ctx, *mv);
-  r.finish();
-  if (!r.ok() || (mv && material < 0)) return;
-  shape.material = mv ? material : default_material(ctx);
-  ctx.scene.shapes.push_back(std::move(shape));
-}
-
-void read_scene(ImportContext& ctx, const JsonValue& v) {
-  if (!expect_object(ctx.read, v, "scene")) return;
-  ObjectReader r(ctx.read, v, "scene");
-  r.read("backgroundcolor", ctx.scene.render.background);
-  if (const JsonValue* lights = r.get("lightsources"); lights && expect_array(ctx.read, *lights, "lightsources")) {
-    for (std::size_t i = 0; i < lights->as_array().size(); ++i) read_light(ctx, lights->as_array()[i], i);
-  }
-  if (const JsonValue* shapes = r.require("shapes"); shapes && expect_array(ctx.read, *shapes, "shapes")) {
-    for (std::size_t i = 0; i < shapes->as_array().size(); ++i) read_shape(ctx, shapes->as_array()[i], i);
-  }
-  r.finish();
+  finish_legacy_shape(ctx, r, std::move(shape), read_material);
 }
 
 }  // namespace
@@ -168,7 +149,7 @@ void import_cgr(ImportContext& ctx) {
   }
   top.read("nbounces", scene.render.max_depth);
   if (const JsonValue* v = top.require("camera")) read_camera(ctx, *v);
-  if (const JsonValue* v = top.require("scene")) read_scene(ctx, *v);
+  if (const JsonValue* v = top.require("scene")) read_legacy_scene(ctx, *v, read_light, read_shape);
   top.finish();
 }
 

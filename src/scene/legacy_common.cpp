@@ -32,4 +32,29 @@ void warn_unsupported_type(ObjectReader& r, std::string_view kind, const std::st
   r.context().diag.warning(v ? r.context().at(*v) : r.where(), std::move(message));
 }
 
+void read_legacy_scene(ImportContext& ctx, const JsonValue& v, LegacyItemReader read_light,
+                       LegacyItemReader read_shape) {
+  if (!expect_object(ctx.read, v, "scene")) return;
+  ObjectReader r(ctx.read, v, "scene");
+  r.read("backgroundcolor", ctx.scene.render.background);
+  if (const JsonValue* lights = r.get("lightsources"); lights && expect_array(ctx.read, *lights, "lightsources")) {
+    for (std::size_t i = 0; i < lights->as_array().size(); ++i) read_light(ctx, lights->as_array()[i], i);
+  }
+  if (const JsonValue* shapes = r.require("shapes"); shapes && expect_array(ctx.read, *shapes, "shapes")) {
+    for (std::size_t i = 0; i < shapes->as_array().size(); ++i) read_shape(ctx, shapes->as_array()[i], i);
+  }
+  r.finish();
+}
+
+void finish_legacy_shape(ImportContext& ctx, ObjectReader& r, ShapeDesc shape,
+                         LegacyMaterialReader read_material) {
+  int material = -1;
+  const JsonValue* mv = r.get("material");
+  if (mv) material = read_material(ctx, *mv);
+  r.finish();
+  if (!r.ok() || (mv && material < 0)) return;
+  shape.material = mv ? material : default_material(ctx);
+  ctx.scene.shapes.push_back(std::move(shape));
+}
+
 }  // namespace pt

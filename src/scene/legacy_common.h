@@ -20,4 +20,20 @@ std::string read_legacy_type(ObjectReader& r);
 void warn_unsupported_type(ObjectReader& r, std::string_view kind, const std::string& type,
                            std::initializer_list<std::string_view> supported);
 
+// Reads an item of a legacy list (a light or a shape) at `index`.
+using LegacyItemReader = void (*)(ImportContext& ctx, const JsonValue& v, std::size_t index);
+// Reads a legacy material object; returns its index in the scene, or -1 after an error.
+using LegacyMaterialReader = int (*)(ImportContext& ctx, const JsonValue& v);
+
+// Reads the "scene" object both course families share: "backgroundcolor",
+// optional "lightsources" and required "shapes", each item by its family's reader.
+void read_legacy_scene(ImportContext& ctx, const JsonValue& v, LegacyItemReader read_light,
+                       LegacyItemReader read_shape);
+
+// Ends a legacy shape whose geometry is read: its optional "material" (the
+// default material when absent), the unknown-key check, and, if nothing was
+// wrong, adds it to the scene.
+void finish_legacy_shape(ImportContext& ctx, ObjectReader& r, ShapeDesc shape,
+                         LegacyMaterialReader read_material);
+
 }  // namespace pt
