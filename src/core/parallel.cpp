@@ -63,7 +63,7 @@ WorkerPool::~WorkerPool() = default;
 
 int WorkerPool::threads() const { return impl_->arena.max_concurrency(); }
 
-void WorkerPool::run_impl(FunctionRef f) {
+void WorkerPool::run(FunctionRef<void()> f) {
   const unsigned int saved = _mm_getcsr();
   impl_->arena.execute([&] {
     // oneTBB runs each task with the floating-point settings of its task group
@@ -75,7 +75,7 @@ void WorkerPool::run_impl(FunctionRef f) {
     tbb::task_group_context context;
     context.capture_fp_settings();
     tbb::task_group group(context);
-    group.run_and_wait([&] { f.call(f.obj); });
+    group.run_and_wait([&] { f(); });
   });
   _mm_setcsr(saved);
 }

@@ -5,7 +5,8 @@
 #pragma once
 
 #include <memory>
-#include <utility>
+
+#include "core/function_ref.h"
 
 namespace pt {
 
@@ -26,19 +27,9 @@ class WorkerPool {
 
   // Runs f() inside the arena (blocking). Parallel algorithms called from f
   // (tbb::parallel_for etc.) use only this arena's threads.
-  template <class F>
-  void run(F&& f) {
-    run_impl(FunctionRef(f));
-  }
+  void run(FunctionRef<void()> f);
 
  private:
-  struct FunctionRef {
-    template <class F>
-    explicit FunctionRef(F& f) : obj(&f), call([](void* o) { (*static_cast<F*>(o))(); }) {}
-    void* obj;
-    void (*call)(void*);
-  };
-  void run_impl(FunctionRef f);
 
   struct Impl;
   std::unique_ptr<Impl> impl_;

@@ -6,10 +6,9 @@
 
 #include <cstdint>
 #include <memory>
-#include <type_traits>
-#include <utility>
 
 #include "core/color.h"
+#include "core/function_ref.h"
 #include "core/math.h"
 #include "render/integrators/integrator.h"
 
@@ -18,28 +17,6 @@ namespace pt {
 class Film;
 class WorkerPool;
 struct RenderScene;
-
-// A non-owning reference to a callable (like std::function_ref): no allocation,
-// one indirect call. The referenced callable must outlive the FunctionRef.
-template <class Signature>
-class FunctionRef;
-
-template <class R, class... Args>
-class FunctionRef<R(Args...)> {
- public:
-  template <class F, class = std::enable_if_t<!std::is_same_v<std::decay_t<F>, FunctionRef>>>
-  FunctionRef(F&& f)  // NOLINT: implicit by design
-      : obj_(const_cast<void*>(static_cast<const void*>(std::addressof(f)))),
-        call_([](void* o, Args... args) -> R {
-          return (*static_cast<std::add_pointer_t<std::remove_reference_t<F>>>(o))(std::forward<Args>(args)...);
-        }) {}
-
-  R operator()(Args... args) const { return call_(obj_, std::forward<Args>(args)...); }
-
- private:
-  void* obj_;
-  R (*call_)(void*, Args...);
-};
 
 // Film position (in pixels) of sample `index` of `spp` in pixel (x, y):
 //  - spp == 1: the pixel centre;
