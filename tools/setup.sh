@@ -11,7 +11,7 @@ packages=(
   g++ cmake ninja-build pkg-config git
   libembree-dev libtbb-dev
   libopenimageio-dev openimageio-tools libopenexr-dev libopencolorio-dev
-  nlohmann-json3-dev libcli11-dev
+  nlohmann-json3-dev libcli11-dev libassimp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-jsonschema
 )
