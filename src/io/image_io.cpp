@@ -1,8 +1,5 @@
 #include "io/image_io.h"
 
-#include "io/atomic_file.h"
-
-
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -15,11 +12,13 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "io/atomic_file.h"
+
 namespace pt {
 
 namespace {
 
-enum class FileKind { Exr, Png, Ppm, Unsupported };
+enum class FileKind { Exr, Png, Jpeg, Ppm, Unsupported };
 
 std::string lower_extension(const std::string& path) {
   const std::size_t slash = path.find_last_of("/\\");
@@ -34,36 +33,25 @@ FileKind file_kind(const std::string& path) {
   const std::string ext = lower_extension(path);
   if (ext == ".exr") return FileKind::Exr;
   if (ext == ".png") return FileKind::Png;
+  if (ext == ".jpg" || ext == ".jpeg") return FileKind::Jpeg;
   if (ext == ".ppm") return FileKind::Ppm;
   return FileKind::Unsupported;
 }
 
-float srgb_oetf(float v) { return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f; }
-
-// The CGR course mapping: code = 255 * v^g with g = log(87/255) / log(1/4), the
-// power curve through the course's one fixed point (a linear 0.25 background
-// shows as 87/255 in its reference images), 0 -> 0 and 1 -> 255.
-const float kCgrPower = static_cast<float>(std::log(87.0 / 255.0) / std::log(0.25));
-
 // All 8-bit pixel codes of `image`, RGB interleaved, row 0 first.
-std::vector<unsigned char> encode_8bit(const Image& image, const DisplaySettings& settings) {
+std::vector<unsigned char> encode_8bit(const Image& image, const DisplayEncoder& display) {
   std::vector<unsigned char> bytes(image.pixels.size() * 3);
-  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
-    const RGB& c = image.pixels[i];
-    bytes[3 * i + 0] = display_encode(c.r, settings);
-    bytes[3 * i + 1] = display_encode(c.g, settings);
-    bytes[3 * i + 2] = display_encode(c.b, settings);
-  }
+  display.encode(image.pixels.data(), image.pixels.size(), bytes.data());
   return bytes;
 }
 
-bool write_ppm(const std::string& path, const Image& image, const DisplaySettings& settings, std::string& error) {
+bool write_ppm(const std::string& path, const Image& image, const DisplayEncoder& display, std::string& error) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   if (!out) {
     error = std::strerror(errno);
     return false;
   }
-  const std::vector<unsigned char> bytes = encode_8bit(image, settings);
+  const std::vector<unsigned char> bytes = encode_8bit(image, display);
   out << "P6\n" << image.width << ' ' << image.height << "\n255\n";
   out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
   out.close();
@@ -77,7 +65,7 @@ bool write_ppm(const std::string& path, const Image& image, const DisplaySetting
 // Writes through OpenImageIO with an explicit format name (the temporary file's
 // name does not end in the real extension).
 bool write_oiio(const std::string& path, const char* format, const Image& image, const DisplaySettings& settings,
-                std::string& error) {
+                const DisplayEncoder* display, std::string& error) {
   auto out = OIIO::ImageOutput::create(format);
   if (!out) {
     error = OIIO::geterror();
@@ -89,8 +77,10 @@ bool write_oiio(const std::string& path, const char* format, const Image& image,
   if (is_float) {
     spec.attribute("compression", "zip");
     spec.attribute("oiio:ColorSpace", "Linear");
-  } else if (settings.transform == DisplayTransform::Srgb) {
-    spec.attribute("oiio:ColorSpace", "sRGB");
+  } else {
+    if (settings.transform == DisplayTransform::Srgb && settings.ocio_config.empty()) spec.attribute("oiio:ColorSpace", "sRGB");
+    spec.attribute("ImageDescription", "display: " + display->description());
+    if (std::strcmp(format, "jpeg") == 0) spec.attribute("Compression", "jpeg:95");
   }
   if (!out->open(path, spec)) {
     error = out->geterror();
@@ -100,7 +90,7 @@ bool write_oiio(const std::string& path, const char* format, const Image& image,
   if (is_float) {
     ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data());
   } else {
-    const std::vector<unsigned char> bytes = encode_8bit(image, settings);
+    const std::vector<unsigned char> bytes = encode_8bit(image, *display);
     ok = out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
   }
   if (!ok) error = out->geterror();
@@ -113,19 +103,7 @@ bool write_oiio(const std::string& path, const char* format, const Image& image,
 
 }  // namespace
 
-unsigned char display_encode(float linear, const DisplaySettings& settings) {
-  float v = linear * std::exp2(settings.exposure);
-  if (!(v > 0.0f)) return 0;  // negative, zero and NaN
-  v = std::min(v, 1.0f);
-  switch (settings.transform) {
-    case DisplayTransform::Srgb: v = srgb_oetf(v); break;
-    case DisplayTransform::Linear: break;
-    case DisplayTransform::CgrCourse: v = std::pow(v, kCgrPower); break;
-  }
-  return static_cast<unsigned char>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
-}
-
-std::vector<std::string> supported_image_extensions() { return {".exr", ".png", ".ppm"}; }
+std::vector<std::string> supported_image_extensions() { return {".exr", ".png", ".jpg", ".jpeg", ".ppm"}; }
 
 bool is_supported_image_path(const std::string& path) { return file_kind(path) != FileKind::Unsupported; }
 
@@ -143,14 +121,24 @@ bool write_image(const std::string& path, const Image& image, const DisplaySetti
     error = "cannot write '" + path + "': the image is empty or inconsistent";
     return false;
   }
-
+  // Display images: the colour pipeline is built (and its names checked) first.
+  std::unique_ptr<DisplayEncoder> display;
+  if (kind != FileKind::Exr) {
+    std::string why;
+    display = DisplayEncoder::create(settings, why);
+    if (!display) {
+      error = "cannot write '" + path + "': " + why;
+      return false;
+    }
+  }
   return write_atomically(
       path,
       [&](const std::string& tmp, std::string& why) {
         switch (kind) {
-          case FileKind::Exr: return write_oiio(tmp, "openexr", image, settings, why);
-          case FileKind::Png: return write_oiio(tmp, "png", image, settings, why);
-          case FileKind::Ppm: return write_ppm(tmp, image, settings, why);
+          case FileKind::Exr: return write_oiio(tmp, "openexr", image, settings, nullptr, why);
+          case FileKind::Png: return write_oiio(tmp, "png", image, settings, display.get(), why);
+          case FileKind::Jpeg: return write_oiio(tmp, "jpeg", image, settings, display.get(), why);
+          case FileKind::Ppm: return write_ppm(tmp, image, *display, why);
           case FileKind::Unsupported: break;
         }
         return false;

@@ -1,7 +1,7 @@
 // Image output, chosen by the file extension:
-//   .exr  linear float RGB (OpenImageIO/OpenEXR), no display transform;
-//   .png  8-bit, display transform applied;
-//   .ppm  8-bit binary P6, display transform applied (as the courses expect).
+//   .exr          linear float RGB (OpenImageIO/OpenEXR), no display transform;
+//   .png, .jpg    8-bit, through the display pipeline (io/display.h);
+//   .ppm          8-bit binary P6, through the display pipeline (as the courses expect).
 // Files are written atomically: to a temporary file in the same directory,
 // then renamed, so a failed or killed run never leaves a partial image.
 #pragma once
@@ -10,19 +10,12 @@
 #include <vector>
 
 #include "core/image.h"
+#include "io/display.h"
 #include "scene/scene_description.h"
 
 namespace pt {
 
-struct DisplaySettings {
-  DisplayTransform transform = DisplayTransform::Srgb;
-  float exposure = 0;  // stops
-};
-
-// Maps one linear value to an 8-bit code value under `settings`.
-unsigned char display_encode(float linear, const DisplaySettings& settings);
-
-// Extensions write_image accepts (".exr", ".png", ".ppm").
+// Extensions write_image accepts (".exr", ".png", ".jpg", ".jpeg", ".ppm").
 std::vector<std::string> supported_image_extensions();
 bool is_supported_image_path(const std::string& path);
 
