@@ -1,7 +1,7 @@
 // The one narrow interface between the renderer and its ray-tracing backends.
 // Backends: "embree" (Embree 3: triangle geometry for meshes, user geometry
-// calling src/geometry for analytic shapes) and "bvh" (our own SAH BVH; not
-// available yet). Both return the same hit record.
+// calling src/geometry for analytic shapes) and "bvh" (our own two-level SAH
+// BVH, docs/bvh.md). Both return the same hit record.
 #pragma once
 
 #include <cstdint>
@@ -39,6 +39,12 @@ struct AccelStats {
   std::size_t primitive_count = 0;
 };
 
+// The work one query did, for the traversal-cost view ("bvh-cost").
+struct TraversalCounters {
+  uint32_t nodes = 0;       // acceleration-structure nodes whose children were tested
+  uint32_t primitives = 0;  // primitive intersection tests
+};
+
 class Accelerator {
  public:
   virtual ~Accelerator() = default;
@@ -48,11 +54,26 @@ class Accelerator {
   virtual bool occluded(const Ray& ray) const = 0;
   virtual Bounds3f bounds() const = 0;
   virtual AccelStats stats() const = 0;
+
+  // True if intersect_counted() counts its work (our BVH; Embree cannot).
+  virtual bool counts_traversal() const { return false; }
+  // As intersect(), adding the work done to `counters` where the backend
+  // counts_traversal(); other backends leave `counters` unchanged.
+  virtual bool intersect_counted(const Ray& ray, Hit& hit, TraversalCounters& counters) const {
+    (void)counters;
+    return intersect(ray, hit);
+  }
 };
 
+// Checks what every backend needs before it builds: finite shape parameters,
+// index counts that are multiples of 3, indices within the vertex array.
+// Reports each problem ("shape 1 (triangle mesh): triangle 0 refers to vertex
+// 3 but the mesh has 3 vertices") and returns false if there was any.
+bool validate_geometry(const SceneGeometry& geometry, Diagnostics& diag);
+
 // Builds the chosen backend over `geometry`, which must outlive the accelerator.
-// The build runs inside `pool`'s arena. On failure (e.g. "bvh" before it exists,
-// or an Embree device error) returns nullptr and reports to `diag`.
+// The build runs inside `pool`'s arena. On failure (invalid geometry, an Embree
+// device error) returns nullptr and reports to `diag`.
 std::unique_ptr<Accelerator> build_accelerator(AccelKind kind, const SceneGeometry& geometry,
                                                WorkerPool& pool, Diagnostics& diag);
 

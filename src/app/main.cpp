@@ -1,7 +1,8 @@
 // pathtracer: renders a scene file to one or more images.
 //
 //   pathtracer SCENE -o OUT [-o OUT2 ...] [--accel embree|bvh] [--threads N] [--spp N]
-//              [--seed N] [--integrator NAME] [--width W] [--height H] [--strict] [--quiet]
+//              [--seed N] [--integrator NAME] [--max-depth N] [--filter box|gaussian|mitchell]
+//              [--clamp X] [--width W] [--height H] [--strict] [--quiet] [--report FILE]
 //
 // Exit status: 0 success; 1 the scene, the render or an output failed (nothing
 // is written for a bad scene); 2 a bad command line (CLI11's message).
@@ -9,6 +10,7 @@
 #include <cstdint>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <set>
@@ -28,6 +30,7 @@
 #include "io/image_io.h"
 #include "io/run_record.h"
 #include "render/film/film.h"
+#include "render/film/filter.h"
 #include "render/integrators/integrator.h"
 #include "render/render_scene.h"
 #include "scene/loader.h"
@@ -42,6 +45,9 @@ struct Options {
   int spp = 0;         // 0: the scene's value
   uint64_t seed = 0;
   std::string integrator;  // empty: the scene's value
+  int max_depth = -1;      // < 0: the scene's value
+  std::string filter;      // empty: the scene's value
+  float clamp = -1.0f;     // < 0: the scene's value; 0 = off
   int width = 0, height = 0;
   bool strict = false;
   bool quiet = false;
@@ -52,6 +58,7 @@ constexpr int kExitFailure = 1;
 constexpr int kExitUsage = 2;
 constexpr int kMaxThreads = 4096;
 constexpr int kMaxSpp = 1 << 20;
+constexpr int kMaxDepth = 1 << 16;
 constexpr int kMaxResolution = 32768;  // as pt::LoadOptions::max_resolution
 
 std::string version_text() {
@@ -86,6 +93,13 @@ void add_options(CLI::App& app, Options& o) {
   app.add_option("--integrator", o.integrator,
                  "Integrator (default: the scene's)")
       ->check(CLI::IsMember(pt::integrator_names()));
+  app.add_option("--max-depth", o.max_depth, "Bounces (path) or recursion depth (whitted) (default: the scene's)")
+      ->check(CLI::Range(0, kMaxDepth));
+  app.add_option("--filter", o.filter, "Pixel filter of the path integrator (default: the scene's, box)")
+      ->check(CLI::IsMember({"box", "gaussian", "mitchell"}));
+  app.add_option("--clamp", o.clamp,
+                 "Path integrator: clamp each sample's radiance to this largest channel value (0: off, the default)")
+      ->check(CLI::Range(0.0f, std::numeric_limits<float>::max()));
   app.add_option("--width", o.width, "Image width (alone: keeps the scene's aspect ratio)")
       ->check(CLI::Range(1, kMaxResolution));
   app.add_option("--height", o.height, "Image height (alone: keeps the scene's aspect ratio)")
@@ -141,9 +155,14 @@ int run(const Options& o) {
 
   // Integrator (checked before the expensive build).
   pt::IntegratorSettings settings;
-  settings.max_depth = desc->render.max_depth;
+  settings.max_depth = o.max_depth >= 0 ? o.max_depth : desc->render.max_depth.value;
   settings.spp = o.spp > 0 ? o.spp : desc->render.spp.value;
   settings.seed = o.seed;
+  settings.filter = desc->render.filter;
+  if (o.filter == "gaussian") settings.filter = pt::PixelFilterType::Gaussian;
+  if (o.filter == "mitchell") settings.filter = pt::PixelFilterType::Mitchell;
+  if (o.filter == "box") settings.filter = pt::PixelFilterType::Box;
+  settings.clamp = o.clamp >= 0.0f ? o.clamp : desc->render.clamp.value;
   const std::string integrator_name = o.integrator.empty() ? desc->render.integrator.value : o.integrator;
   std::string error;
   const std::unique_ptr<pt::Integrator> integrator = pt::make_integrator(integrator_name, settings, error);
@@ -166,6 +185,10 @@ int run(const Options& o) {
   const std::unique_ptr<pt::RenderScene> scene = pt::build_render_scene(*desc, build_options, pool, build_diag);
   print_diagnostics(build_diag, o.quiet);
   if (!scene) return kExitFailure;
+  if (std::string why; !integrator->can_render(*scene, why)) {  // e.g. bvh-cost with --accel=embree
+    std::cerr << "error: " << why << '\n';
+    return kExitFailure;
+  }
   const double build_s = seconds_since(t0);
 
   // Render.
@@ -177,8 +200,9 @@ int run(const Options& o) {
   // Write.
   t0 = Clock::now();
   const pt::DisplaySettings display{desc->film.display, desc->film.exposure};
+  const pt::Image image = film.image();
   for (const std::string& path : o.outputs) {
-    if (!pt::write_image(path, film.image(), display, error)) {
+    if (!pt::write_image(path, image, display, error)) {
       std::cerr << "error: " << error << '\n';
       return kExitFailure;
     }
@@ -194,6 +218,8 @@ int run(const Options& o) {
     record.spp = settings.spp;
     record.max_depth = settings.max_depth;
     record.seed = settings.seed;
+    record.filter = pt::pixel_filter_name(settings.filter);
+    record.clamp = settings.clamp;
     record.threads = pool.threads();
     const pt::AccelStats stats = scene->accel->stats();
     record.accel_backend = stats.backend;
@@ -211,7 +237,9 @@ int run(const Options& o) {
   if (!o.quiet) {
     std::cout << std::fixed << std::setprecision(3) << "wrote " << join(o.outputs, ", ") << " ("
               << scene->width << "x" << scene->height << ", " << integrator_name << ", " << settings.spp
-              << " spp, " << pool.threads() << " threads): parse " << parse_s << " s, build " << build_s
+              << " spp, " << pool.threads() << " threads"
+              << (settings.clamp > 0.0f ? ", clamp " + std::to_string(settings.clamp) : std::string())
+              << "): parse " << parse_s << " s, build " << build_s
               << " s, render " << render_s << " s, write " << write_s << " s\n";
   }
   return 0;

@@ -73,26 +73,53 @@ static const char* severity_name(Severity s) {
   return "error";
 }
 
+namespace {
+
+// Lines longer than this are quoted as a window around the column: a minified
+// file can hold all of its megabytes on one line.
+constexpr std::size_t kMaxQuoted = 256;
+
+bool utf8_continuation(char c) { return (static_cast<unsigned char>(c) & 0xC0) == 0x80; }
+
+}  // namespace
+
 std::string format_diagnostic(const Diagnostic& d) {
   std::ostringstream os;
   os << d.where.to_string() << ": " << severity_name(d.severity) << ": " << d.message << '\n';
   if (d.where.valid()) {
-    const std::string text = d.where.file->line_text(d.where.line);
+    std::string text = d.where.file->line_text(d.where.line);
+    const std::size_t col0 = static_cast<std::size_t>(std::max(1, d.where.col) - 1);  // byte index
+    std::size_t begin = 0;
+    std::string before, after;
+    if (text.size() > kMaxQuoted) {
+      begin = std::min(col0 > kMaxQuoted / 2 ? col0 - kMaxQuoted / 2 : 0, text.size() - kMaxQuoted);
+      std::size_t end = begin + kMaxQuoted;
+      while (begin > 0 && begin < text.size() && utf8_continuation(text[begin])) --begin;  // whole characters
+      while (end < text.size() && utf8_continuation(text[end])) ++end;
+      if (begin > 0) before = "...";
+      if (end < text.size()) after = "...";
+      text = text.substr(begin, end - begin);
+    }
+    // Control characters (a NUL in a string) would garble the terminal.
+    for (char& c : text)
+      if ((static_cast<unsigned char>(c) < 0x20 && c != '\t') || c == 0x7f) c = '?';
     const std::string num = std::to_string(d.where.line);
-    os << ' ' << num << " | " << text << '\n';
-    os << ' ' << std::string(num.size(), ' ') << " | ";
+    os << ' ' << num << " | " << before << text << after << '\n';
+    os << ' ' << std::string(num.size(), ' ') << " | " << std::string(before.size(), ' ');
     // Keep tabs so the caret lines up under tab-indented text.
-    const int col = std::max(1, d.where.col);
-    for (int i = 0; i < col - 1 && i < static_cast<int>(text.size()); ++i)
-      os << (text[static_cast<std::size_t>(i)] == '\t' ? '\t' : ' ');
+    for (std::size_t i = begin; i < col0 && i - begin < text.size(); ++i) os << (text[i - begin] == '\t' ? '\t' : ' ');
     os << "^\n";
   }
   return os.str();
 }
 
 std::string Diagnostics::format() const {
+  // A generated file can hold thousands of identical problems: the first ones
+  // are shown, the rest counted (the summary line below still counts all).
+  constexpr std::size_t kMaxShown = 100;
   std::ostringstream os;
-  for (const Diagnostic& d : items_) os << format_diagnostic(d);
+  for (std::size_t i = 0; i < items_.size() && i < kMaxShown; ++i) os << format_diagnostic(items_[i]);
+  if (items_.size() > kMaxShown) os << "(" << items_.size() - kMaxShown << " more not shown)\n";
   if (error_count_ > 0)
     os << error_count_ << (error_count_ == 1 ? " error" : " errors") << ", " << warning_count_
        << (warning_count_ == 1 ? " warning" : " warnings") << '\n';

@@ -61,8 +61,6 @@ struct Cylinder {
 };
 
 struct TriangleMesh {
-  // Embree reads 16 bytes at the last vertex: with capacity() > size() (reserve
-  // one extra vertex) the Embree backend shares this buffer instead of copying it.
   std::vector<Vec3f> positions;
   std::vector<uint32_t> indices;  // 3 per triangle
   std::vector<Vec3f> normals;     // empty or one per vertex

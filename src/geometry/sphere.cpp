@@ -30,25 +30,31 @@ Bounds3f bounds(const Sphere& s) {
 bool intersect(const Sphere& s, const Ray& ray, PrimHit& hit) {
   const float r = s.radius;
   if (!(r > 0.0f)) return false;
-  const Vec3f f = ray.origin - s.center;
-  const Vec3f d = ray.dir;
-  const float a = dot(d, d);
-  const float b = dot(f, d);  // half of the textbook b
+  // In double: the float inputs convert exactly, and a sphere far smaller than
+  // its distance from the ray origin (1e-3 seen from 1e4: seven decades) is
+  // still resolved, where float arithmetic loses the closest approach |l| in
+  // the rounding of f - (b/a) d.
+  const double fx = static_cast<double>(ray.origin.x) - s.center.x;
+  const double fy = static_cast<double>(ray.origin.y) - s.center.y;
+  const double fz = static_cast<double>(ray.origin.z) - s.center.z;
+  const double dx = ray.dir.x, dy = ray.dir.y, dz = ray.dir.z;
+  const double a = dx * dx + dy * dy + dz * dz;
+  const double b = fx * dx + fy * dy + fz * dz;  // half of the textbook b
   // Discriminant from the distance of the closest approach to the centre
   // (|l|), factored as (r + |l|)(r - |l|): accurate for tiny spheres far away
   // and for grazing rays, where b^2 - ac cancels catastrophically.
-  const Vec3f l = f - (b / a) * d;
-  const float len_l = length(l);
-  const float disc = a * ((r + len_l) * (r - len_l));
-  if (!(disc >= 0.0f)) return false;  // also rejects NaN (a == 0, non-finite rays)
-  // c = |f|^2 - r^2 cancels for a ray starting near a large sphere; in double
-  // the squares of the float components are exact.
-  const double c = static_cast<double>(f.x) * f.x + static_cast<double>(f.y) * f.y +
-                   static_cast<double>(f.z) * f.z - static_cast<double>(r) * r;
+  const double k = b / a;
+  const double lx = fx - k * dx, ly = fy - k * dy, lz = fz - k * dz;
+  const double len_l = std::sqrt(lx * lx + ly * ly + lz * lz);
+  const double disc = a * ((r + len_l) * (r - len_l));
+  if (!(disc >= 0.0)) return false;  // also rejects NaN (a == 0, non-finite rays)
+  // c = |f|^2 - r^2 (cancels for a ray starting near a large sphere; double
+  // keeps it accurate).
+  const double c = fx * fx + fy * fy + fz * fz - static_cast<double>(r) * r;
   // q has the sign of -b, so neither root below suffers cancellation.
-  const float q = -(b + std::copysign(std::sqrt(disc), b));
+  const double q = -(b + std::copysign(std::sqrt(disc), b));
   float t0 = static_cast<float>(c / q);
-  float t1 = q / a;
+  float t1 = static_cast<float>(q / a);
   if (t0 > t1) std::swap(t0, t1);
   if (t0 > ray.tmin && t0 < ray.tmax) {
     hit.t = t0;

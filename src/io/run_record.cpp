@@ -12,7 +12,7 @@ std::string run_record_json(const RunRecord& r) {
       {"software", {{"name", "pathtracer"}, {"version", r.software_version}}},
       {"scene", r.scene},
       {"image", {{"width", r.width}, {"height", r.height}, {"spp", r.spp}, {"integrator", r.integrator},
-                 {"max_depth", r.max_depth}, {"seed", r.seed}}},
+                 {"max_depth", r.max_depth}, {"seed", r.seed}, {"filter", r.filter}, {"clamp", r.clamp}}},
       {"threads", r.threads},
       {"accel", {{"backend", r.accel_backend}, {"memory_bytes", r.accel_memory_bytes},
                  {"primitive_count", r.primitive_count}, {"build_seconds", t.accel_build}}},

@@ -22,6 +22,8 @@ struct RunRecord {
   std::string integrator;
   int width = 0, height = 0, spp = 0, max_depth = 0;
   uint64_t seed = 0;
+  std::string filter = "box";  // pixel filter (path integrator)
+  float clamp = 0.0f;          // firefly clamp; 0 = off (recorded either way)
   int threads = 0;
   std::string accel_backend;   // AccelStats::backend
   std::size_t accel_memory_bytes = 0;

@@ -153,12 +153,63 @@ Material to_material(const MaterialDesc& d, const RenderScene& scene) {
   m.refractive = d.refractive;
   m.ior = d.ior;
   m.emission = d.emission;
+  m.two_sided = d.two_sided;
+  m.type = d.type;
+  // The classic integrator reads only the course fields: give the physical
+  // types their closest classic meaning (docs/path-tracing.md).
+  switch (m.type) {
+    case MaterialType::Lambert:
+      m.ks = 0.0f;
+      m.reflectivity = 0.0f;
+      m.refractive = false;
+      break;
+    case MaterialType::Mirror:
+      m.kd = 0.0f;
+      m.ks = 0.0f;
+      m.reflectivity = 1.0f;
+      m.refractive = false;
+      break;
+    case MaterialType::Glass:
+      m.refractive = true;
+      break;
+    case MaterialType::Phong:
+      break;
+  }
   if (d.texture) m.texture = scene.textures[static_cast<std::size_t>(*d.texture)].get();
   return m;
 }
 
-PointLight to_light(const PointLightDesc& d) {
-  return PointLight{d.position, d.intensity, d.specular_intensity, d.inverse_square};
+void add_light(RenderScene& scene, const PointLightDesc& d) {
+  scene.point_lights.push_back(PointLight{d.position, d.intensity, d.specular_intensity, d.inverse_square});
+}
+
+void add_light(RenderScene& scene, const DirectionalLightDesc& d) {
+  // The loader refuses a zero direction; a description built in code might not.
+  // Scaled before normalising, so a tiny direction does not flush to zero.
+  const float m = max_component(abs(d.direction.value));
+  if (!(m > 0.0f) || !std::isfinite(m)) return;
+  scene.directional_lights.push_back(DirectionalLight{normalize(d.direction.value / m), d.irradiance});
+}
+
+// The path integrator's light list: delta lights, every emissive shape, and
+// the environment (the map, or the background colour if it is not black).
+LightSet build_light_set(const RenderScene& scene) {
+  std::vector<Light> lights;
+  for (const PointLight& p : scene.point_lights) lights.emplace_back(p);
+  for (const DirectionalLight& d : scene.directional_lights) lights.emplace_back(d);
+  for (std::size_t i = 0; i < scene.geometry.shapes.size(); ++i) {
+    const Material& m = scene.materials[static_cast<std::size_t>(scene.shape_material[i])];
+    if (m.emits()) lights.emplace_back(ShapeLight(scene.geometry.shapes[i], static_cast<uint32_t>(i), m));
+  }
+  if (scene.environment_map) {
+    lights.emplace_back(EnvironmentLight{scene.environment_map.get()});
+  } else if (!scene.background.is_black()) {
+    lights.emplace_back(UniformEnvironment{scene.background});
+  }
+  const Bounds3f b = scene.accel->bounds();
+  float radius = b.empty() ? 1.0f : 0.5f * length(b.extent());
+  if (!(radius > 0.0f) || !std::isfinite(radius)) radius = 1.0f;
+  return LightSet(std::move(lights), scene.geometry.shapes.size(), radius);
 }
 
 }  // namespace
@@ -207,12 +258,22 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDescription& desc, co
     scene->shape_material.push_back(material);
   }
 
-  for (const LightDesc& l : desc.lights)
-    std::visit([&](const auto& light) { scene->point_lights.push_back(to_light(light)); }, l);
+  for (const LightDesc& l : desc.lights) std::visit([&](const auto& light) { add_light(*scene, light); }, l);
+
+  if (desc.environment) {
+    std::string error;
+    scene->environment_map = EnvironmentMap::load(*desc.environment, error);
+    if (!scene->environment_map) {
+      diag.error(desc.environment->file.where,
+                 "cannot read environment map '" + desc.environment->file.value + "': " + error);
+      ok = false;
+    }
+  }
 
   if (!ok) return nullptr;
   scene->accel = build_accelerator(options.accel, scene->geometry, pool, diag);
   if (!scene->accel) return nullptr;
+  scene->lights = build_light_set(*scene);
   return scene;
 }
 

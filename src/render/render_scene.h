@@ -12,7 +12,9 @@
 #include "core/diagnostics.h"
 #include "geometry/shapes.h"
 #include "render/camera/camera.h"
+#include "render/lights/environment.h"
 #include "render/lights/light.h"
+#include "render/lights/light_set.h"
 #include "render/materials/material.h"
 #include "render/textures/texture.h"
 #include "scene/scene_description.h"
@@ -37,10 +39,19 @@ struct RenderScene {
   std::vector<Material> materials;
   std::vector<std::unique_ptr<Texture>> textures;  // stable addresses (materials point in)
   std::vector<PointLight> point_lights;
+  std::vector<DirectionalLight> directional_lights;
+  // Only when the scene has an environment map (its sampling distribution included).
+  std::unique_ptr<EnvironmentMap> environment_map;
+  // Every light as the path integrator samples it (built after the accelerator:
+  // infinite lights' power estimates need the scene bounds).
+  LightSet lights;
   std::unique_ptr<Accelerator> accel;
 
   bool intersect(const Ray& ray, Intersection& out) const;
   bool occluded(const Ray& ray) const { return accel->occluded(ray); }
+  // Radiance seen by a ray that leaves the scene in direction `dir`: the
+  // environment map, or else the background colour.
+  RGB escaped_radiance(Vec3f dir) const { return environment_map ? environment_map->radiance(dir) : background; }
 };
 
 struct BuildOptions {

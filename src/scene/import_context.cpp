@@ -1,8 +1,11 @@
 #include "scene/import_context.h"
 
+#include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <system_error>
 
+#include "scene/mesh_obj.h"
 #include "scene/ply.h"
 
 namespace fs = std::filesystem;
@@ -46,9 +49,18 @@ bool load_mesh_file(ImportContext& ctx, const Sourced<std::string>& written, Mes
                                         describe_search(ctx.scene.source_path, written.value));
     return false;
   }
-  PlyMesh ply;
-  PlyError error;
-  if (!load_ply(*resolved, ply, error)) {
+  // The reader by extension: .obj (any case) is OBJ, anything else PLY.
+  std::string extension = fs::path(*resolved).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  MeshData ply;
+  if (extension == ".obj") {
+    std::string error;
+    if (!load_obj(*resolved, ply, error)) {
+      ctx.diag().error(written.where, "cannot read mesh '" + written.value + "': " + error);
+      return false;
+    }
+  } else if (PlyError error; !load_ply(*resolved, ply, error)) {
     std::string message = "cannot read mesh '" + written.value + "': " + error.message;
     if (error.line > 0) message += " (header line " + std::to_string(error.line) + ")";
     ctx.diag().error(written.where, std::move(message));

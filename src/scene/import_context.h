@@ -29,8 +29,9 @@ struct ImportContext {
 // file is reported (saying where it was looked for) and gives std::nullopt.
 std::optional<int> add_texture(ImportContext& ctx, const Sourced<std::string>& written);
 
-// Resolves and reads a PLY file into `mesh` (positions, indices, normals, uvs).
-// Problems are reported at the path's location.
+// Resolves and reads a mesh file into `mesh` (positions, indices, normals,
+// uvs): OBJ for a .obj extension (any case), PLY otherwise. Problems are
+// reported at the path's location.
 bool load_mesh_file(ImportContext& ctx, const Sourced<std::string>& written, MeshDesc& mesh);
 
 // The index of the material used by shapes that name none (added on first use).

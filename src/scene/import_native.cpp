@@ -1,5 +1,7 @@
 // The native format (docs/scene-format.md): top level, camera, film, render
 // settings, materials and lights. Shapes are in import_native_shapes.cpp.
+#include <algorithm>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -57,7 +59,47 @@ void read_render(ImportContext& ctx, const JsonValue& v) {
   r.read("max_depth", render.max_depth);
   r.read("spp", render.spp);
   r.read("background", render.background);
+  SourceLocation filter_at;
+  const int filter = read_choice(r, "filter", {"box", "gaussian", "mitchell"}, &filter_at);
+  if (filter >= 0) {
+    constexpr PixelFilterType kFilters[] = {PixelFilterType::Box, PixelFilterType::Gaussian,
+                                            PixelFilterType::Mitchell};
+    render.filter = Sourced<PixelFilterType>(kFilters[filter], filter_at);
+  }
+  r.read("clamp", render.clamp);
   r.finish();
+}
+
+// The keys each material type reads besides "type" (docs/scene-format.md); a
+// key the type does not read is an error rather than silently ignored.
+const std::vector<std::string>& material_keys(MaterialType type) {
+  static const std::vector<std::string> kPhong = {"diffuse", "kd", "specular", "ks", "exponent", "reflectivity",
+                                                  "refractive", "ior", "emission", "two_sided", "texture"};
+  static const std::vector<std::string> kLambert = {"diffuse", "kd", "texture", "emission", "two_sided"};
+  static const std::vector<std::string> kMirror = {"specular", "emission", "two_sided"};
+  static const std::vector<std::string> kGlass = {"ior", "emission", "two_sided"};
+  switch (type) {
+    case MaterialType::Lambert: return kLambert;
+    case MaterialType::Mirror: return kMirror;
+    case MaterialType::Glass: return kGlass;
+    case MaterialType::Phong: break;
+  }
+  return kPhong;
+}
+
+void check_material_keys(ImportContext& ctx, ObjectReader& r, const JsonValue& object, MaterialType type,
+                         const std::string& type_name) {
+  const std::vector<std::string>& allowed = material_keys(type);
+  const std::vector<std::string>& all = material_keys(MaterialType::Phong);
+  for (const JsonMember& member : object.as_object()) {
+    if (member.duplicate || std::find(all.begin(), all.end(), member.key) == all.end()) continue;
+    if (std::find(allowed.begin(), allowed.end(), member.key) != allowed.end()) continue;
+    std::string list;
+    for (const std::string& k : allowed) list += (list.empty() ? "" : ", ") + k;
+    ctx.diag().error(ctx.doc().location(member.key_offset),
+                     "'" + member.key + "' does not apply to a " + type_name + " material (it reads: " + list + ")");
+    r.fail();
+  }
 }
 
 NativeMaterial read_material(ImportContext& ctx, const JsonMember& member) {
@@ -70,6 +112,15 @@ NativeMaterial read_material(ImportContext& ctx, const JsonMember& member) {
   }
   ObjectReader r(ctx.read, member.value, "material '" + member.key + "'");
   MaterialDesc& m = out.desc;
+  SourceLocation type_at;
+  static const std::vector<std::string> kTypes = {"phong", "lambert", "mirror", "glass"};
+  const int type = read_choice(r, "type", kTypes, &type_at);
+  if (type >= 0) {
+    constexpr MaterialType kTypeValues[] = {MaterialType::Phong, MaterialType::Lambert, MaterialType::Mirror,
+                                            MaterialType::Glass};
+    m.type = Sourced<MaterialType>(kTypeValues[type], type_at);
+    check_material_keys(ctx, r, member.value, m.type, kTypes[static_cast<std::size_t>(type)]);
+  }
   r.read("diffuse", m.diffuse);
   r.read("kd", m.kd);
   r.read("specular", m.specular);
@@ -79,6 +130,7 @@ NativeMaterial read_material(ImportContext& ctx, const JsonMember& member) {
   r.read("refractive", m.refractive);
   r.read("ior", m.ior);
   r.read("emission", m.emission);
+  r.read("two_sided", m.two_sided);
   Sourced<std::string> texture;
   if (r.get("texture") && r.read("texture", texture)) out.texture = texture;
   r.finish();
@@ -98,9 +150,19 @@ void read_light(ImportContext& ctx, const JsonValue& v, std::size_t index) {
   const std::string label = "lights[" + std::to_string(index) + "]";
   if (!expect_object(ctx.read, v, label)) return;
   ObjectReader r(ctx.read, v, "light");
-  const int type = read_choice(r, "type", {"point"});
+  const int type = read_choice(r, "type", {"point", "directional"});
   if (type == -1) r.require("type");
-  if (type != 0) return;  // the error is reported; the rest of this light cannot be checked
+  if (type < 0) return;  // the error is reported; the rest of this light cannot be checked
+  if (type == 1) {
+    r.set_what("directional light");
+    DirectionalLightDesc light;
+    light.where = r.where();
+    r.read_required("direction", light.direction);
+    r.read_required("irradiance", light.irradiance);
+    r.finish();
+    if (r.ok()) ctx.scene.lights.emplace_back(std::move(light));
+    return;
+  }
   r.set_what("point light");
   PointLightDesc light;
   light.where = r.where();
@@ -113,6 +175,29 @@ void read_light(ImportContext& ctx, const JsonValue& v, std::size_t index) {
   if (falloff >= 0) light.inverse_square = Sourced<bool>(falloff == 0, falloff_at);
   r.finish();
   if (r.ok()) ctx.scene.lights.emplace_back(std::move(light));
+}
+
+// "environment": a latitude-longitude radiance map (docs/scene-format.md).
+void read_environment(ImportContext& ctx, const JsonValue& v) {
+  if (!expect_object(ctx.read, v, "environment")) return;
+  ObjectReader r(ctx.read, v, "environment");
+  EnvironmentDesc env;
+  env.where = r.where();
+  if (r.read_required("file", env.file)) {
+    const std::optional<std::string> resolved = resolve_scene_path(ctx.scene.source_path, env.file.value);
+    if (resolved) {
+      env.resolved = *resolved;
+    } else {
+      ctx.diag().error(env.file.where, "environment map '" + env.file.value + "' not found; " +
+                                           describe_search(ctx.scene.source_path, env.file.value));
+    }
+  }
+  r.read("rotation", env.rotation_deg);
+  r.read("intensity", env.intensity);
+  r.read("up", env.up);
+  r.finish();
+  // Kept even without its file (already reported), so the rest is validated too.
+  if (r.ok()) ctx.scene.environment = std::move(env);
 }
 
 // Keeps the materials some shape uses (in declaration order), registers their
@@ -150,6 +235,13 @@ void import_native(ImportContext& ctx) {
   if (const JsonValue* v = top.require("camera")) read_camera(ctx, *v);
   if (const JsonValue* v = top.get("film")) read_film(ctx, *v);
   if (const JsonValue* v = top.get("render")) read_render(ctx, *v);
+  if (const JsonValue* v = top.get("environment")) {
+    read_environment(ctx, *v);
+    if (ctx.scene.render.background.where.valid())
+      ctx.diag().error(ctx.scene.render.background.where,
+                       "a scene has either render.background or an environment map, not both: the "
+                       "environment is what rays that leave the scene see");
+  }
 
   std::vector<NativeMaterial> materials;
   if (const JsonValue* v = top.get("materials")) materials = read_materials(ctx, *v);

@@ -13,6 +13,28 @@ namespace {
 
 constexpr float kInv4Pi = 1.0f / (4.0f * kPi);
 
+// A required value that files spell in several ways: exactly one of `keys`
+// must be present (the first is the one the messages name).
+void read_aliased(ObjectReader& r, std::initializer_list<const char*> keys, Sourced<float>& out) {
+  const char* found = nullptr;
+  for (const char* key : keys) {
+    if (!r.get(key)) continue;
+    if (found) {
+      r.context().diag.error(r.context().at(*r.get(key)), std::string("'") + key + "' and '" + found +
+                                                              "' say the same thing; give one of them");
+      r.fail();
+      return;
+    }
+    found = key;
+  }
+  if (!found) {
+    r.require(*keys.begin());
+    r.fail();
+    return;
+  }
+  r.read(found, out);
+}
+
 void read_camera(ImportContext& ctx, const JsonValue& v) {
   if (!expect_object(ctx.read, v, "camera")) return;
   ObjectReader r(ctx.read, v, "camera");
@@ -31,9 +53,10 @@ void read_camera(ImportContext& ctx, const JsonValue& v) {
   r.read_required("up", cam.up);
   cam.left_handed = false;  // image right = forward x up
   if (cam.type == CameraType::ThinLens) {
-    // No official keys exist; these are ours (docs/scene-format.md).
-    r.read_required("lensradius", cam.lens_radius);
-    r.read_required("focusdistance", cam.focus_distance);
+    // No official keys exist: ours first, then the unambiguous spellings seen in
+    // third-party files (pbrt's "focaldistance", snake case). docs/scene-format.md.
+    read_aliased(r, {"lensradius", "lens_radius", "apertureradius", "aperture_radius"}, cam.lens_radius);
+    read_aliased(r, {"focusdistance", "focaldistance", "focus_distance", "focal_distance"}, cam.focus_distance);
   }
   r.finish();
 }
@@ -52,8 +75,8 @@ void read_light(ImportContext& ctx, const JsonValue& v, std::size_t index) {
   light.where = r.where();
   r.read_required("position", light.position);
   Sourced<RGB> diffuse, specular;
-  // The course's intensities are radiant power-like with a 1/(4 pi r^2) falloff;
-  // native point lights have irradiance I / r^2, so I = id / (4 pi).
+  // The course shades kd Cd id cos / (4 pi r^2); a native point light of intensity I
+  // shades kd Cd I cos / r^2 in the classic integrator, so I = id / (4 pi).
   if (r.read_required("id", diffuse)) light.intensity = Sourced<RGB>(diffuse.value * kInv4Pi, diffuse.where);
   if (r.read_required("is", specular))
     light.specular_intensity = Sourced<RGB>(specular.value * kInv4Pi, specular.where);

@@ -9,7 +9,8 @@
 // parse), duplicate keys (the later one is an error, the first gets a note),
 // numbers that overflow to infinity, NaN/Infinity spelled out, and nesting
 // deeper than JsonLimits::max_depth (which ends the parse, so no tree is ever
-// deep enough for recursion to be a danger).
+// deep enough for recursion to be a danger), and more values than
+// JsonLimits::max_values (which ends the parse, bounding the tree's memory).
 #pragma once
 
 #include <cstddef>
@@ -96,6 +97,9 @@ struct JsonMember {
 
 struct JsonLimits {
   int max_depth = 100;  // arrays and objects nested deeper than this are refused
+  // Values (of any type) in one file: the tree takes ~50 bytes per value, so
+  // this bounds its memory (~400 MiB) whatever the file holds ("0,0,0,...").
+  std::size_t max_values = std::size_t{1} << 23;
 };
 
 class JsonDocument;

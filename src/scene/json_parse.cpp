@@ -142,8 +142,7 @@ class TreeBuilder {
 
   bool add_simple(JsonValue v) {
     prev_end_ = consumed_;
-    add(std::move(v));
-    return true;
+    return add(std::move(v)) != nullptr;
   }
 
   bool add_number(double d, bool integer) {
@@ -155,8 +154,7 @@ class TreeBuilder {
       diag_.error(doc_.location(start), "number '" + text_.substr(start, end - start) +
                                             "' is out of range (it overflows to infinity)");
     }
-    add(JsonValue::number(d, integer, start));
-    return true;
+    return add(JsonValue::number(d, integer, start)) != nullptr;
   }
 
   bool open(JsonValue v) {
@@ -167,7 +165,9 @@ class TreeBuilder {
                                             std::to_string(limits_.max_depth) + " levels deep");
       return false;
     }
-    stack_.push_back(Frame{add(std::move(v)), {}});
+    JsonValue* added = add(std::move(v));
+    if (added == nullptr) return false;
+    stack_.push_back(Frame{added, {}});
     return true;
   }
 
@@ -177,8 +177,14 @@ class TreeBuilder {
     return true;
   }
 
-  // Appends `v` to the open container (or makes it the root); returns where it now lives.
+  // Appends `v` to the open container (or makes it the root); returns where it
+  // now lives, or nullptr (after reporting it) past JsonLimits::max_values.
   JsonValue* add(JsonValue v) {
+    if (++values_ > limits_.max_values) {
+      diag_.error(doc_.location(v.offset()), "the file holds more than " + std::to_string(limits_.max_values) +
+                                                 " values; put large meshes in PLY files");
+      return nullptr;
+    }
     if (stack_.empty()) {
       root_ = std::move(v);
       return &root_;
@@ -219,7 +225,10 @@ class TreeBuilder {
     }
 
     std::string message;
-    if (what.find("out_of_range.406") != std::string::npos) {
+    if (!in_string && at < text_.size() && text_[at] == '\0') {
+      // Outside strings nlohmann reads a NUL as the end of the input.
+      message = "the file holds a NUL byte here; it is not a JSON text file";
+    } else if (what.find("out_of_range.406") != std::string::npos) {
       // nlohmann refuses numbers that overflow a double ("1e999") before any event.
       std::size_t n = 0;
       while (n < rest.size() && is_number_char(rest[n])) ++n;
@@ -255,6 +264,7 @@ class TreeBuilder {
   const JsonLimits& limits_;
 
   std::size_t consumed_ = 0;  // bytes the lexer has read
+  std::size_t values_ = 0;    // values added to the tree
   std::size_t prev_end_ = 0;  // one past the previous token
   std::vector<Frame> stack_;  // open arrays and objects
   JsonValue root_;

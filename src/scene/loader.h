@@ -17,6 +17,9 @@ struct LoadOptions {
   bool strict = false;
   // Largest accepted width or height.
   int max_resolution = 32768;
+  // Largest accepted width x height (16384^2): the film alone then takes 3 GiB;
+  // beyond it a scene is refused with a message instead of failing to allocate.
+  long long max_pixels = 1LL << 28;
 };
 
 // Returns the description, or std::nullopt if any error was reported. All

@@ -8,7 +8,9 @@
 // Units and conventions (the importers translate the course conventions into these):
 //  - World space is right-handed; there is no preferred up axis.
 //  - Colours are linear RGB.
-//  - A point light of intensity I gives irradiance I * cos(theta) / r^2.
+//  - A point light of intensity I makes a white Lambertian surface facing it at
+//    distance r shine with radiance I / r^2 (the classic integrator's I cos / r^2
+//    with no 1/pi): physically radiant intensity pi I (docs/path-tracing.md).
 //  - Angles are in degrees in the description.
 #pragma once
 
@@ -73,11 +75,19 @@ struct FilmDesc {
 };
 
 // ---------------------------------------------------------------- render settings
+// Pixel reconstruction filter (docs/path-tracing.md): a 1-pixel box, a
+// Gaussian (radius 1.5, sigma 0.5) or Mitchell-Netravali (radius 2, B = C = 1/3).
+enum class PixelFilterType { Box, Gaussian, Mitchell };
+
 struct RenderDesc {
   Sourced<std::string> integrator{std::string("whitted")};  // registry name, see render/integrators
   Sourced<int> max_depth{5};     // recursion limit (nbounces in the course files)
   Sourced<int> spp{1};           // samples per pixel
+  // Radiance of rays that hit nothing; the path integrator also treats it as a
+  // uniform environment that lights the scene (docs/path-tracing.md).
   Sourced<RGB> background{RGB(0, 0, 0)};
+  Sourced<PixelFilterType> filter{PixelFilterType::Box};
+  Sourced<float> clamp{0.0f};    // firefly clamp on each sample's radiance; 0 = off
 };
 
 // ---------------------------------------------------------------- textures
@@ -90,11 +100,17 @@ struct TextureDesc {
 };
 
 // ---------------------------------------------------------------- materials
-// The course material model. The classic (Whitted) integrator reads it as
-// Blinn-Phong + mirror + Fresnel refraction.
+// Phong: the course material model. The classic (Whitted) integrator reads it
+// as Blinn-Phong + mirror + Fresnel refraction; the path integrator as a
+// normalised Blinn-Phong BRDF with a mirror lobe, or a dielectric when
+// `refractive`. Lambert, Mirror and Glass are the physical materials of the
+// path integrator; each reads only some of the keys (docs/scene-format.md).
+enum class MaterialType { Phong, Lambert, Mirror, Glass };
+
 struct MaterialDesc {
   SourceLocation where;
   std::string name;
+  Sourced<MaterialType> type{MaterialType::Phong};
   Sourced<float> kd{1.0f};
   Sourced<float> ks{0.0f};
   Sourced<RGB> diffuse{RGB(0.8f, 0.8f, 0.8f)};
@@ -103,7 +119,8 @@ struct MaterialDesc {
   Sourced<float> reflectivity{0.0f};   // mirror weight in [0,1] (kr)
   Sourced<bool> refractive{false};
   Sourced<float> ior{1.0f};
-  Sourced<RGB> emission{RGB(0, 0, 0)};
+  Sourced<RGB> emission{RGB(0, 0, 0)};  // emitted radiance, on the front (ng) side only unless two_sided
+  Sourced<bool> two_sided{false};       // emission from both sides
   std::optional<int> texture;           // index into SceneDescription::textures; modulates diffuse
 };
 
@@ -111,14 +128,34 @@ struct MaterialDesc {
 struct PointLightDesc {
   SourceLocation where;
   Sourced<Vec3f> position;
-  Sourced<RGB> intensity;           // radiant intensity; irradiance = I cos / r^2
+  Sourced<RGB> intensity;           // I: radiance I cos / r^2 on a white Lambertian (radiant intensity pi I)
   Sourced<RGB> specular_intensity;  // used by the specular lobe of the classic integrator
   // true: irradiance I cos / r^2 (physical; native and Path of Light). false: I cos,
   // no distance falloff (the CGR course's point lights).
   Sourced<bool> inverse_square{true};
 };
 
-using LightDesc = std::variant<PointLightDesc>;
+// A light infinitely far away: parallel rays travelling along `direction`,
+// delivering `irradiance` (W/m^2) to a surface perpendicular to them.
+struct DirectionalLightDesc {
+  SourceLocation where;
+  Sourced<Vec3f> direction{Vec3f(0, -1, 0)};  // the direction the light travels; any length
+  Sourced<RGB> irradiance;
+};
+
+using LightDesc = std::variant<PointLightDesc, DirectionalLightDesc>;
+
+// ---------------------------------------------------------------- environment
+// A latitude-longitude (equirectangular) radiance map around the scene, seen by
+// rays that leave it. See docs/path-tracing.md for the orientation.
+struct EnvironmentDesc {
+  SourceLocation where;
+  Sourced<std::string> file;             // as written in the scene file
+  std::string resolved;                  // the file that exists on disk
+  Sourced<float> rotation_deg{0.0f};     // about `up`, counter-clockwise seen from above
+  Sourced<float> intensity{1.0f};        // scale on the map's values
+  Sourced<Vec3f> up{Vec3f(0, 1, 0)};     // the map's zenith; any length
+};
 
 // ---------------------------------------------------------------- shapes
 // Texture mapping: longitude/latitude about `pole` (the world up axis of the
@@ -177,6 +214,7 @@ struct SceneDescription {
   std::vector<TextureDesc> textures;  // each file once; referenced by index
   std::vector<LightDesc> lights;
   std::vector<ShapeDesc> shapes;
+  std::optional<EnvironmentDesc> environment;  // replaces render.background for rays that leave
 };
 
 }  // namespace pt

@@ -37,6 +37,13 @@ class Validator {
   void film(const FilmDesc& film) {
     resolution(film.width, "width");
     resolution(film.height, "height");
+    const long long pixels = static_cast<long long>(film.width.value) * film.height.value;
+    if (film.width.value >= 1 && film.height.value >= 1 && pixels > options_.max_pixels) {
+      diag_.error(film.width.where.valid() ? film.width.where : film.height.where,
+                  "the film has " + std::to_string(film.width.value) + "x" + std::to_string(film.height.value) +
+                      " = " + std::to_string(pixels) + " pixels; at most " + std::to_string(options_.max_pixels) +
+                      " are accepted");
+    }
   }
 
   void render(const RenderDesc& render) {
@@ -44,6 +51,8 @@ class Validator {
     if (render.max_depth.value < 0)
       diag_.error(render.max_depth.where, "max_depth must be >= 0, got " + str(render.max_depth.value));
     colour(render.background, "background colour");
+    if (!(render.clamp.value >= 0.0f))
+      diag_.error(render.clamp.where, "clamp must be >= 0 (0 turns it off), got " + str(render.clamp.value));
   }
 
   void material(const MaterialDesc& m) {
@@ -61,6 +70,18 @@ class Validator {
   void light(const PointLightDesc& l) {
     colour(l.intensity, "light intensity");
     colour(l.specular_intensity, "specular intensity");
+  }
+
+  void light(const DirectionalLightDesc& l) {
+    if (!(length(l.direction.value) > 0.0f))
+      diag_.error(l.direction.where, "a directional light's direction must not be zero");
+    colour(l.irradiance, "irradiance");
+  }
+
+  void environment(const EnvironmentDesc& e) {
+    if (!(e.intensity.value >= 0.0f))
+      diag_.error(e.intensity.where, "environment intensity must be >= 0, got " + str(e.intensity.value));
+    if (!(length(e.up.value) > 0.0f)) diag_.error(e.up.where, "environment up axis must not be zero");
   }
 
   void shape(const ShapeDesc& s) {
@@ -180,6 +201,7 @@ void validate_scene(const SceneDescription& scene, const LoadOptions& options, D
   for (const MaterialDesc& m : scene.materials) v.material(m);
   for (const LightDesc& l : scene.lights) std::visit([&](const auto& light) { v.light(light); }, l);
   for (const ShapeDesc& s : scene.shapes) v.shape(s);
+  if (scene.environment) v.environment(*scene.environment);
 }
 
 }  // namespace pt

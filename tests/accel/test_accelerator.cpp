@@ -28,16 +28,24 @@ TEST(AccelKind, ParsesAndNamesEveryKind) {
   }
 }
 
-TEST(BuildAccelerator, BvhReportsThatItIsNotAvailable) {
+TEST(BuildAccelerator, BvhIsBuiltAndFillsStats) {
   SceneGeometry g;
   g.shapes.push_back(Sphere{{0, 0, 0}, 1.0f});
+  g.shapes.push_back(test::make_uv_sphere({-3, 0, 0}, 1.0f, 10, 20));
+  const std::size_t triangles = std::get<TriangleMesh>(g.shapes[1]).triangle_count();
   WorkerPool pool(2);
   Diagnostics diag;
-  EXPECT_EQ(build_accelerator(AccelKind::Bvh, g, pool, diag), nullptr);
-  ASSERT_EQ(diag.error_count(), 1);
-  EXPECT_EQ(diag.all()[0].message,
-            "--accel=bvh: our own BVH backend is not available yet; use --accel=embree");
-  EXPECT_FALSE(diag.all()[0].where.valid());
+  auto accel = build_accelerator(AccelKind::Bvh, g, pool, diag);
+  ASSERT_NE(accel, nullptr) << diag.format();
+  EXPECT_FALSE(diag.has_errors());
+  const AccelStats stats = accel->stats();
+  EXPECT_EQ(stats.backend.rfind("bvh (", 0), 0u) << stats.backend;
+  EXPECT_EQ(stats.primitive_count, triangles + 1);
+  EXPECT_GT(stats.memory_bytes, 1000u);
+  Hit hit;
+  ASSERT_TRUE(accel->intersect(Ray{{0, 0, -5}, {0, 0, 1}}, hit));
+  EXPECT_EQ(hit.shape, 0u);
+  EXPECT_FLOAT_EQ(hit.t, 4.0f);
 }
 
 TEST(BuildAccelerator, InvalidGeometryIsReportedNotCrashed) {

@@ -173,6 +173,33 @@ TEST_F(Cli, ReportRecordsSettingsAndPhases) {
   EXPECT_NEAR(j["timings"]["total"].get<double>(), sum, 1e-9);
 }
 
+TEST_F(Cli, PathIntegratorOptionsAreUsedAndRecorded) {
+  // The CGR rendermode "pathtracer" selects the path integrator.
+  write("path.json", cgr_scene("pathtracer"));
+  const Result r = run("path.json -o out.exr --spp 4 --max-depth 3 --filter gaussian --clamp 2.5 --report run.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("clamp"), std::string::npos) << r.out;  // a clamp that is on is said
+  const nlohmann::json j = nlohmann::json::parse(slurp(path("run.json")));
+  EXPECT_EQ(j["image"]["integrator"], "path");
+  EXPECT_EQ(j["image"]["max_depth"], 3);
+  EXPECT_EQ(j["image"]["filter"], "gaussian");
+  EXPECT_EQ(j["image"]["clamp"], 2.5);
+  Image img;
+  std::string error;
+  ASSERT_TRUE(read_image(path("out.exr"), img, error)) << error;
+  for (const RGB& p : img.pixels) ASSERT_LE(p.max_component(), 2.5f);
+  // Off by default, and recorded as 0.
+  ASSERT_EQ(run("path.json -o out.exr --spp 1 --report run.json").status, 0);
+  EXPECT_EQ(nlohmann::json::parse(slurp(path("run.json")))["image"]["clamp"], 0.0);
+  EXPECT_EQ(nlohmann::json::parse(slurp(path("run.json")))["image"]["filter"], "box");
+}
+
+TEST_F(Cli, IntegratorOptionOverridesTheScene) {
+  const Result r = run("phong.json -o out.exr --integrator path --spp 2 --report run.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(slurp(path("run.json")))["image"]["integrator"], "path");
+}
+
 TEST_F(Cli, NoReportForABadScene) {
   write("bad.json", "{ \"camera\": ");
   const Result r = run("bad.json -o out.png --report run.json");
@@ -210,6 +237,8 @@ TEST_F(Cli, BadCommandLinesExitWithTwo) {
   for (const char* args : {"phong.json -o out.png --frobnicate", "phong.json -o out.png --threads 0",
                            "phong.json -o out.png --threads -2", "phong.json -o out.png --spp 0",
                            "phong.json -o out.png --integrator nope", "phong.json -o out.png --accel=optix",
+                           "phong.json -o out.png --max-depth -1", "phong.json -o out.png --filter tent",
+                           "phong.json -o out.png --clamp -1", "phong.json -o out.png --clamp x",
                            "phong.json", "-o out.png"}) {
     const Result r = run(args);
     EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
@@ -219,7 +248,7 @@ TEST_F(Cli, BadCommandLinesExitWithTwo) {
 }
 
 TEST_F(Cli, UnsupportedExtensionIsRefusedBeforeRendering) {
-  const Result r = run("phong.json -o out.jpg");
+  const Result r = run("phong.json -o out.tiff");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.err.find(".exr"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find(".ppm"), std::string::npos) << r.err;
@@ -227,11 +256,32 @@ TEST_F(Cli, UnsupportedExtensionIsRefusedBeforeRendering) {
   EXPECT_TRUE(outputs().empty());
 }
 
-TEST_F(Cli, BvhIsNotAvailableYet) {
-  const Result r = run("phong.json -o out.png --accel=bvh");
-  EXPECT_NE(r.status, 0);
-  EXPECT_NE(r.err.find("not available"), std::string::npos) << r.err;
+TEST_F(Cli, BvhBackendRendersTheSameImageAsEmbree) {
+  const Result r = run("phong.json -o bvh.exr --accel=bvh --report bvh.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_EQ(run("phong.json -o embree.exr --accel=embree").status, 0);
+  Image a, b;
+  std::string error;
+  ASSERT_TRUE(read_image(path("bvh.exr"), a, error)) << error;
+  ASSERT_TRUE(read_image(path("embree.exr"), b, error)) << error;
+  ASSERT_EQ(a.pixels.size(), b.pixels.size());
+  for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+    EXPECT_NEAR(a.pixels[i].r, b.pixels[i].r, 1e-5f) << i;
+    EXPECT_NEAR(a.pixels[i].g, b.pixels[i].g, 1e-5f) << i;
+    EXPECT_NEAR(a.pixels[i].b, b.pixels[i].b, 1e-5f) << i;
+  }
+  EXPECT_NE(slurp(path("bvh.json")).find("\"bvh ("), std::string::npos) << "the run record names the backend";
+}
+
+TEST_F(Cli, BvhCostViewNeedsTheBvhBackend) {
+  const Result refused = run("phong.json -o cost.png --integrator bvh-cost --accel=embree");
+  EXPECT_NE(refused.status, 0);
+  EXPECT_NE(refused.err.find("--accel=bvh"), std::string::npos) << refused.err;
+  EXPECT_EQ(refused.out.find("render"), std::string::npos) << refused.out;
   EXPECT_TRUE(outputs().empty());
+  const Result r = run("phong.json -o cost.png --integrator bvh-cost --accel=bvh");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(path("cost.png")));
 }
 
 TEST_F(Cli, VersionAndHelp) {
@@ -241,7 +291,8 @@ TEST_F(Cli, VersionAndHelp) {
     EXPECT_NE(v.out.find(what), std::string::npos) << what << "\n" << v.out;
   const Result h = run("--help");
   EXPECT_EQ(h.status, 0);
-  for (const char* what : {"--output", "--accel", "--threads", "--spp", "--seed", "--integrator", "--strict"})
+  for (const char* what : {"--output", "--accel", "--threads", "--spp", "--seed", "--integrator", "--strict",
+                           "--max-depth", "--filter", "--clamp"})
     EXPECT_NE(h.out.find(what), std::string::npos) << what;
 }
 

@@ -49,7 +49,7 @@ SceneDescription two_spheres() {
 
 TEST(Registry, KnowsEveryIntegrator) {
   const auto names = integrator_names();
-  for (const char* n : {"whitted", "binary", "normal", "depth", "signature"}) {
+  for (const char* n : {"whitted", "path", "binary", "normal", "depth", "signature"}) {
     EXPECT_NE(std::find(names.begin(), names.end(), n), names.end()) << n;
     std::string error;
     EXPECT_TRUE(make_integrator(n, {}, error)) << n;

@@ -77,6 +77,8 @@ bool render_scene_file(const std::string& path, Image& out, DisplaySettings& dis
   IntegratorSettings settings;
   settings.max_depth = desc->render.max_depth;
   settings.spp = desc->render.spp;
+  settings.filter = desc->render.filter;
+  settings.clamp = desc->render.clamp;
   const auto integrator = make_integrator(desc->render.integrator, settings, error);
   if (!integrator) return false;
   Film film(scene->width, scene->height);

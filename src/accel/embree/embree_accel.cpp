@@ -1,5 +1,6 @@
-// Embree 3 backend: triangle meshes are Embree triangle geometry sharing our
-// buffers; spheres, quads and cylinders are user geometry calling src/geometry.
+// Embree 3 backend: Embree's BVH over user geometry calling src/geometry for
+// every shape, meshes included (one primitive per triangle), so both backends
+// answer with the same watertight routines (docs/geometry.md).
 // geomID == object id (rtcAttachGeometryByID), primID == triangle index.
 #include "accel/embree/embree_accel.h"
 
@@ -27,11 +28,17 @@ namespace {
 // enabled behaves like one without.
 constexpr unsigned kMask = 0xFFFFFFFFu;
 
+// Embree accepts origin and direction components up to FLT_LARGE (1.844e18)
+// in magnitude; beyond that its behaviour is undefined (Debian's build asserts).
+constexpr float kEmbreeLargest = 1.844e18f;
+
 // Converts our ray (open interval tmin < t < tmax) to Embree's (closed
 // interval, tnear >= 0). Returns false for rays that cannot hit anything:
-// NaN or infinite origin or direction, zero direction, empty interval.
+// NaN or infinite origin or direction, zero direction, empty interval; and for
+// rays Embree cannot take (a component beyond kEmbreeLargest).
 bool to_embree(const Ray& ray, RTCRay& out) {
   if (!is_finite(ray.origin) || !is_finite(ray.dir) || ray.dir == Vec3f(0.0f)) return false;
+  if (max_component(abs(ray.origin)) > kEmbreeLargest || max_component(abs(ray.dir)) > kEmbreeLargest) return false;
   if (!(ray.tmin < ray.tmax)) return false;  // also NaN
   out.org_x = ray.origin.x;
   out.org_y = ray.origin.y;
@@ -106,26 +113,6 @@ bool validate(const SceneGeometry& geometry, Diagnostics& diag) {
   return ok;
 }
 
-RTCGeometry new_mesh_geometry(RTCDevice device, const TriangleMesh& m) {
-  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  if (geom == nullptr) return nullptr;
-  const std::size_t nv = m.positions.size();
-  static_assert(sizeof(Vec3f) == 3 * sizeof(float));
-  if (m.positions.capacity() > nv) {
-    // Embree loads 16 bytes at each vertex; the spare capacity covers the last one.
-    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.positions.data(), 0,
-                               sizeof(Vec3f), nv);
-  } else if (auto* dst = static_cast<Vec3f*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                                     RTC_FORMAT_FLOAT3, sizeof(Vec3f), nv))) {
-    std::copy(m.positions.begin(), m.positions.end(), dst);
-  }
-  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.indices.data(), 0,
-                             3 * sizeof(uint32_t), m.triangle_count());
-  rtcSetGeometryMask(geom, kMask);
-  rtcCommitGeometry(geom);
-  return geom;
-}
-
 class EmbreeAccelerator final : public Accelerator {
  public:
   EmbreeAccelerator() = default;
@@ -189,8 +176,9 @@ bool EmbreeAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, D
     if (!report_device_errors(device_, diag)) diag.error(SourceLocation{}, "Embree: cannot create a scene");
     return false;
   }
-  // ROBUST: watertight triangle tests and no culling shortcuts, so closed
-  // meshes do not leak at shared edges and vertices. HIGH: spatial splits.
+  // ROBUST: the traversal avoids accuracy-reducing shortcuts (node boxes
+  // touched only at a corner, where a ray aimed at a mesh vertex passes).
+  // HIGH: the best tree Embree builds over user geometry.
   rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
 
@@ -200,11 +188,10 @@ bool EmbreeAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, D
         [&](const auto& shape) -> RTCGeometry {
           if constexpr (std::is_same_v<std::decay_t<decltype(shape)>, TriangleMesh>) {
             primitives += shape.triangle_count();
-            return new_mesh_geometry(device, shape);
           } else {
             primitives += 1;
-            return new_user_geometry(device, shape);
           }
+          return new_user_geometry(device, shape);
         },
         geometry.shapes[i]);
     if (geom == nullptr) {

@@ -6,9 +6,30 @@ namespace pt::embree {
 
 namespace {
 
+// One Embree primitive per analytic shape, one per triangle of a mesh.
+template <class S>
+unsigned primitive_count(const S&) {
+  return 1;
+}
+unsigned primitive_count(const TriangleMesh& m) { return static_cast<unsigned>(m.triangle_count()); }
+
+template <class S>
+Bounds3f primitive_bounds(const S& shape, unsigned /*prim*/) {
+  return bounds(shape);
+}
+Bounds3f primitive_bounds(const TriangleMesh& m, unsigned prim) { return triangle_bounds(m, prim); }
+
+template <class S>
+bool primitive_intersect(const S& shape, unsigned /*prim*/, const Ray& ray, PrimHit& hit) {
+  return intersect(shape, ray, hit);
+}
+bool primitive_intersect(const TriangleMesh& m, unsigned prim, const Ray& ray, PrimHit& hit) {
+  return intersect(m, prim, ray, hit);
+}
+
 template <class S>
 void bounds_callback(const RTCBoundsFunctionArguments* args) {
-  const Bounds3f b = bounds(*static_cast<const S*>(args->geometryUserPtr));
+  const Bounds3f b = primitive_bounds(*static_cast<const S*>(args->geometryUserPtr), args->primID);
   RTCBounds* o = args->bounds_o;
   o->lower_x = b.lo.x;
   o->lower_y = b.lo.y;
@@ -37,7 +58,7 @@ void intersect_callback(const RTCIntersectFunctionNArguments* args) {
   for (unsigned i = 0; i < n; ++i) {
     if (args->valid[i] != -1) continue;
     PrimHit hit;
-    if (!intersect(shape, ray_from(rays, n, i), hit)) continue;
+    if (!primitive_intersect(shape, args->primID, ray_from(rays, n, i), hit)) continue;
     RTCRayN_tfar(rays, n, i) = hit.t;
     RTCHitN_Ng_x(hits, n, i) = 0.0f;  // unused by the renderer: surface() computes normals
     RTCHitN_Ng_y(hits, n, i) = 0.0f;
@@ -57,7 +78,9 @@ void occluded_callback(const RTCOccludedFunctionNArguments* args) {
   for (unsigned i = 0; i < n; ++i) {
     if (args->valid[i] != -1) continue;
     PrimHit hit;
-    if (intersect(shape, ray_from(args->ray, n, i), hit)) RTCRayN_tfar(args->ray, n, i) = -kInfinity;
+    if (primitive_intersect(shape, args->primID, ray_from(args->ray, n, i), hit)) {
+      RTCRayN_tfar(args->ray, n, i) = -kInfinity;
+    }
   }
 }
 
@@ -65,7 +88,7 @@ template <class S>
 RTCGeometry make(RTCDevice device, const S& shape) {
   RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
   if (geom == nullptr) return nullptr;
-  rtcSetGeometryUserPrimitiveCount(geom, 1);
+  rtcSetGeometryUserPrimitiveCount(geom, primitive_count(shape));
   rtcSetGeometryUserData(geom, const_cast<S*>(&shape));  // read-only in the callbacks
   rtcSetGeometryBoundsFunction(geom, &bounds_callback<S>, nullptr);
   rtcSetGeometryIntersectFunction(geom, &intersect_callback<S>);
@@ -80,5 +103,6 @@ RTCGeometry make(RTCDevice device, const S& shape) {
 RTCGeometry new_user_geometry(RTCDevice device, const Sphere& shape) { return make(device, shape); }
 RTCGeometry new_user_geometry(RTCDevice device, const Quad& shape) { return make(device, shape); }
 RTCGeometry new_user_geometry(RTCDevice device, const Cylinder& shape) { return make(device, shape); }
+RTCGeometry new_user_geometry(RTCDevice device, const TriangleMesh& shape) { return make(device, shape); }
 
 }  // namespace pt::embree

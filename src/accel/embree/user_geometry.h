@@ -1,6 +1,8 @@
-// Embree user geometry for the analytic shapes: the bounds, intersect and
-// occluded callbacks call the src/geometry routines directly (one template
-// instance per shape type: no virtual calls, no allocation per ray).
+// Embree user geometry for every shape: the bounds, intersect and occluded
+// callbacks call the src/geometry routines directly (one template instance per
+// shape type: no virtual calls, no allocation per ray). A mesh is one
+// geometry with one primitive per triangle, intersected by our watertight
+// triangle routine (docs/geometry.md says why not Embree's own).
 #pragma once
 
 #include <embree3/rtcore.h>
@@ -9,10 +11,12 @@
 
 namespace pt::embree {
 
-// A committed one-primitive user geometry whose user data points at `shape`
-// (which must outlive it). The caller attaches and releases it.
+// A committed user geometry (one primitive, or one per triangle) whose user
+// data points at `shape` (which must outlive it). The caller attaches and
+// releases it.
 RTCGeometry new_user_geometry(RTCDevice device, const Sphere& shape);
 RTCGeometry new_user_geometry(RTCDevice device, const Quad& shape);
 RTCGeometry new_user_geometry(RTCDevice device, const Cylinder& shape);
+RTCGeometry new_user_geometry(RTCDevice device, const TriangleMesh& shape);
 
 }  // namespace pt::embree

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/sampling.h"
+
 namespace pt {
 
 namespace {
@@ -16,18 +18,6 @@ Vec3f image_up(Vec3f forward, Vec3f up) {
   Vec3f t, b;
   orthonormal_basis(forward, t, b);
   return b;
-}
-
-// Shirley-Chiu concentric map from the unit square onto the unit disk.
-Vec2f square_to_disk(Vec2f u) {
-  const float a = 2.0f * u.x - 1.0f, b = 2.0f * u.y - 1.0f;
-  if (a == 0.0f && b == 0.0f) return {0, 0};
-  if (std::fabs(a) > std::fabs(b)) {
-    const float phi = 0.25f * kPi * (b / a);
-    return {a * std::cos(phi), a * std::sin(phi)};
-  }
-  const float phi = 0.5f * kPi - 0.25f * kPi * (a / b);
-  return {b * std::cos(phi), b * std::sin(phi)};
 }
 
 }  // namespace
@@ -58,7 +48,7 @@ Ray Camera::generate_ray(Vec2f film_px, Vec2f lens_sample) const {
   if (!has_lens()) return ray;
   // The pinhole ray meets the plane in focus at distance focus_distance_ along forward.
   const Vec3f focus = ray.origin + ray.dir * (focus_distance_ / dot(ray.dir, forward_));
-  const Vec2f disk = square_to_disk(lens_sample);
+  const Vec2f disk = sample_uniform_disk_concentric(lens_sample);
   const Vec3f lens = origin_ + (normalize(right_) * disk.x + normalize(up_) * disk.y) * lens_radius_;
   ray.origin = lens;
   ray.dir = normalize(focus - lens);

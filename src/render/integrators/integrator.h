@@ -14,11 +14,26 @@ namespace pt {
 
 class WorkerPool;
 
+// Which strategies the path integrator combines for lights that can be hit
+// (area lights, the environment). Mis is the product; the other two exist so
+// tests can check that all three converge to the same image.
+enum class LightStrategy {
+  Mis,        // next-event estimation and BSDF sampling, power heuristic
+  LightOnly,  // next-event estimation only (emitters found by BSDF rays count only after delta bounces)
+  BsdfOnly,   // BSDF sampling only (next-event estimation for delta lights only)
+};
+
 struct IntegratorSettings {
-  int max_depth = 5;    // recursion limit
+  int max_depth = 5;    // recursion limit (path: the number of bounces)
   int spp = 1;          // samples per pixel
   uint64_t seed = 0;
   int tile_size = 16;   // pixels per tile side; the image does not depend on it
+  // Samples [first_sample, first_sample + spp) of every pixel are added to the
+  // film: successive calls render progressive passes (the bench tools use it).
+  int first_sample = 0;
+  PixelFilterType filter = PixelFilterType::Box;  // the path integrator's pixel filter
+  float clamp = 0.0f;   // path: largest channel of one sample's radiance; 0 = no clamp
+  LightStrategy light_strategy = LightStrategy::Mis;
 };
 
 class Integrator {
@@ -27,6 +42,14 @@ class Integrator {
   // Renders every pixel of `film`. Parallel over tiles inside `pool`; the
   // result does not depend on the thread count or the tile order.
   virtual void render(const RenderScene& scene, Film& film, WorkerPool& pool) const = 0;
+  // Whether this integrator can render `scene` at all (e.g. a debug view that
+  // needs a backend able to count its work); if not, `why` says so. Asked
+  // before rendering; the default accepts every scene.
+  virtual bool can_render(const RenderScene& scene, std::string& why) const {
+    (void)scene;
+    (void)why;
+    return true;
+  }
 };
 
 // Returns nullptr and sets `error` (listing the valid names) for an unknown name.

@@ -13,13 +13,16 @@ struct Entry {
   std::unique_ptr<Integrator> (*make)(const IntegratorSettings&);
 };
 
-constexpr std::array<Entry, 5> kIntegrators{{
+// A plain array: adding a row needs no count.
+constexpr Entry kIntegrators[] = {
     {"whitted", make_whitted_integrator},
+    {"path", make_path_integrator},
     {"binary", make_binary_integrator},
     {"normal", make_normal_integrator},
     {"depth", make_depth_integrator},
     {"signature", make_signature_integrator},
-}};
+    {"bvh-cost", make_bvh_cost_integrator},
+};
 
 }  // namespace
 

@@ -1,7 +1,7 @@
 // The pixel loop shared by every integrator: tiles rendered in parallel inside
-// the worker pool, each pixel computed entirely by one task from a random
-// stream keyed on (seed, pixel index, sample index) only, so the image is
-// bit-identical for any thread count, tile size and tile order.
+// the worker pool, each pixel computed entirely by one task from a sampler
+// whose numbers depend on (seed, pixel, sample index, dimension) only, so the
+// image is bit-identical for any thread count, tile size and tile order.
 #pragma once
 
 #include <cstdint>
@@ -10,7 +10,9 @@
 #include "core/color.h"
 #include "core/function_ref.h"
 #include "core/math.h"
+#include "render/film/filter.h"
 #include "render/integrators/integrator.h"
+#include "render/samplers/sampler.h"
 
 namespace pt {
 
@@ -18,7 +20,8 @@ class Film;
 class WorkerPool;
 struct RenderScene;
 
-// Film position (in pixels) of sample `index` of `spp` in pixel (x, y):
+// Film position (in pixels) of sample `index` of `spp` in pixel (x, y) under
+// the classic integrators' StratifiedPixelSampler:
 //  - spp == 1: the pixel centre;
 //  - spp a perfect square n*n: one jittered sample in each cell of an n x n grid;
 //  - otherwise: uniformly random positions in the pixel.
@@ -26,15 +29,26 @@ struct RenderScene;
 Vec2f sample_position(int x, int y, int index, int spp, uint64_t seed, uint64_t pixel_index);
 
 // Position on the lens, in [0,1)^2, of sample `index` of a pixel (thin-lens
-// cameras only): from a stream of its own keyed on (seed, pixel_index, index).
+// cameras only) under the same sampler: from a stream of its own keyed on
+// (seed, pixel_index, index).
 Vec2f lens_position(int index, uint64_t seed, uint64_t pixel_index);
 
 // Computes one radiance estimate for a camera ray.
 using RadianceFn = FunctionRef<RGB(const Ray&)>;
+// Computes one radiance estimate for a camera ray, drawing further dimensions from `sampler`.
+using SampleRadianceFn = FunctionRef<RGB(const Ray&, Sampler&)>;
 
-// Renders every pixel of `film`: the average (accumulated in double) of
-// `radiance` over settings.spp camera rays per pixel. Non-finite estimates are
-// counted as black. Runs tiles of settings.tile_size pixels in parallel inside `pool`.
+// The general loop: for samples [settings.first_sample, + settings.spp) of every
+// pixel, starts `sampler` (a prototype copied into each task) at the sample,
+// draws the film position through `filter`, the lens position if the camera has
+// a lens, and adds weight * radiance to the film. Non-finite estimates count as
+// black. Runs tiles of settings.tile_size pixels in parallel inside `pool`.
+void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, const IntegratorSettings& settings,
+                    const Sampler& sampler, const PixelFilter& filter, SampleRadianceFn radiance);
+
+// The classic integrators' loop: render_samples with the StratifiedPixelSampler
+// and the box filter, so each pixel is the average (in double) of `radiance`
+// over settings.spp camera rays.
 void render_pixels(const RenderScene& scene, Film& film, WorkerPool& pool, const IntegratorSettings& settings,
                    RadianceFn radiance);
 

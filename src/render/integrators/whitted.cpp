@@ -8,6 +8,7 @@
 #include "geometry/shapes.h"
 #include "render/integrators/builtin.h"
 #include "render/integrators/render_loop.h"
+#include "render/materials/dielectric.h"
 #include "render/render_scene.h"
 
 namespace pt {
@@ -36,6 +37,20 @@ RGB direct_lighting(const RenderScene& scene, const Intersection& isect, Vec3f n
       result += m.ks * spec * falloff * (m.specular * light.specular_intensity);
     }
   }
+  // Directional lights deliver irradiance E; in the classic units above (where a
+  // point light's I / r^2 is irradiance / pi) that is E / pi.
+  for (const DirectionalLight& light : scene.directional_lights) {
+    const Vec3f l = -light.direction;
+    const float cos_theta = dot(n, l);
+    if (cos_theta <= 0.0f) continue;
+    if (scene.occluded(spawn_ray(geo, l))) continue;
+    const RGB e = light.irradiance * kInvPi;
+    result += m.kd * cos_theta * (m.diffuse_at(geo.uv) * e);
+    if (m.ks > 0.0f) {
+      const float spec = std::pow(std::max(0.0f, dot(n, normalize(l + wo))), m.exponent);
+      result += m.ks * spec * (m.specular * e);
+    }
+  }
   return result;
 }
 
@@ -51,7 +66,7 @@ class Whitted {
 
   RGB trace(const Ray& ray, int depth) const {
     Intersection isect;
-    if (!scene_.intersect(ray, isect)) return scene_.background;
+    if (!scene_.intersect(ray, isect)) return scene_.escaped_radiance(ray.dir);
     const Material& m = *isect.material;
     if (m.refractive) return dielectric(ray, isect, depth);
 
@@ -109,18 +124,6 @@ class WhittedIntegrator final : public Integrator {
 };
 
 }  // namespace
-
-float fresnel_dielectric(float cos_i, float eta_i, float eta_t) {
-  cos_i = std::clamp(cos_i, 0.0f, 1.0f);
-  const float sin2_i = 1.0f - cos_i * cos_i;
-  const float eta = eta_i / eta_t;
-  const float sin2_t = eta * eta * sin2_i;
-  if (sin2_t >= 1.0f) return 1.0f;  // total internal reflection
-  const float cos_t = std::sqrt(1.0f - sin2_t);
-  const float r_s = (eta_i * cos_i - eta_t * cos_t) / (eta_i * cos_i + eta_t * cos_t);
-  const float r_p = (eta_t * cos_i - eta_i * cos_t) / (eta_t * cos_i + eta_i * cos_t);
-  return 0.5f * (r_s * r_s + r_p * r_p);
-}
 
 RGB whitted_radiance(const RenderScene& scene, const Ray& ray, int max_depth) {
   return Whitted(scene, max_depth).trace(ray, 0);

@@ -21,6 +21,8 @@ class Texture {
   static bool load(const std::string& path, Texture& out, std::string& error);
 
   RGB lookup(Vec2f uv) const;  // bilinear, repeat wrap
+  // Texel (x, y), 0 <= x < width, 0 <= y < height, row 0 at the top.
+  const RGB& texel(int x, int y) const { return pixels_[static_cast<std::size_t>(y) * width_ + x]; }
   int width() const { return width_; }
   int height() const { return height_; }
 

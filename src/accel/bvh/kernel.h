@@ -1,0 +1,165 @@
+// The traversal loop shared by the kernels, parameterised on each kernel's
+// SIMD routines (an `Ops` object built once per ray):
+//   uint32_t ops.intersect_node(const Node8&, float tmax, float dist[8]):
+//       mask of the children whose box the ray enters before tmax, their entry
+//       distances in dist;
+//   bool ops.intersect_block<kAnyHit>(const TriangleBlock&, uint32_t object, RayQuery&, HitRecord&).
+//
+// Included only by kernel_sse2.cpp and kernel_avx2.cpp, whose Ops types live in
+// anonymous namespaces, so every instantiation has internal linkage and is
+// compiled for its file's instruction set. Plain code only: no std:: calls
+// (see layout.h).
+#pragma once
+
+#include <cstdint>
+
+#include "accel/bvh/layout.h"
+
+namespace pt::bvh::kernel {
+
+// Stack entries: at most 7 per level (kMaxDepth = 64 in build.h) plus the root.
+inline constexpr int kStackSize = 512;
+
+// Exit distances are widened by 1 + 2 gamma(3) so that rounding in the slab
+// test never culls a box the ray touches (Ize, "Robust BVH Ray Traversal",
+// JCGT 2013; pbrt-v4). gamma(n) = n u / (1 - n u), u = 2^-24.
+inline constexpr float kExitScale = 1.0f + 2.0f * ((3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f));
+
+struct StackEntry {
+  uint32_t ref;
+  float dist;  // entry distance of the box; stale once a closer hit is found
+};
+
+inline uint32_t item_count(uint32_t ref) { return ((ref >> kLeafCountShift) & (kMaxLeafItems - 1)) + 1; }
+
+// Depth-first traversal from `root`: nearest child first for the nearest hit,
+// farthest child first for any hit. `leaf(ref)` tests a leaf and returns
+// whether it found a hit.
+template <bool kAnyHit, bool kCount, class Ops, class Leaf>
+inline bool traverse(const Ops& ops, const Node8* nodes, uint32_t root, RayQuery& q, Counters* counters,
+                     Leaf&& leaf) {
+  StackEntry stack[kStackSize];
+  int sp = 0;
+  uint32_t ref = root;
+  bool found = false;
+  for (;;) {
+    if ((ref & kLeafBit) == 0) {
+      const Node8& node = nodes[ref];
+      if constexpr (kCount) ++counters->nodes;
+      alignas(32) float dist[8];
+      uint32_t mask = ops.intersect_node(node, q.tmax, dist);
+      if (mask != 0) {
+        const uint32_t first = static_cast<uint32_t>(__builtin_ctz(mask));
+        mask &= mask - 1;
+        if (mask == 0) {
+          ref = node.child[first];
+          continue;
+        }
+        if constexpr (kAnyHit) {
+          // Farthest entry first: a shadow ray leaves a surface, and what
+          // blocks it lies towards its end far more often than among the
+          // boxes around its origin (measured: docs/bvh.md).
+          uint32_t far = first;
+          do {
+            const uint32_t i = static_cast<uint32_t>(__builtin_ctz(mask));
+            mask &= mask - 1;
+            if (dist[i] > dist[far]) {
+              stack[sp++] = StackEntry{node.child[far], dist[far]};
+              far = i;
+            } else {
+              stack[sp++] = StackEntry{node.child[i], dist[i]};
+            }
+          } while (mask != 0);
+          ref = node.child[far];
+          continue;
+        } else {
+          // Insertion sort by entry distance (stable: ties keep slot order).
+          StackEntry hits[8];
+          int n = 1;
+          hits[0] = StackEntry{node.child[first], dist[first]};
+          do {
+            const uint32_t i = static_cast<uint32_t>(__builtin_ctz(mask));
+            mask &= mask - 1;
+            const StackEntry e{node.child[i], dist[i]};
+            int k = n++;
+            while (k > 0 && hits[k - 1].dist > e.dist) {
+              hits[k] = hits[k - 1];
+              --k;
+            }
+            hits[k] = e;
+          } while (mask != 0);
+          for (int k = n - 1; k >= 1; --k) stack[sp++] = hits[k];
+          ref = hits[0].ref;
+          continue;
+        }
+      }
+    } else if (leaf(ref)) {
+      found = true;
+      if constexpr (kAnyHit) return true;
+    }
+    // Pop the next subtree that can still hold a closer hit.
+    for (;;) {
+      if (sp == 0) return found;
+      const StackEntry e = stack[--sp];
+      if (kAnyHit || e.dist <= q.tmax * kExitScale) {
+        ref = e.ref;
+        break;
+      }
+    }
+  }
+}
+
+template <bool kAnyHit, bool kCount, class Ops>
+inline bool traverse_blas(const Ops& ops, const BlasData& b, RayQuery& q, HitRecord& hit, Counters* counters) {
+  if (b.kind == BlasKind::Triangles) {
+    return traverse<kAnyHit, kCount>(ops, b.nodes, b.root, q, counters, [&](uint32_t ref) {
+      const TriangleBlock* block = b.blocks + (ref & kLeafIndexMask);
+      const uint32_t count = item_count(ref);
+      bool found = false;
+      for (uint32_t i = 0; i < count; ++i) {
+        if constexpr (kCount) {
+          for (uint32_t lane = 0; lane < 4; ++lane) counters->prims += block[i].prim[lane] != kNoPrim ? 1u : 0u;
+        }
+        if (ops.template intersect_block<kAnyHit>(block[i], b.object, q, hit)) {
+          found = true;
+          if constexpr (kAnyHit) return true;
+        }
+      }
+      return found;
+    });
+  }
+  return traverse<kAnyHit, kCount>(ops, b.nodes, b.root, q, counters, [&](uint32_t ref) {
+    const AnalyticPrim* prim = b.prims + (ref & kLeafIndexMask);
+    const uint32_t count = item_count(ref);
+    bool found = false;
+    for (uint32_t i = 0; i < count; ++i) {
+      if constexpr (kCount) ++counters->prims;
+      if (intersect_analytic(prim[i], q, hit)) {
+        found = true;
+        if constexpr (kAnyHit) return true;
+      }
+    }
+    return found;
+  });
+}
+
+template <bool kAnyHit, bool kCount, class Ops>
+inline bool traverse_scene(const SceneData& s, RayQuery& q, HitRecord& hit, Counters* counters) {
+  if (s.blas_count == 0) return false;
+  const Ops ops(q);
+  if (s.blas_count == 1) return traverse_blas<kAnyHit, kCount>(ops, s.blas[0], q, hit, counters);
+  return traverse<kAnyHit, kCount>(ops, s.nodes, s.root, q, counters, [&](uint32_t ref) {
+    const BlasData* blas = s.blas + (ref & kLeafIndexMask);
+    const uint32_t count = item_count(ref);
+    bool found = false;
+    for (uint32_t i = 0; i < count; ++i) {
+      if (traverse_blas<kAnyHit, kCount>(ops, blas[i], q, hit, counters)) {
+        found = true;
+        if constexpr (kAnyHit) return true;
+      }
+    }
+    return found;
+  });
+}
+
+}  // namespace pt::bvh::kernel

@@ -1,0 +1,47 @@
+// The leaf tests every kernel ends in: the src/geometry routines (the same
+// ones the Embree backend's user geometry calls), compiled for the baseline ISA.
+#include "accel/bvh/kernels.h"
+#include "accel/bvh/layout.h"
+#include "geometry/float_util.h"
+#include "geometry/shapes.h"
+
+namespace pt::bvh {
+
+static_assert(kGamma2 == fp::gamma(2) && kGamma3 == fp::gamma(3) && kGamma5 == fp::gamma(5),
+              "the AVX2 triangle filter must use the reference routine's constants");
+
+namespace {
+
+Ray to_ray(const RayQuery& q) {
+  return Ray{{q.org[0], q.org[1], q.org[2]}, {q.dir[0], q.dir[1], q.dir[2]}, q.tmin, q.tmax};
+}
+
+bool record(const PrimHit& h, uint32_t object, uint32_t prim, RayQuery& q, HitRecord& hit) {
+  q.tmax = h.t;
+  hit = HitRecord{h.t, object, prim, h.uv.x, h.uv.y};
+  return true;
+}
+
+}  // namespace
+
+bool intersect_block_lane(const TriangleBlock& block, uint32_t lane, uint32_t object, RayQuery& q, HitRecord& hit) {
+  const auto vertex = [&](int j) { return Vec3f{block.v[j][0][lane], block.v[j][1][lane], block.v[j][2][lane]}; };
+  PrimHit h;
+  if (!intersect_triangle(vertex(0), vertex(1), vertex(2), to_ray(q), h)) return false;
+  return record(h, object, block.prim[lane], q, hit);
+}
+
+bool intersect_analytic(const AnalyticPrim& prim, RayQuery& q, HitRecord& hit) {
+  PrimHit h;
+  bool found = false;
+  switch (prim.type) {
+    case AnalyticType::Sphere: found = intersect(*static_cast<const Sphere*>(prim.shape), to_ray(q), h); break;
+    case AnalyticType::Quad: found = intersect(*static_cast<const Quad*>(prim.shape), to_ray(q), h); break;
+    case AnalyticType::Cylinder: found = intersect(*static_cast<const Cylinder*>(prim.shape), to_ray(q), h); break;
+  }
+  return found && record(h, prim.object, 0, q, hit);
+}
+
+bool cpu_has_avx2_fma() { return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"); }
+
+}  // namespace pt::bvh

@@ -1,0 +1,147 @@
+#include "core/sampling.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace pt {
+
+Vec2f sample_uniform_disk_concentric(Vec2f u) {
+  const float a = 2.0f * u.x - 1.0f, b = 2.0f * u.y - 1.0f;
+  if (a == 0.0f && b == 0.0f) return {0, 0};
+  if (std::fabs(a) > std::fabs(b)) {
+    const float phi = 0.25f * kPi * (b / a);
+    return {a * std::cos(phi), a * std::sin(phi)};
+  }
+  const float phi = 0.5f * kPi - 0.25f * kPi * (a / b);
+  return {b * std::cos(phi), b * std::sin(phi)};
+}
+
+Vec3f sample_uniform_hemisphere(Vec2f u) {
+  const float z = u.x;
+  const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+  const float phi = 2.0f * kPi * u.y;
+  return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+Vec3f sample_cosine_hemisphere(Vec2f u) {
+  const Vec2f d = sample_uniform_disk_concentric(u);
+  const float z = std::sqrt(std::max(0.0f, 1.0f - d.x * d.x - d.y * d.y));
+  return {d.x, d.y, z};
+}
+
+Vec3f sample_uniform_sphere(Vec2f u) {
+  const float z = 1.0f - 2.0f * u.x;
+  const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+  const float phi = 2.0f * kPi * u.y;
+  return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+Vec3f sample_uniform_cone(Vec2f u, float one_minus_cos_max) {
+  // 1 - cos(theta) is uniform in [0, 1 - cos_max); sin^2 = (1 - cos)(1 + cos)
+  // stays accurate for tiny angles.
+  const float omc = u.x * one_minus_cos_max;
+  const float cos_theta = 1.0f - omc;
+  const float sin_theta = std::sqrt(std::max(0.0f, omc * (2.0f - omc)));
+  const float phi = 2.0f * kPi * u.y;
+  return {sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta};
+}
+
+Vec3f sample_uniform_triangle(Vec2f u) {
+  float b0, b1;
+  if (u.x < u.y) {
+    b0 = 0.5f * u.x;
+    b1 = u.y - b0;
+  } else {
+    b1 = 0.5f * u.y;
+    b0 = u.x - b1;
+  }
+  return {b0, b1, 1.0f - b0 - b1};
+}
+
+float spherical_phi(Vec3f v) {
+  const float p = std::atan2(v.y, v.x);
+  return p < 0.0f ? p + 2.0f * kPi : p;
+}
+
+// ---------------------------------------------------------------- Distribution1D
+Distribution1D::Distribution1D(const std::vector<float>& f) : func_(f), cdf_(f.size() + 1) {
+  const std::size_t n = func_.size();
+  for (float& v : func_) v = (v > 0.0f && std::isfinite(v)) ? v : 0.0f;
+  std::vector<double> cdf(n + 1, 0.0);
+  for (std::size_t i = 0; i < n; ++i) cdf[i + 1] = cdf[i] + static_cast<double>(func_[i]) / static_cast<double>(n);
+  const double total = n > 0 ? cdf[n] : 0.0;
+  integral_ = static_cast<float>(total);
+  for (std::size_t i = 0; i <= n; ++i) {
+    const double c = total > 0.0 ? cdf[i] / total : static_cast<double>(i) / static_cast<double>(std::max<std::size_t>(n, 1));
+    cdf_[i] = static_cast<float>(c);
+  }
+  if (n > 0) cdf_[n] = 1.0f;
+}
+
+std::size_t Distribution1D::find_cell(float u) const {
+  // The last i in [0, n) with cdf_[i] <= u: a cell of non-zero width containing u.
+  const auto it = std::upper_bound(cdf_.begin(), cdf_.end() - 1, u);
+  const std::size_t i = static_cast<std::size_t>(it - cdf_.begin());
+  return i == 0 ? 0 : std::min(i - 1, func_.size() - 1);
+}
+
+float Distribution1D::sample_continuous(float u, float* pdf, std::size_t* cell) const {
+  const std::size_t n = func_.size();
+  const std::size_t o = find_cell(u);
+  float du = u - cdf_[o];
+  const float width = cdf_[o + 1] - cdf_[o];
+  if (width > 0.0f) du /= width;
+  if (pdf) *pdf = integral_ > 0.0f ? func_[o] / integral_ : 1.0f;
+  if (cell) *cell = o;
+  const float x = (static_cast<float>(o) + std::clamp(du, 0.0f, 1.0f)) / static_cast<float>(n);
+  return std::min(x, kOneMinusEpsilon);
+}
+
+std::size_t Distribution1D::sample_discrete(float u, float* pmf_out) const {
+  const std::size_t o = find_cell(u);
+  if (pmf_out) *pmf_out = pmf(o);
+  return o;
+}
+
+float Distribution1D::pmf(std::size_t i) const {
+  if (i >= func_.size()) return 0.0f;
+  const float n = static_cast<float>(func_.size());
+  return integral_ > 0.0f ? func_[i] / (integral_ * n) : 1.0f / n;
+}
+
+float Distribution1D::pdf(float x) const {
+  if (!(x >= 0.0f && x < 1.0f) || func_.empty()) return 0.0f;
+  const std::size_t i = std::min(static_cast<std::size_t>(x * static_cast<float>(func_.size())), func_.size() - 1);
+  return integral_ > 0.0f ? func_[i] / integral_ : 1.0f;
+}
+
+// ---------------------------------------------------------------- Distribution2D
+Distribution2D::Distribution2D(const std::vector<float>& f, int nu, int nv) : nu_(nu), nv_(nv) {
+  conditional_.reserve(static_cast<std::size_t>(nv));
+  std::vector<float> row(static_cast<std::size_t>(nu));
+  std::vector<float> marginal(static_cast<std::size_t>(nv));
+  for (int v = 0; v < nv; ++v) {
+    std::copy_n(f.begin() + static_cast<std::ptrdiff_t>(v) * nu, nu, row.begin());
+    conditional_.emplace_back(row);
+    marginal[static_cast<std::size_t>(v)] = conditional_.back().integral();
+  }
+  marginal_ = Distribution1D(marginal);
+}
+
+Vec2f Distribution2D::sample(Vec2f u, float* pdf_out) const {
+  float pdf_v = 0.0f, pdf_u = 0.0f;
+  std::size_t row = 0;
+  const float y = marginal_.sample_continuous(u.y, &pdf_v, &row);
+  const float x = conditional_[row].sample_continuous(u.x, &pdf_u);
+  if (pdf_out) *pdf_out = pdf_u * pdf_v;
+  return {x, y};
+}
+
+float Distribution2D::pdf(Vec2f p) const {
+  if (!(p.y >= 0.0f && p.y < 1.0f)) return 0.0f;
+  const std::size_t row = std::min(static_cast<std::size_t>(p.y * static_cast<float>(nv_)),
+                                   static_cast<std::size_t>(nv_ - 1));
+  return conditional_[row].pdf(p.x) * marginal_.pdf(p.y);
+}
+
+}  // namespace pt

@@ -1,0 +1,169 @@
+// "path": unidirectional path tracing with next-event estimation and multiple
+// importance sampling (docs/path-tracing.md).
+//
+// At every vertex: emission found by the ray is added with its MIS weight;
+// one light, chosen by power, is sampled (next-event estimation) and combined
+// with BSDF sampling by the power heuristic, except delta lights (only NEE can
+// find them) and delta lobes (only BSDF sampling can); then the BSDF picks the
+// next direction. Russian roulette starts after kRouletteDepth bounces, with
+// survival probability min(1, max channel of the throughput), and divides by
+// it, so it is unbiased. `max_depth` bounds the number of bounces: a path sees
+// emitters and lights across at most max_depth scattering events.
+#include <algorithm>
+#include <cmath>
+
+#include "core/sampling.h"
+#include "geometry/shapes.h"
+#include "render/integrators/builtin.h"
+#include "render/integrators/render_loop.h"
+#include "render/materials/bsdf.h"
+#include "render/render_scene.h"
+
+namespace pt {
+
+namespace {
+
+constexpr int kRouletteDepth = 3;
+
+class PathTracer {
+ public:
+  PathTracer(const RenderScene& scene, const IntegratorSettings& settings)
+      : scene_(scene),
+        lights_(scene.lights),
+        max_depth_(std::max(0, settings.max_depth)),
+        clamp_(settings.clamp),
+        strategy_(settings.light_strategy) {}
+
+  RGB radiance(Ray ray, Sampler& sampler) const {
+    RGB L, beta(1.0f);
+    bool specular = true;  // the camera ray, or a delta lobe: no light sampling could have found this
+    float prev_pdf = 0.0f;
+    Vec3f prev_p;
+    float eta2 = 1.0f;  // product of the refraction radiance scales along the path
+    for (int depth = 0;; ++depth) {
+      Intersection isect;
+      if (!scene_.intersect(ray, isect)) {
+        const RGB le = scene_.escaped_radiance(ray.dir);
+        if (!le.is_black()) L += beta * le * escape_weight(ray.dir, specular, prev_pdf);
+        break;
+      }
+      const Material& m = *isect.material;
+      const Vec3f wo = -ray.dir;
+      if (m.emits()) {
+        const RGB le = m.emitted(isect.geo.ng, wo);
+        if (!le.is_black()) L += beta * le * emitter_weight(isect, ray.dir, specular, prev_pdf, prev_p);
+      }
+      if (depth >= max_depth_) break;
+
+      const Bsdf bsdf(m, isect.geo, wo);
+      if (bsdf.black()) break;
+      if (!bsdf.delta_only() && !lights_.empty()) L += beta * direct_light(isect, bsdf, wo, sampler);
+
+      BsdfSample bs;
+      const float u_lobe = sampler.get_1d();
+      if (!bsdf.sample(wo, u_lobe, sampler.get_2d(), bs)) break;
+      beta *= bs.weight;
+      eta2 *= bs.eta2;
+      if (beta.is_black()) break;
+      specular = bs.delta;
+      prev_pdf = bs.pdf;
+      prev_p = isect.geo.p;
+      ray = spawn_ray(isect.geo, bs.wi);
+
+      if (depth + 1 >= kRouletteDepth) {
+        const float survive = (beta * eta2).max_component();
+        if (survive < 1.0f) {
+          if (sampler.get_1d() >= survive) break;
+          beta *= 1.0f / survive;
+        }
+      }
+    }
+    if (clamp_ > 0.0f) {
+      const float peak = L.max_component();
+      if (peak > clamp_) L *= clamp_ / peak;
+    }
+    return L;
+  }
+
+ private:
+  // MIS weight of an environment seen through a BSDF-sampled direction.
+  float escape_weight(Vec3f dir, bool specular, float prev_pdf) const {
+    const int env = lights_.environment();
+    if (specular || env < 0 || strategy_ == LightStrategy::BsdfOnly) return 1.0f;
+    if (strategy_ == LightStrategy::LightOnly) return 0.0f;
+    const Light& light = lights_[static_cast<std::size_t>(env)];
+    const float light_pdf = lights_.pmf(env) * (std::holds_alternative<EnvironmentLight>(light)
+                                                    ? std::get<EnvironmentLight>(light).map->pdf(dir)
+                                                    : std::get<UniformEnvironment>(light).pdf());
+    return power_heuristic(prev_pdf, light_pdf);
+  }
+
+  // MIS weight of an emitter hit through a BSDF-sampled direction.
+  float emitter_weight(const Intersection& isect, Vec3f dir, bool specular, float prev_pdf, Vec3f prev_p) const {
+    const int index = lights_.shape_light(isect.hit.shape);
+    if (specular || index < 0 || strategy_ == LightStrategy::BsdfOnly) return 1.0f;
+    if (strategy_ == LightStrategy::LightOnly) return 0.0f;
+    const auto& light = std::get<ShapeLight>(lights_[static_cast<std::size_t>(index)]);
+    const float light_pdf = lights_.pmf(index) * light.pdf(prev_p, dir, isect.geo.p, isect.geo.ng);
+    return power_heuristic(prev_pdf, light_pdf);
+  }
+
+  // Next-event estimation: one light, chosen by power, sampled at one point.
+  RGB direct_light(const Intersection& isect, const Bsdf& bsdf, Vec3f wo, Sampler& sampler) const {
+    const float u_light = sampler.get_1d();
+    const Vec2f u = sampler.get_2d();
+    float pmf = 0.0f;
+    const int index = lights_.choose(u_light, pmf);
+    if (index < 0 || !(pmf > 0.0f)) return {};
+    LightSample ls;
+    if (!sample_light(lights_[static_cast<std::size_t>(index)], isect.geo.p, u, ls)) return {};
+    if (ls.L.is_black() || !(ls.pdf > 0.0f)) return {};
+    if (!ls.delta && strategy_ == LightStrategy::BsdfOnly) return {};
+    const RGB f = bsdf.f(wo, ls.wi);
+    if (f.is_black()) return {};
+    Ray shadow;
+    if (ls.infinite) {
+      shadow = spawn_ray(isect.geo, ls.wi);
+    } else if (ls.delta) {
+      shadow = spawn_ray_to(isect.geo, ls.p_light);
+    } else {
+      shadow = spawn_ray_to(isect.geo, offset_ray_origin(ls.p_light, ls.n_light, -ls.wi));
+    }
+    if (scene_.occluded(shadow)) return {};
+    const float light_pdf = pmf * ls.pdf;
+    const float w = (ls.delta || strategy_ == LightStrategy::LightOnly)
+                        ? 1.0f
+                        : power_heuristic(light_pdf, bsdf.pdf(wo, ls.wi));
+    const float cos_i = std::fabs(dot(ls.wi, bsdf.shading_normal()));
+    return f * ls.L * (cos_i * w / light_pdf);
+  }
+
+  const RenderScene& scene_;
+  const LightSet& lights_;
+  int max_depth_;
+  float clamp_;
+  LightStrategy strategy_;
+};
+
+class PathIntegrator final : public Integrator {
+ public:
+  explicit PathIntegrator(const IntegratorSettings& settings) : settings_(settings), filter_(settings.filter) {}
+
+  void render(const RenderScene& scene, Film& film, WorkerPool& pool) const override {
+    const PathTracer tracer(scene, settings_);
+    render_samples(scene, film, pool, settings_, IndependentSampler(settings_.seed), filter_,
+                   [&](const Ray& ray, Sampler& sampler) { return tracer.radiance(ray, sampler); });
+  }
+
+ private:
+  IntegratorSettings settings_;
+  PixelFilter filter_;
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> make_path_integrator(const IntegratorSettings& settings) {
+  return std::make_unique<PathIntegrator>(settings);
+}
+
+}  // namespace pt

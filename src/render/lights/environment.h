@@ -1,0 +1,60 @@
+// An environment map: a latitude-longitude (equirectangular) image of the
+// radiance arriving from every direction, importance-sampled.
+//
+// Orientation (docs/path-tracing.md): with the frame (s, t, up) of
+// Frame::from_normal(up), a direction d has theta = angle(d, up) and
+// psi = atan2(d . s, d . t); the image row is v = theta / pi (the top row is
+// the zenith) and the column u = 1/2 + psi / (2 pi) + rotation / 360. For
+// up = +Y that puts -Z at the image centre and +X at u = 3/4; a positive
+// rotation turns the environment counter-clockwise seen from above.
+//
+// Lookups are nearest-texel (the radiance is piecewise constant over texels),
+// so the sampling density, a 2D piecewise-constant distribution over texels
+// weighted by luminance * sin(theta), is exactly proportional to the radiance's
+// luminance wherever it is non-zero (pdf(d) = pdf(u, v) / (2 pi^2 sin theta)).
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "core/sampling.h"
+#include "render/lights/light.h"
+#include "render/textures/texture.h"
+#include "scene/scene_description.h"
+
+namespace pt {
+
+class EnvironmentMap {
+ public:
+  EnvironmentMap(Texture image, Vec3f up, float rotation_deg, float intensity);
+
+  // Reads the image (any format OpenImageIO reads; float images are linear).
+  static std::unique_ptr<EnvironmentMap> load(const EnvironmentDesc& desc, std::string& error);
+
+  // Radiance arriving from direction `dir` (unit; pointing away from the scene).
+  RGB radiance(Vec3f dir) const;
+  bool sample(Vec2f u, LightSample& s) const;
+  float pdf(Vec3f dir) const;
+  float power(float scene_radius) const;
+
+  // The direction <-> image coordinate mapping described above.
+  Vec2f direction_to_uv(Vec3f dir) const;
+  Vec3f uv_to_direction(Vec2f uv) const;
+
+ private:
+  const RGB& texel(Vec2f uv) const;
+
+  Texture image_;
+  Frame frame_;
+  float u_offset_;
+  float intensity_;
+  Distribution2D distribution_;
+  float mean_luminance_ = 0.0f;
+};
+
+// The environment as a light in the light list.
+struct EnvironmentLight {
+  const EnvironmentMap* map;
+};
+
+}  // namespace pt

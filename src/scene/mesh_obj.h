@@ -1,0 +1,26 @@
+// Wavefront OBJ mesh reader (through Assimp). Every mesh in the file (OBJ
+// groups and material switches become separate Assimp meshes) is merged into
+// one triangle mesh: positions, and per-vertex normals and texture
+// coordinates where every part of the file has them. Polygons are
+// triangulated, identical vertices joined; points and lines are dropped.
+// Materials (MTL) are not read. Fills the same struct as the PLY reader.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "scene/ply.h"
+
+namespace pt {
+
+// Positions, indices (3 per triangle), and normals and uvs (each empty or one per vertex).
+using MeshData = PlyMesh;
+
+// Files larger than this are refused before they are read.
+inline constexpr std::uintmax_t kMaxObjFileBytes = std::uintmax_t{2} << 30;  // 2 GiB
+
+// Returns true on success. On failure `error` says what is wrong (without the
+// path, which the caller adds, as for load_ply) and `out` is unspecified.
+bool load_obj(const std::string& path, MeshData& out, std::string& error);
+
+}  // namespace pt

@@ -1,0 +1,467 @@
+// Every backend (Embree, our BVH with each kernel) on the cases where
+// acceleration structures go wrong, each compared with the brute-force loop
+// over the same src/geometry routines: empty scenes, single primitives,
+// coincident primitives, long thin triangles, a closed mesh far from the
+// origin seen from inside, axis-parallel rays (+0 and -0 direction components,
+// origins on slab planes), rays grazing edges and rays starting on surfaces.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <vector>
+
+#include "backend_cases.h"
+#include "../geometry/test_util.h"
+
+namespace pt {
+namespace {
+
+using test::Backend;
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+class Backends : public ::testing::TestWithParam<Backend> {
+ protected:
+  std::unique_ptr<Accelerator> build(const SceneGeometry& g) { return test::build_backend(GetParam(), g, pool_); }
+
+  struct Counts {
+    int hits = 0;  // rays brute force finds a hit for
+    int by[test::kAgreementKinds] = {};  // rays per test::Agreement
+    int boundary() const { return by[static_cast<int>(test::Agreement::Boundary)]; }
+    int reference_misses() const { return by[static_cast<int>(test::Agreement::ReferenceMiss)]; }
+  };
+
+  // Compares intersect() with brute force ray by ray: no real disagreement is
+  // allowed (test::classify: exact backends must agree bit for bit apart from
+  // ties), and occluded() must agree with the backend's own intersect().
+  Counts check_rays(const SceneGeometry& g, const Accelerator& accel, const std::vector<Ray>& rays,
+                    const test::Tolerances& tol = {}) {
+    Counts counts;
+    int reported = 0;
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+      Hit expected, got;
+      const bool want = test::brute_intersect(g, rays[i], expected);
+      const bool have = accel.intersect(rays[i], got);
+      const test::Agreement a = test::classify(g, rays[i], GetParam().exact(), have, got, want, expected, tol);
+      ++counts.by[static_cast<int>(a)];
+      counts.hits += want ? 1 : 0;
+      if (a == test::Agreement::Different && reported++ < 5) {
+        ADD_FAILURE() << "ray " << i << " (" << rays[i].origin.x << ", " << rays[i].origin.y << ", "
+                      << rays[i].origin.z << ") -> (" << rays[i].dir.x << ", " << rays[i].dir.y << ", "
+                      << rays[i].dir.z << "): " << (have ? "hit shape " + std::to_string(got.shape) + " prim " +
+                                                               std::to_string(got.prim) + " t " + std::to_string(got.t)
+                                                         : std::string("miss"))
+                      << "; brute force: "
+                      << (want ? "hit shape " + std::to_string(expected.shape) + " prim " +
+                                     std::to_string(expected.prim) + " t " + std::to_string(expected.t)
+                               : std::string("miss"));
+      }
+      if (accel.occluded(rays[i]) != have && reported++ < 5) ADD_FAILURE() << "ray " << i << ": occluded() != intersect()";
+    }
+    EXPECT_EQ(counts.by[static_cast<int>(test::Agreement::Different)], 0);
+    if (!GetParam().exact()) {
+      for (int k = 1; k < test::kAgreementKinds; ++k) {
+        if (counts.by[k] > 0) {
+          std::cout << "  " << GetParam().name << ": " << counts.by[k] << " of " << rays.size() << " rays "
+                    << test::agreement_name(static_cast<test::Agreement>(k)) << "\n";
+        }
+      }
+    }
+    return counts;
+  }
+
+  WorkerPool pool_{2};
+};
+
+SceneGeometry mixed_scene(uint32_t seed) {
+  SceneGeometry g;
+  test::Rng rng(seed);
+  for (int i = 0; i < 24; ++i) {
+    const Vec3f c{rng.uniform(-8, 8), rng.uniform(-8, 8), rng.uniform(-8, 8)};
+    switch (i % 4) {
+      case 0: g.shapes.push_back(Sphere{c, rng.uniform(0.3f, 1.5f), {0, 0, 1}}); break;
+      case 1: {
+        Vec3f t, b;
+        orthonormal_basis(rng.unit_vector(), t, b);
+        const float s = rng.uniform(0.5f, 2.0f);
+        g.shapes.push_back(Quad{{c - s * t - s * b, c + s * t - s * b, c + s * t + 0.5f * s * b, c - s * t + s * b}});
+        break;
+      }
+      case 2: g.shapes.push_back(Cylinder{c, c + rng.uniform(0.5f, 3.0f) * rng.unit_vector(), rng.uniform(0.2f, 1.0f)}); break;
+      default:
+        g.shapes.push_back(i % 8 == 3 ? test::make_uv_sphere(c, rng.uniform(0.5f, 2.0f), 12, 24)
+                                      : test::make_box_mesh(c - Vec3f(0.7f, 0.4f, 1.0f), c + Vec3f(0.5f, 0.9f, 0.3f)));
+    }
+  }
+  TriangleMesh soup;
+  for (uint32_t i = 0; i < 400; ++i) {
+    const Vec3f c{rng.uniform(-9, 9), rng.uniform(-9, 9), rng.uniform(-9, 9)};
+    for (int k = 0; k < 3; ++k) soup.positions.push_back(c + rng.uniform(0.2f, 1.2f) * rng.unit_vector());
+    for (uint32_t k = 0; k < 3; ++k) soup.indices.push_back(3 * i + k);
+  }
+  g.shapes.push_back(std::move(soup));
+  g.shapes.push_back(Quad{{{-20, -10, -20}, {-20, -10, 20}, {20, -10, 20}, {20, -10, -20}}});
+  return g;
+}
+
+std::vector<Ray> random_rays(test::Rng& rng, int n, float extent) {
+  std::vector<Ray> rays;
+  for (int i = 0; i < n; ++i) {
+    Ray ray{{rng.uniform(-extent, extent), rng.uniform(-extent, extent), rng.uniform(-extent, extent)},
+            rng.uniform(0.1f, 3.0f) * rng.unit_vector()};
+    if (i % 3 == 0) ray.tmax = rng.uniform(0.5f, 10.0f);
+    if (i % 5 == 0) ray.tmin = rng.uniform(0.0f, 2.0f);
+    rays.push_back(ray);
+  }
+  return rays;
+}
+
+TEST_P(Backends, EmptySceneNeverHits) {
+  for (int variant = 0; variant < 2; ++variant) {
+    SceneGeometry g;
+    if (variant == 1) g.shapes.push_back(TriangleMesh{});  // a mesh without triangles
+    auto accel = build(g);
+    ASSERT_NE(accel, nullptr);
+    test::Rng rng(1);
+    for (int i = 0; i < 100; ++i) {
+      const Ray ray{rng.unit_vector(), rng.unit_vector()};
+      Hit hit;
+      EXPECT_FALSE(accel->intersect(ray, hit));
+      EXPECT_FALSE(accel->occluded(ray));
+    }
+    EXPECT_TRUE(accel->bounds().empty());
+    EXPECT_EQ(accel->stats().primitive_count, 0u);
+  }
+}
+
+TEST_P(Backends, OnePrimitiveOfEachType) {
+  TriangleMesh triangle;
+  triangle.positions = {{-1, -1, 0.5f}, {1.5f, -1, 0}, {0, 1, -0.5f}};
+  triangle.indices = {0, 1, 2};
+  const std::vector<Shape> shapes = {Sphere{{0.2f, -0.1f, 0.3f}, 1.1f, {0, 0, 1}},
+                                     Quad{{{-1, -1, 0}, {1, -1, 0.2f}, {1, 1, 0.2f}, {-1, 1, 0}}},
+                                     Cylinder{{0, -1, 0}, {0.3f, 1, 0.1f}, 0.6f}, triangle};
+  for (const Shape& shape : shapes) {
+    SceneGeometry g;
+    g.shapes.push_back(shape);
+    auto accel = build(g);
+    ASSERT_NE(accel, nullptr);
+    EXPECT_EQ(accel->stats().primitive_count, 1u);
+    test::Rng rng(2);
+    std::vector<Ray> rays;
+    for (int i = 0; i < 3000; ++i) {
+      const Vec3f origin = 4.0f * rng.unit_vector();
+      rays.push_back(Ray{origin, rng.uniform(0.5f, 2.0f) * (1.5f * rng.unit_vector() * rng.uniform() - origin)});
+    }
+    EXPECT_GT(check_rays(g, *accel, rays).hits, 300) << shape.index();
+  }
+}
+
+TEST_P(Backends, MatchBruteForceOnAMixedScene) {
+  const SceneGeometry g = mixed_scene(41);
+  auto accel = build(g);
+  ASSERT_NE(accel, nullptr);
+  test::Rng rng(42);
+  EXPECT_GT(check_rays(g, *accel, random_rays(rng, 8000, 12.0f)).hits, 2000);
+}
+
+TEST_P(Backends, ManyCoincidentPrimitives) {
+  // 300 copies of one triangle, 40 of one sphere, 40 of one quad, and a
+  // mesh whose triangles all collapse onto one point (never hit): the builder
+  // cannot separate them by their centres and must still terminate with
+  // bounded leaves; every answer is a tie.
+  SceneGeometry g;
+  TriangleMesh copies;
+  for (uint32_t i = 0; i < 300; ++i) {
+    copies.positions.insert(copies.positions.end(), {{-1, -1, 2}, {1, -1, 2}, {0, 1, 2}});
+    copies.indices.insert(copies.indices.end(), {3 * i, 3 * i + 1, 3 * i + 2});
+  }
+  g.shapes.push_back(copies);
+  for (int i = 0; i < 40; ++i) g.shapes.push_back(Sphere{{3, 0, 2}, 0.7f, {0, 0, 1}});
+  for (int i = 0; i < 40; ++i) g.shapes.push_back(Quad{{{-4, -1, 3}, {-2, -1, 3}, {-2, 1, 3}, {-4, 1, 3}}});
+  TriangleMesh points;
+  points.positions = {{0.5f, 0.5f, 1}};
+  for (int i = 0; i < 100; ++i) points.indices.insert(points.indices.end(), {0, 0, 0});
+  g.shapes.push_back(points);
+  auto accel = build(g);
+  ASSERT_NE(accel, nullptr);
+  test::Rng rng(3);
+  std::vector<Ray> rays;
+  for (int i = 0; i < 3000; ++i) {
+    const Vec3f target{rng.uniform(-4.5f, 4), rng.uniform(-1.5f, 1.5f), 2.5f};
+    const Vec3f origin{rng.uniform(-5, 5), rng.uniform(-5, 5), -5};
+    rays.push_back(Ray{origin, target - origin});
+  }
+  EXPECT_GT(check_rays(g, *accel, rays).hits, 800);
+}
+
+TEST_P(Backends, LongThinTriangles) {
+  // Slivers 20 units long and 1e-3 wide in every orientation, crossing each
+  // other: their boxes overlap everything, so the SAH cannot separate them well.
+  SceneGeometry g;
+  TriangleMesh slivers;
+  test::Rng rng(4);
+  for (uint32_t i = 0; i < 300; ++i) {
+    const Vec3f c{rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(-5, 5)};
+    const Vec3f along = 10.0f * rng.unit_vector();
+    const Vec3f across = 1e-3f * normalize(cross(along, rng.unit_vector()));
+    slivers.positions.insert(slivers.positions.end(), {c - along, c + along, c + across});
+    slivers.indices.insert(slivers.indices.end(), {3 * i, 3 * i + 1, 3 * i + 2});
+  }
+  g.shapes.push_back(slivers);
+  auto accel = build(g);
+  ASSERT_NE(accel, nullptr);
+  std::vector<Ray> rays;
+  for (int i = 0; i < 4000; ++i) {
+    // Rays aimed at points on random slivers, so that many of them hit.
+    const uint32_t tri = static_cast<uint32_t>(rng.uniform() * 299.0f);
+    const float s = rng.uniform(), u = rng.uniform() * (1 - s);
+    const Vec3f* p = &slivers.positions[3 * tri];
+    const Vec3f target = (1 - s - u) * p[0] + s * p[1] + u * p[2];
+    const Vec3f origin = target + rng.uniform(1.0f, 10.0f) * rng.unit_vector();
+    rays.push_back(Ray{origin, target - origin, 0.0f, 2.0f});
+  }
+  // If Embree tests triangles with its own (Plücker) routine, it computes a
+  // sliver's plane from the cross product of a long and a short edge, which
+  // cancels: its t is then off by up to ~10% here, and it reports hits up to
+  // a few per cent (in barycentric terms) outside the sliver. And where the
+  // reference routine rejects a real hit (as it once did for slivers, through
+  // its conservative bound on the error of t), such a backend finds it: those
+  // rays are counted apart ("reference-miss"), not as disagreements. Our BVH
+  // must report exactly what the reference reports.
+  const test::Tolerances sliver{0.1f, 0.02};
+  const Counts counts = check_rays(g, *accel, rays, sliver);
+  EXPECT_GT(counts.hits, 1000);
+  if (!GetParam().exact()) {
+    EXPECT_LT(counts.boundary(), counts.hits / 20);
+  }
+}
+
+TEST_P(Backends, ClosedMeshFarFromOriginDoesNotLeak) {
+  // A closed mesh 1e5 units from the origin, where float spacing is 1/128:
+  // rays from inside, in random directions and aimed exactly at edge points
+  // and vertices, must all hit it.
+  const Vec3f centre{1e5f, -1e5f, 1e5f};
+  for (const TriangleMesh& mesh : {test::make_uv_sphere(centre, 4.0f, 24, 48),
+                                   test::make_box_mesh(centre - Vec3f(3, 2, 1), centre + Vec3f(1, 2, 3))}) {
+    SceneGeometry g;
+    g.shapes.push_back(mesh);
+    auto accel = build(g);
+    ASSERT_NE(accel, nullptr);
+    test::Rng rng(5);
+    std::vector<Vec3f> targets;
+    for (std::size_t i = 0; i < mesh.indices.size(); i += 3) {
+      for (int e = 0; e < 3; ++e) {
+        const Vec3f a = mesh.positions[mesh.indices[i + e]];
+        const Vec3f b = mesh.positions[mesh.indices[i + (e + 1) % 3]];
+        targets.push_back(0.5f * (a + b));
+        const float s = rng.uniform();
+        targets.push_back((1 - s) * a + s * b);
+      }
+    }
+    int escapes = 0, vertex_escapes = 0, vertex_rays = 0;
+    for (int k = 0; k < 4; ++k) {
+      const Vec3f origin = centre + (k == 0 ? Vec3f(0.0f) : Vec3f(rng.uniform(-0.5f, 0.5f), rng.uniform(-0.5f, 0.5f),
+                                                                  rng.uniform(-0.5f, 0.5f)));
+      for (const Vec3f& t : targets) {
+        Hit hit;
+        escapes += accel->intersect(Ray{origin, t - origin}, hit) ? 0 : 1;
+        escapes += accel->occluded(Ray{origin, t - origin}) ? 0 : 1;
+      }
+      for (int i = 0; i < 3000; ++i) {
+        Hit hit;
+        escapes += accel->intersect(Ray{origin, rng.unit_vector()}, hit) ? 0 : 1;
+      }
+      for (const Vec3f& v : mesh.positions) {
+        Hit hit;
+        ++vertex_rays;
+        vertex_escapes += accel->intersect(Ray{origin, v - origin}, hit) ? 0 : 1;
+      }
+    }
+    EXPECT_EQ(escapes, 0);
+    if (GetParam().kind == AccelKind::Bvh) {
+      EXPECT_EQ(vertex_escapes, 0);
+    } else {
+      // Embree 3's robust test can let a ray aimed exactly at a vertex through
+      // (docs/geometry.md, known limitation); rarely.
+      EXPECT_LE(vertex_escapes, vertex_rays / 100);
+    }
+  }
+}
+
+TEST_P(Backends, AxisParallelRaysWithSignedZerosAndOriginsOnSlabPlanes) {
+  // Boxes (meshes and quads) whose faces lie on the planes the rays start on
+  // or travel in; directions have exact +0 and -0 components.
+  SceneGeometry g;
+  g.shapes.push_back(test::make_box_mesh({0, 0, 0}, {1, 1, 1}));
+  g.shapes.push_back(test::make_box_mesh({2, 0, 0}, {3, 1, 1}));
+  g.shapes.push_back(test::make_box_mesh({0, 2, 0}, {1, 3, 1}));
+  g.shapes.push_back(test::box_face_quad({0, 0, 2}, {1, 1, 3}, 4));
+  g.shapes.push_back(Sphere{{2.5f, 2.5f, 0.5f}, 0.5f, {0, 0, 1}});
+  auto accel = build(g);
+  ASSERT_NE(accel, nullptr);
+  std::vector<Ray> rays;
+  const float coords[] = {-1.0f, 0.0f, 0.25f, 0.5f, 1.0f, 1.5f, 2.0f, 2.5f, 3.0f, 4.0f};
+  for (int axis = 0; axis < 3; ++axis) {
+    for (float sign : {1.0f, -1.0f}) {
+      for (float zero : {0.0f, -0.0f}) {
+        for (float a : coords) {
+          for (float b : coords) {
+            Vec3f dir(zero), origin;
+            dir[axis] = sign;
+            origin[axis] = sign > 0 ? -2.0f : 5.0f;
+            origin[(axis + 1) % 3] = a;
+            origin[(axis + 2) % 3] = b;
+            rays.push_back(Ray{origin, dir});
+            // The same ray starting inside the boxes' span, on a slab plane.
+            origin[axis] = 1.0f;
+            rays.push_back(Ray{origin, dir});
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(check_rays(g, *accel, rays).hits, 400);
+  // The hits that matter: a ray along a box edge's line on a face plane.
+  Hit hit;
+  ASSERT_TRUE(accel->intersect(Ray{{0.5f, 0.5f, -1.0f}, {-0.0f, 0.0f, 1.0f}}, hit));
+  EXPECT_EQ(hit.shape, 0u);
+  EXPECT_FLOAT_EQ(hit.t, 1.0f);
+  ASSERT_TRUE(accel->intersect(Ray{{0.0f, 0.5f, -1.0f}, {0.0f, -0.0f, 1.0f}}, hit));  // on the x = 0 plane
+  EXPECT_EQ(hit.shape, 0u);
+}
+
+TEST_P(Backends, RaysGrazingEdges) {
+  // A flat grid of triangles: rays through the shared edges and vertices from
+  // above always hit (no cracks); rays in the grid's plane along the edges
+  // never do (degenerate), and rays skimming just above it never do either.
+  SceneGeometry g;
+  TriangleMesh grid;
+  const int n = 16;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) grid.positions.push_back({0.25f * i, 0.0f, 0.25f * j});
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const uint32_t v = static_cast<uint32_t>(j * (n + 1) + i);
+      const uint32_t w = v + static_cast<uint32_t>(n + 1);
+      grid.indices.insert(grid.indices.end(), {v, w, w + 1, v, w + 1, v + 1});
+    }
+  }
+  g.shapes.push_back(grid);
+  auto accel = build(g);
+  ASSERT_NE(accel, nullptr);
+  test::Rng rng(6);
+  std::vector<Ray> through;
+  int missed = 0;
+  for (int j = 1; j < n; ++j) {
+    for (int i = 1; i < n; ++i) {
+      for (const Vec3f target : {Vec3f(0.25f * i, 0, 0.25f * j), Vec3f(0.25f * i + 0.125f, 0, 0.25f * j),
+                                 Vec3f(0.25f * i + 0.125f, 0, 0.25f * j + 0.125f)}) {
+        const Vec3f origin = target + Vec3f(rng.uniform(-2, 2), rng.uniform(0.5f, 3), rng.uniform(-2, 2));
+        const Ray ray{origin, target - origin};
+        Hit hit;
+        missed += accel->intersect(ray, hit) ? 0 : 1;
+        through.push_back(ray);
+      }
+    }
+  }
+  EXPECT_EQ(missed, 0);
+  check_rays(g, *accel, through);
+  std::vector<Ray> grazing;
+  for (int j = 0; j <= n; ++j) {
+    grazing.push_back(Ray{{-1, 0, 0.25f * j}, {1, 0, 0}});
+    grazing.push_back(Ray{{0.25f * j, 0, -1}, {0, 0, 1}});
+    grazing.push_back(Ray{{-1, 0, -1 + 0.25f * j}, {1, 0, 1}});  // along the diagonals
+    grazing.push_back(Ray{{-1, 1e-4f, 0.25f * j}, {1, 0, 0}});
+  }
+  EXPECT_EQ(check_rays(g, *accel, grazing).hits, 0);
+}
+
+TEST_P(Backends, RaysStartingOnSurfaces) {
+  // Origins exactly on a surface (the hit point itself, no offset), tmin = 0:
+  // the answer is whatever the shape routines say, which never includes the
+  // surface the ray leaves at t ~ 0 for a triangle (t must be conservatively
+  // positive); rays leaving a closed convex mesh outwards never hit it.
+  const SceneGeometry g = mixed_scene(7);
+  auto accel = build(g);
+  ASSERT_NE(accel, nullptr);
+  test::Rng rng(8);
+  std::vector<Ray> rays;
+  int self_hits = 0, samples = 0;
+  for (int i = 0; i < 6000 && rays.size() < 3000; ++i) {
+    const Ray probe{{rng.uniform(-12, 12), rng.uniform(-12, 12), rng.uniform(-12, 12)}, rng.unit_vector()};
+    Hit hit;
+    if (!test::brute_intersect(g, probe, hit)) continue;
+    const SurfaceGeometry sg = surface(g.shapes[hit.shape], hit.prim, probe, PrimHit{hit.t, hit.uv});
+    const Vec3f w = rng.unit_vector();
+    rays.push_back(Ray{sg.p, w});
+    if (std::holds_alternative<TriangleMesh>(g.shapes[hit.shape])) {
+      Hit h;
+      ++samples;
+      if (accel->intersect(Ray{sg.p, w}, h) && h.shape == hit.shape && h.prim == hit.prim) ++self_hits;
+    }
+  }
+  check_rays(g, *accel, rays);
+  EXPECT_GT(samples, 300);
+  // Without the origin offset of spawn_ray() a ray can re-hit the triangle it
+  // starts on (docs/geometry.md): the routines' t test alone removes most
+  // such hits, not all. The exact backends report exactly the routines' ones.
+  // Embree has no such t test: it re-hits the starting triangle far more often
+  // (spawn_ray()'s offset is what keeps rendering free of acne).
+  if (GetParam().exact()) {
+    EXPECT_LT(self_hits, samples / 20);
+  }
+}
+
+TEST_P(Backends, NonFiniteAndEmptyRaysMiss) {
+  const SceneGeometry g = mixed_scene(9);
+  auto accel = build(g);
+  ASSERT_NE(accel, nullptr);
+  const float inf = kInfinity;
+  const Ray rays[] = {
+      {{kNaN, 0, 0}, {0, 0, 1}},          {{0, 0, 0}, {kNaN, 0, 1}},          {{0, inf, 0}, {0, 0, 1}},
+      {{0, 0, 0}, {0, -inf, 1}},          {{0, 0, 0}, {0, 0, 0}},             {{0, 0, 0}, {0, -1, 0}, kNaN, inf},
+      {{0, 0, 0}, {0, -1, 0}, 0.0f, kNaN}, {{0, 0, 0}, {0, -1, 0}, 5.0f, 1.0f}, {{0, 0, 0}, {0, -1, 0}, inf, inf},
+      {{0, 0, 0}, {0, -1, 0}, -5.0f, -1.0f},
+  };
+  for (const Ray& r : rays) {
+    Hit hit;
+    EXPECT_FALSE(accel->intersect(r, hit));
+    EXPECT_FALSE(accel->occluded(r));
+  }
+  Hit hit;
+  EXPECT_TRUE(accel->intersect(Ray{{0, 0, 0}, {0, -1, 0}}, hit));  // the finite version hits the ground
+}
+
+TEST_P(Backends, IntervalIsOpenOnBothEnds) {
+  SceneGeometry g;
+  g.shapes.push_back(Sphere{{0, 0, 10}, 1.0f, {0, 0, 1}});
+  g.shapes.push_back(Quad{{{-1, -1, 20}, {1, -1, 20}, {1, 1, 20}, {-1, 1, 20}}});
+  g.shapes.push_back(Cylinder{{0, -1, 30}, {0, 1, 30}, 1.0f});
+  TriangleMesh m;
+  m.positions = {{-1, -1, 40}, {1, -1, 40}, {0, 1, 40}};
+  m.indices = {0, 1, 2};
+  g.shapes.push_back(m);
+  auto accel = build(g);
+  ASSERT_NE(accel, nullptr);
+  for (uint32_t shape = 0; shape < 4; ++shape) {
+    const Ray base{{0.1f, 0.05f, 5.0f + 10.0f * static_cast<float>(shape)}, {0, 0, 1}};
+    Hit hit;
+    ASSERT_TRUE(accel->intersect(base, hit));
+    ASSERT_EQ(hit.shape, shape);
+    const float t = hit.t;
+    Ray r = base;
+    r.tmax = t;
+    EXPECT_FALSE(accel->intersect(r, hit)) << shape;
+    EXPECT_FALSE(accel->occluded(r)) << shape;
+    r.tmax = std::nextafter(t, kInfinity);
+    EXPECT_TRUE(accel->intersect(r, hit)) << shape;
+    EXPECT_TRUE(accel->occluded(r)) << shape;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(All, Backends, ::testing::ValuesIn(test::all_backends()), test::backend_name);
+
+}  // namespace
+}  // namespace pt

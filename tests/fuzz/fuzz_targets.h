@@ -1,0 +1,41 @@
+// The fuzzing harnesses' entry points, one per file parser. Each takes any
+// bytes, runs the parser the way the renderer does, and checks what must hold
+// for every input: a failure reports an error (with a location where the
+// parser has one), a success yields data the rest of the renderer can trust
+// (indices in range, finite values, consistent sizes). A broken invariant
+// aborts with a message, which libFuzzer records as a crash.
+//
+// They are linked into the libFuzzer executables (PT_FUZZ=ON, tools/fuzz.sh)
+// and into the ordinary test suite, which replays the seed corpora and every
+// crash ever found (tests/hostile/fuzz-regressions/<harness>/) through them.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace pt::fuzz {
+
+// A scene file of any family (native, Path of Light, CGR), through
+// load_scene_from_string, in normal and in strict mode. Relative mesh and
+// texture paths resolve against tests/fuzz/fixtures (mesh.ply, mesh.obj,
+// texture.png exist there).
+int scene_one_input(const uint8_t* data, std::size_t size);
+
+// A PLY file, through parse_ply.
+int ply_one_input(const uint8_t* data, std::size_t size);
+
+// A Wavefront OBJ file, through load_obj (it reads files: the bytes are
+// written to a temporary file first).
+int obj_one_input(const uint8_t* data, std::size_t size);
+
+struct Harness {
+  const char* name;  // also the folder name of its regression cases
+  int (*run)(const uint8_t* data, std::size_t size);
+};
+
+// Every harness, for the regression test and tools/fuzz.sh.
+std::vector<Harness> harnesses();
+
+}  // namespace pt::fuzz

@@ -1,0 +1,9 @@
+#include "fuzz_targets.h"
+
+namespace pt::fuzz {
+
+std::vector<Harness> harnesses() {
+  return {{"scene", &scene_one_input}, {"ply", &ply_one_input}, {"obj", &obj_one_input}};
+}
+
+}  // namespace pt::fuzz

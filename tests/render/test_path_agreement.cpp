@@ -1,0 +1,173 @@
+// Estimators that must converge to the same image: light sampling alone, BSDF
+// sampling alone and MIS; the Embree and BVH backends; a glass sphere of index
+// 1 and no sphere at all.
+//
+// Method: each image is rendered with S independent seeds; the image is cut
+// into blocks, and each block's mean over the seeds and its standard error
+// (the spread of the S block means / sqrt(S)) are compared: two estimates
+// agree if every block and channel differs by less than kSigmas combined
+// standard errors. With S = 16 the errors are estimated with 15 degrees of
+// freedom; a two-sided Student t of 15 degrees exceeds 5 with probability
+// 1.5e-4, so 48 comparisons (16 blocks, 3 channels) raise a false alarm with
+// probability below 1%.
+#include <cmath>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "path_test_util.h"
+
+namespace pt {
+namespace {
+
+using test::add_material;
+using test::add_shape;
+using test::add_sphere;
+
+constexpr int kSeeds = 16;
+constexpr double kSigmas = 5.0;
+constexpr int kBlocks = 4;  // per side
+
+struct BlockEstimate {
+  std::vector<double> mean, error;  // per block and channel
+};
+
+BlockEstimate estimate(const std::function<Image(uint64_t)>& render) {
+  std::vector<std::vector<double>> per_seed;
+  for (int s = 0; s < kSeeds; ++s) {
+    const Image img = render(static_cast<uint64_t>(s) + 1);
+    std::vector<double> blocks(kBlocks * kBlocks * 3, 0.0);
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x) {
+        const int b = (y * kBlocks / img.height) * kBlocks + x * kBlocks / img.width;
+        for (int c = 0; c < 3; ++c) blocks[b * 3 + c] += img.at(x, y)[c];
+      }
+    per_seed.push_back(blocks);
+  }
+  BlockEstimate e;
+  const std::size_t n = per_seed[0].size();
+  e.mean.assign(n, 0.0);
+  e.error.assign(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    double sum = 0, sum2 = 0;
+    for (const auto& b : per_seed) {
+      sum += b[i];
+      sum2 += b[i] * b[i];
+    }
+    const double m = sum / kSeeds;
+    e.mean[i] = m;
+    e.error[i] = std::sqrt(std::max(0.0, (sum2 - kSeeds * m * m) / (kSeeds - 1)) / kSeeds);
+  }
+  return e;
+}
+
+::testing::AssertionResult agree(const BlockEstimate& a, const BlockEstimate& b) {
+  std::ostringstream os;
+  bool ok = true;
+  for (std::size_t i = 0; i < a.mean.size(); ++i) {
+    const double sigma = std::sqrt(a.error[i] * a.error[i] + b.error[i] * b.error[i]);
+    const double diff = std::fabs(a.mean[i] - b.mean[i]);
+    if (!(diff <= kSigmas * sigma + 1e-9 * std::fabs(a.mean[i]))) {
+      ok = false;
+      os << "block " << i / 3 << " channel " << i % 3 << ": " << a.mean[i] << " vs " << b.mean[i] << " (sigma "
+         << sigma << ")\n";
+    }
+  }
+  return ok ? ::testing::AssertionSuccess() : ::testing::AssertionFailure() << os.str();
+}
+
+MaterialDesc lambert(RGB albedo) {
+  MaterialDesc m;
+  m.type = MaterialType::Lambert;
+  m.diffuse = albedo;
+  return m;
+}
+
+// A floor, a back wall, a glossy and a diffuse sphere, lit by a one-sided quad
+// light facing down, a small sphere light and a dim uniform environment: every
+// kind of light that can be hit, and glossy and diffuse surfaces.
+SceneDescription mis_scene() {
+  SceneDescription d = test::empty_scene(32, 32, {0, 1.0f, 4.0f}, {0, 0.6f, 0}, {0, 1, 0}, 45);
+  d.render.background = RGB(0.15f, 0.2f, 0.3f);
+  const int white = add_material(d, lambert(RGB(0.7f)));
+  QuadDesc floor, wall, light;
+  floor.v[0] = Vec3f(-2, 0, -2); floor.v[1] = Vec3f(-2, 0, 2); floor.v[2] = Vec3f(2, 0, 2); floor.v[3] = Vec3f(2, 0, -2);
+  wall.v[0] = Vec3f(-2, 0, -1); wall.v[1] = Vec3f(2, 0, -1); wall.v[2] = Vec3f(2, 2, -1); wall.v[3] = Vec3f(-2, 2, -1);
+  light.v[0] = Vec3f(-0.5f, 2, -0.5f); light.v[1] = Vec3f(0.5f, 2, -0.5f); light.v[2] = Vec3f(0.5f, 2, 0.5f); light.v[3] = Vec3f(-0.5f, 2, 0.5f);
+  add_shape(d, floor, white);
+  add_shape(d, wall, white);
+  add_shape(d, light, add_material(d, test::emitter_material(RGB(4.0f, 3.5f, 3.0f))));
+  MaterialDesc glossy;
+  glossy.kd = 0.3f;
+  glossy.diffuse = RGB(0.8f, 0.3f, 0.2f);
+  glossy.ks = 0.6f;
+  glossy.exponent = 30.0f;
+  add_sphere(d, {-0.6f, 0.5f, 0.0f}, 0.5f, add_material(d, glossy));
+  add_sphere(d, {0.7f, 0.35f, 0.3f}, 0.35f, add_material(d, lambert(RGB(0.3f, 0.6f, 0.4f))));
+  add_sphere(d, {1.2f, 1.4f, -0.4f}, 0.12f, add_material(d, test::emitter_material(RGB(30.0f, 20.0f, 10.0f))));
+  return d;
+}
+
+BlockEstimate estimate_strategy(const SceneDescription& d, LightStrategy strategy, int spp) {
+  return estimate([&](uint64_t seed) {
+    IntegratorSettings s = test::path_settings(spp, 8, seed);
+    s.light_strategy = strategy;
+    return test::render_path(d, s);
+  });
+}
+
+TEST(PathAgreement, LightSamplingBsdfSamplingAndMisConvergeToTheSameImage) {
+  const SceneDescription d = mis_scene();
+  const BlockEstimate mis = estimate_strategy(d, LightStrategy::Mis, 32);
+  const BlockEstimate light = estimate_strategy(d, LightStrategy::LightOnly, 32);
+  const BlockEstimate bsdf = estimate_strategy(d, LightStrategy::BsdfOnly, 128);
+  EXPECT_TRUE(agree(mis, light)) << "MIS vs light sampling";
+  EXPECT_TRUE(agree(mis, bsdf)) << "MIS vs BSDF sampling";
+  EXPECT_TRUE(agree(light, bsdf)) << "light vs BSDF sampling";
+}
+
+TEST(PathAgreement, TheTestCanFail) {
+  // The comparison is sharp enough to see a 5% change of one light.
+  SceneDescription brighter = mis_scene();
+  brighter.materials[1].emission = RGB(4.0f, 3.5f, 3.0f) * 1.05f;  // the quad light
+  EXPECT_FALSE(agree(estimate_strategy(mis_scene(), LightStrategy::Mis, 32),
+                     estimate_strategy(brighter, LightStrategy::Mis, 32)));
+}
+
+TEST(PathAgreement, GlassOfIndexOneIsEmptySpaceWhenLit) {
+  // Lit by the quad light, a glass sphere of index 1 blocks next-event
+  // estimation (shadow rays treat it as opaque) but BSDF rays pass it with
+  // weight 1 and find the light instead: the converged image is the same.
+  const SceneDescription without = mis_scene();
+  SceneDescription with = mis_scene();
+  MaterialDesc g;
+  g.type = MaterialType::Glass;
+  g.ior = 1.0f;
+  add_sphere(with, {0.1f, 1.2f, 0.2f}, 0.3f, add_material(with, g));
+  EXPECT_TRUE(agree(estimate_strategy(without, LightStrategy::Mis, 16), estimate_strategy(with, LightStrategy::Mis, 32)));
+}
+
+TEST(PathAgreement, BothBackendsConvergeToTheSameImage) {
+  const SceneDescription d = mis_scene();
+  {
+    WorkerPool pool(1);
+    Diagnostics diag;
+    BuildOptions options;
+    options.accel = AccelKind::Bvh;
+    if (!build_render_scene(d, options, pool, diag)) GTEST_SKIP() << "no BVH backend in this build: " << diag.format();
+  }
+  auto with_backend = [&](AccelKind kind) {
+    return estimate([&](uint64_t seed) {
+      BuildOptions options;
+      options.accel = kind;
+      return test::render_with(d, "path", test::path_settings(16, 8, seed), 2, options);
+    });
+  };
+  EXPECT_TRUE(agree(with_backend(AccelKind::Embree), with_backend(AccelKind::Bvh)));
+}
+
+}  // namespace
+}  // namespace pt

@@ -1,0 +1,242 @@
+#include "report.h"
+
+#include <cstdio>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+namespace pt::bench {
+
+namespace {
+
+using nlohmann::json;
+
+// The issue's goals for the BVH relative to Embree, measured in the same run.
+constexpr double kCameraGoal = 0.9, kShadowGoal = 0.8, kDiffuseGoal = 0.8, kBuildGoal = 1.5, kMemoryGoal = 1.0;
+
+json measured(const Measured& m) { return json{{"median", m.median}, {"min", m.min}, {"max", m.max}}; }
+
+json backend_json(const BackendRun& b, std::size_t primitives) {
+  return json{{"backend", b.backend},
+              {"build_seconds", measured(b.build_seconds)},
+              {"memory_bytes", b.memory_bytes},
+              {"bytes_per_primitive", primitives ? static_cast<double>(b.memory_bytes) / primitives : 0.0},
+              {"camera_mrays_per_s", measured(b.camera)},
+              {"shadow_mrays_per_s", measured(b.shadow)},
+              {"diffuse_mrays_per_s", measured(b.diffuse)},
+              {"hits", {{"camera", b.camera_hits}, {"shadow", b.shadow_hits}, {"diffuse", b.diffuse_hits}}}};
+}
+
+json tree_json(const bvh::TreeStats& t) {
+  json histogram = json::object();
+  for (std::size_t k = 1; k < t.leaf_sizes.size(); ++k) {
+    if (t.leaf_sizes[k] > 0) histogram[std::to_string(k)] = t.leaf_sizes[k];
+  }
+  return json{{"nodes", t.nodes},
+              {"leaves", t.leaves},
+              {"primitives", t.prims},
+              {"leaf_blocks", t.blocks},
+              {"depth", t.depth},
+              {"child_fill", t.nodes ? static_cast<double>(t.child_slots_used) / (8.0 * t.nodes) : 0.0},
+              {"leaf_size_histogram", histogram},
+              {"sah_cost", t.sah_cost},
+              {"bytes", t.bytes}};
+}
+
+json counts_json(const CrossCheckCounts& c) {
+  return json{{"rays", c.rays}, {"agree", c.agree}, {"tie", c.tie}, {"hit_vs_miss", c.hit_miss}, {"distance", c.distance}};
+}
+
+double ratio(double a, double b) { return b > 0 ? a / b : 0.0; }
+
+json ratios_json(const BackendRun& b, const BackendRun& e) {
+  return json{{"camera", ratio(b.camera.median, e.camera.median)},
+              {"shadow", ratio(b.shadow.median, e.shadow.median)},
+              {"diffuse", ratio(b.diffuse.median, e.diffuse.median)},
+              {"build_time", ratio(b.build_seconds.median, e.build_seconds.median)},
+              {"memory", ratio(static_cast<double>(b.memory_bytes), static_cast<double>(e.memory_bytes))}};
+}
+
+std::string fmt(const char* format, double v) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, format, v);
+  return buffer;
+}
+
+// "12.3 (±4%)": a median and the spread of its repetitions.
+std::string with_spread(const Measured& m, const char* format, double scale = 1.0) {
+  return fmt(format, m.median * scale) + " (±" + fmt("%.0f", 50.0 * m.spread()) + "%)";
+}
+
+std::string goal_cell(double r, double goal, bool higher_is_better) {
+  const bool met = higher_is_better ? r >= goal : r <= goal;
+  return fmt("%.2f", r) + (met ? " ✓" : " ✗");
+}
+
+std::string thousands(std::size_t n) {
+  const std::string digits = std::to_string(n);
+  std::string out;
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string to_json(const Report& report) {
+  json scenes = json::array();
+  for (const SceneResult& s : report.scenes) {
+    json runs = json::array();
+    for (const ThreadRun& r : s.runs) {
+      runs.push_back(json{{"threads", r.threads},
+                          {"embree_reference", backend_json(r.reference, s.primitives)},
+                          {"embree_backend", backend_json(r.embree, s.primitives)},
+                          {"bvh", backend_json(r.bvh, s.primitives)},
+                          {"ratios_bvh_over_embree_reference", ratios_json(r.bvh, r.reference)},
+                          {"ratios_bvh_over_embree_backend", ratios_json(r.bvh, r.embree)}});
+    }
+    scenes.push_back(json{{"name", s.name},
+                          {"source", s.source},
+                          {"triangles", s.triangles},
+                          {"primitives", s.primitives},
+                          {"camera", {{"width", s.width}, {"height", s.height}}},
+                          {"rays", {{"camera", s.camera_rays}, {"shadow", s.shadow_rays}, {"diffuse", s.diffuse_rays}}},
+                          {"runs", runs},
+                          {"tree",
+                           {{"bottom_levels", s.tree.bottom_levels},
+                            {"bottom", tree_json(s.tree.bottom)},
+                            {"top", tree_json(s.tree.top)},
+                            {"kernel", s.tree.isa}}},
+                          {"cross_check",
+                           {{"tolerance", s.check.tolerance},
+                            {"camera", counts_json(s.check.camera)},
+                            {"shadow", counts_json(s.check.shadow)},
+                            {"diffuse", counts_json(s.check.diffuse)},
+                            {"disagreements", s.check.disagreements()}}}});
+  }
+  const json out{{"command", report.command},
+                 {"settings",
+                  {{"width", report.settings.width},
+                   {"height", report.settings.height},
+                   {"builds", report.settings.builds},
+                   {"repetitions", report.settings.repetitions},
+                   {"sphere_triangles", report.settings.sphere_triangles}}},
+                 {"scenes", scenes},
+                 {"skipped", report.skipped},
+                 {"note", report.note},
+                 {"load_average", {{"before", report.load_before}, {"after", report.load_after}}},
+                 {"machine_lscpu", report.machine}};
+  return out.dump(2) + "\n";
+}
+
+std::string to_markdown(const Report& report) {
+  std::ostringstream md;
+  md << "# Acceleration structures: our BVH against Embree\n\n";
+  md << "Produced by `" << report.command << "` (`tools/bench_accel`); every figure below comes from that one run "
+        "on the machine described at the end.\n\n";
+  if (!report.note.empty()) md << "**Note.** " << report.note << "\n\n";
+  if (!report.scenes.empty() && !report.scenes[0].runs.empty()) {
+    const ThreadRun& r = report.scenes[0].runs[0];
+    md << "Three accelerators, same geometry, same rays:\n\n"
+       << "- **Embree** (the yardstick of the goals): `" << r.reference.backend
+       << "`: Embree's own triangle geometry and intersector, scene flags `RTC_SCENE_FLAG_ROBUST`, build quality "
+          "`HIGH` (spatial splits); analytic shapes as user geometry.\n"
+       << "- **`--accel=embree`**: the renderer's Embree backend as it stands (`" << r.embree.backend
+       << "`); it differs from the yardstick only if the backend does not use Embree's own triangles.\n"
+       << "- **`--accel=bvh`**: ours, `" << r.bvh.backend << "` (docs/bvh.md).\n\n";
+  }
+  md << "Method:\n\n";
+  md << "- Rays: one camera ray per pixel (" << report.settings.width << "x" << report.settings.height
+     << " for bare meshes; a scene file's own aspect ratio otherwise); from each camera hit (found by the "
+        "`--accel=embree` backend) one shadow ray to a light (`occluded()`) and one cosine-distributed diffuse "
+        "bounce ray (`intersect()`). The same ray sets, generated once outside the timed region, go through every "
+        "accelerator.\n";
+  md << "- Timing: Mrays/s is the median of " << report.settings.repetitions
+     << " passes over a whole ray set (the accelerators take turns pass by pass, in rotating order), after one "
+        "warm-up pass each; build time is the median of "
+     << report.settings.builds
+     << " builds. Each figure gives the spread of its repetitions, ±(max − min) / (2 × median).\n";
+  md << "- Ratios are BVH / Embree (the yardstick): throughput ratios above 1 favour the BVH; build-time and memory "
+        "ratios below 1 favour the BVH. Goals (the issue): camera ≥ "
+     << kCameraGoal << ", shadow ≥ " << kShadowGoal << ", diffuse ≥ " << kDiffuseGoal << ", build time ≤ "
+     << kBuildGoal << ", memory ≤ " << kMemoryGoal << ".\n";
+  md << "- Memory: Embree's is what its memory monitor counts after the build (mesh buffers shared, not copied); "
+        "ours is the nodes and leaf blocks. Neither includes the scene's own vertex and index arrays.\n\n";
+
+  md << "## Against the goals (BVH / Embree)\n\n";
+  md << "| scene | threads | camera | shadow | diffuse | build time | memory |\n|---|---|---|---|---|---|---|\n";
+  for (const SceneResult& s : report.scenes) {
+    for (const ThreadRun& r : s.runs) {
+      const BackendRun& e = r.reference;
+      md << "| " << s.name << " | " << r.threads << " | "
+         << goal_cell(ratio(r.bvh.camera.median, e.camera.median), kCameraGoal, true) << " | "
+         << goal_cell(ratio(r.bvh.shadow.median, e.shadow.median), kShadowGoal, true) << " | "
+         << goal_cell(ratio(r.bvh.diffuse.median, e.diffuse.median), kDiffuseGoal, true) << " | "
+         << goal_cell(ratio(r.bvh.build_seconds.median, e.build_seconds.median), kBuildGoal, false) << " | "
+         << goal_cell(ratio(static_cast<double>(r.bvh.memory_bytes), static_cast<double>(e.memory_bytes)),
+                      kMemoryGoal, false)
+         << " |\n";
+    }
+  }
+  if (!report.skipped.empty()) {
+    md << "\nSkipped: ";
+    for (std::size_t i = 0; i < report.skipped.size(); ++i) md << (i ? "; " : "") << report.skipped[i];
+    md << ".\n";
+  }
+
+  for (const SceneResult& s : report.scenes) {
+    md << "\n## " << s.name << "\n\n";
+    md << thousands(s.triangles) << " triangles, " << thousands(s.primitives) << " primitives (" << s.source
+       << "). Camera " << s.width << "x" << s.height << ": " << thousands(s.camera_rays) << " camera, "
+       << thousands(s.shadow_rays) << " shadow, " << thousands(s.diffuse_rays) << " diffuse rays.\n\n";
+    md << "| threads | | Embree | `--accel=embree` | `--accel=bvh` | BVH / Embree |\n|---|---|---|---|---|---|\n";
+    for (const ThreadRun& r : s.runs) {
+      auto row = [&](const char* label, auto get, const char* format, double scale) {
+        const Measured& e = get(r.reference);
+        md << "| " << r.threads << " | " << label << " | " << with_spread(e, format, scale) << " | "
+           << with_spread(get(r.embree), format, scale) << " | " << with_spread(get(r.bvh), format, scale) << " | "
+           << fmt("%.2f", ratio(get(r.bvh).median, e.median)) << " |\n";
+      };
+      row("build (ms)", [](const BackendRun& b) -> const Measured& { return b.build_seconds; }, "%.1f", 1e3);
+      const double p = static_cast<double>(s.primitives);
+      md << "| " << r.threads << " | memory (bytes/primitive) | " << fmt("%.1f", r.reference.memory_bytes / p)
+         << " | " << fmt("%.1f", r.embree.memory_bytes / p) << " | " << fmt("%.1f", r.bvh.memory_bytes / p) << " | "
+         << fmt("%.2f", ratio(static_cast<double>(r.bvh.memory_bytes), static_cast<double>(r.reference.memory_bytes)))
+         << " |\n";
+      row("camera (Mrays/s)", [](const BackendRun& b) -> const Measured& { return b.camera; }, "%.2f", 1.0);
+      row("shadow (Mrays/s)", [](const BackendRun& b) -> const Measured& { return b.shadow; }, "%.2f", 1.0);
+      row("diffuse (Mrays/s)", [](const BackendRun& b) -> const Measured& { return b.diffuse; }, "%.2f", 1.0);
+    }
+
+    const bvh::TreeStats& t = s.tree.bottom;
+    md << "\nTree (kernel " << s.tree.isa << "): " << s.tree.bottom_levels << " bottom-level BVH"
+       << (s.tree.bottom_levels == 1 ? "" : "s") << ", " << thousands(t.nodes) << " nodes ("
+       << fmt("%.2f", t.nodes ? static_cast<double>(t.child_slots_used) / static_cast<double>(t.nodes) : 0.0)
+       << " children per node on average), " << thousands(t.leaves) << " leaves in " << thousands(t.blocks)
+       << " blocks, depth " << t.depth << ", SAH cost " << fmt("%.1f", t.sah_cost)
+       << " (node tests + leaf-block tests expected per ray through the root box)";
+    if (s.tree.top.nodes > 0) md << "; top level: " << s.tree.top.nodes << " nodes, depth " << s.tree.top.depth;
+    md << ". Leaf sizes (primitives: leaves):";
+    for (std::size_t k = 1; k < t.leaf_sizes.size(); ++k) {
+      if (t.leaf_sizes[k] > 0) md << " " << k << ": " << thousands(t.leaf_sizes[k]) << ";";
+    }
+    md << "\n\n";
+    const CrossCheck& c = s.check;
+    md << "Cross-check, `--accel=embree` against `--accel=bvh` on the same rays (distance tolerance " << c.tolerance
+       << " relative): camera " << c.camera.hit_miss << " hit/miss and " << c.camera.distance
+       << " distance disagreements, " << c.camera.tie << " ties; shadow " << c.shadow.hit_miss
+       << " disagreements; diffuse " << c.diffuse.hit_miss << " hit/miss and " << c.diffuse.distance
+       << " distance disagreements, " << c.diffuse.tie << " ties (of "
+       << thousands(c.camera.rays + c.shadow.rays + c.diffuse.rays) << " rays).\n";
+  }
+
+  md << "\n## Machine\n\nLoad average (1, 5, 15 minutes; `/proc/loadavg`) at the start of the run: " << report.load_before
+     << "; at the end: " << report.load_after << ". Figures from a machine whose load exceeds its idle level "
+        "are not comparable with those of a quiet run.\n\n```\n"
+     << report.machine << "```\n";
+  return md.str();
+}
+
+}  // namespace pt::bench

@@ -1,0 +1,46 @@
+// Shared pieces of the rendering benchmarks: loading a scene into a render
+// scene on a chosen backend, progressive rendering into one film, and the
+// error metrics against a reference image.
+#pragma once
+
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "accel/accelerator.h"
+#include "core/image.h"
+#include "core/parallel.h"
+#include "render/film/film.h"
+#include "render/integrators/integrator.h"
+#include "render/render_scene.h"
+#include "scene/scene_description.h"
+
+namespace pt::bench {
+
+struct LoadedScene {
+  SceneDescription desc;
+  std::unique_ptr<RenderScene> scene;
+  double load_seconds = 0, build_seconds = 0;
+};
+
+// Loads and builds `path` on backend `accel` inside `pool`; nullopt after
+// printing the diagnostics to stderr.
+std::optional<LoadedScene> load(const std::string& path, AccelKind accel, WorkerPool& pool);
+
+// The scene's own integrator settings (max depth, filter, clamp), with `spp`
+// samples starting at `first_sample`.
+IntegratorSettings settings_for(const SceneDescription& desc, int spp, int first_sample, uint64_t seed);
+
+// Error metrics over all pixels and the three channels, linear values.
+struct ImageError {
+  double rmse = 0;     // sqrt(mean (x - r)^2)
+  double relmse = 0;   // mean (x - r)^2 / (r^2 + 0.01)
+  double mean_ratio[3] = {0, 0, 0};  // per channel: mean(x) / mean(r)
+};
+ImageError compare(const Image& image, const Image& reference);
+
+using Clock = std::chrono::steady_clock;
+inline double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+}  // namespace pt::bench

@@ -1,0 +1,257 @@
+// bench_render: the path tracer's performance measurements, as JSON.
+//
+//   bench_render time-to-error SCENE --reference EXR [--accel A] [--threads N] [--pass-spp K]
+//                [--rmse X] [--relmse Y] [--max-seconds S] [--runs R] [--json FILE]
+//   bench_render compare SCENE --reference EXR [--accel A ...] [--threads N] [--spp K] [--pass-spp P]
+//                [--output EXR] [--json FILE]
+//   bench_render throughput SCENE [--accel A ...] [--threads N] [--spp K] [--runs R] [--json FILE]
+//   bench_render profile SCENE [--accel A ...] [--threads N] [--spp K] [--json FILE]
+//
+// tools/bench_render/run_benchmarks.py runs the set documented in
+// docs/performance.md and writes docs/bench/cornell.* and docs/bench/render.*.
+#include <algorithm>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "io/image_io.h"
+#include "measurements.h"
+
+namespace {
+
+using nlohmann::ordered_json;
+using namespace pt;
+using namespace pt::bench;
+
+struct Common {
+  std::string scene;
+  std::vector<std::string> accels{"embree"};
+  int threads = 2;
+  int runs = 3;
+  std::string json;
+};
+
+double median(std::vector<double> v) {
+  if (v.empty()) return -1;
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+bool emit(const ordered_json& j, const std::string& path) {
+  if (path.empty()) {
+    std::cout << j.dump(2) << '\n';
+    return true;
+  }
+  std::ofstream out(path);
+  out << j.dump(2) << '\n';
+  return static_cast<bool>(out);
+}
+
+ordered_json scene_json(const LoadedScene& s, AccelKind accel) {
+  const AccelStats stats = s.scene->accel->stats();
+  return {{"scene", s.desc.source_path},
+          {"width", s.scene->width},
+          {"height", s.scene->height},
+          {"max_depth", s.desc.render.max_depth.value},
+          {"accel", accel_kind_name(accel)},
+          {"backend", stats.backend},
+          {"primitives", stats.primitive_count},
+          {"load_seconds", s.load_seconds},
+          {"build_seconds", s.build_seconds}};
+}
+
+int run_time_to_error(const Common& c, const std::string& reference_path, int pass_spp, double rmse, double relmse,
+                      double max_seconds) {
+  Image reference;
+  std::string error;
+  if (!read_image(reference_path, reference, error)) {
+    std::cerr << "bench_render: " << error << '\n';
+    return 1;
+  }
+  ordered_json out = ordered_json::array();
+  for (const std::string& name : c.accels) {
+    AccelKind accel;
+    parse_accel_kind(name, accel);
+    WorkerPool pool(c.threads);
+    auto s = load(c.scene, accel, pool);
+    if (!s) return 1;
+    if (s->scene->width != reference.width || s->scene->height != reference.height) {
+      std::cerr << "bench_render: the reference is " << reference.width << "x" << reference.height << '\n';
+      return 1;
+    }
+    ordered_json runs = ordered_json::array();
+    std::vector<double> t_rmse, t_relmse;
+    for (int r = 0; r < c.runs; ++r) {
+      const TimeToError t = time_to_error(*s, reference, pool, pass_spp, rmse, relmse, max_seconds, 1000 + r);
+      t_rmse.push_back(t.seconds_to_rmse);
+      t_relmse.push_back(t.seconds_to_relmse);
+      ordered_json trace = ordered_json::array();
+      for (const ErrorPoint& p : t.trace) trace.push_back({p.spp, p.seconds, p.rmse, p.relmse});
+      runs.push_back({{"seed", 1000 + r},
+                      {"seconds_to_rmse", t.seconds_to_rmse},
+                      {"spp_to_rmse", t.spp_to_rmse},
+                      {"seconds_to_relmse", t.seconds_to_relmse},
+                      {"spp_to_relmse", t.spp_to_relmse},
+                      {"final", {{"rmse", t.final_error.rmse},
+                                 {"relmse", t.final_error.relmse},
+                                 {"mean_ratio", {t.final_error.mean_ratio[0], t.final_error.mean_ratio[1],
+                                                 t.final_error.mean_ratio[2]}}}},
+                      {"trace_spp_seconds_rmse_relmse", trace}});
+      std::cerr << name << " run " << r << ": rmse < " << rmse << " after " << t.seconds_to_rmse << " s ("
+                << t.spp_to_rmse << " spp), relmse < " << relmse << " after " << t.seconds_to_relmse << " s\n";
+    }
+    ordered_json j = scene_json(*s, accel);
+    j["threads"] = pool.threads();
+    j["reference"] = reference_path;
+    j["pass_spp"] = pass_spp;
+    j["target_rmse"] = rmse;
+    j["target_relmse"] = relmse;
+    j["max_seconds"] = max_seconds;
+    j["median_seconds_to_rmse"] = median(t_rmse);
+    j["median_seconds_to_relmse"] = median(t_relmse);
+    j["runs"] = runs;
+    out.push_back(j);
+  }
+  return emit(out, c.json) ? 0 : 1;
+}
+
+int run_compare(const Common& c, const std::string& reference_path, int spp, int pass_spp, const std::string& output) {
+  Image reference;
+  std::string error;
+  if (!read_image(reference_path, reference, error)) {
+    std::cerr << "bench_render: " << error << '\n';
+    return 1;
+  }
+  ordered_json out = ordered_json::array();
+  for (const std::string& name : c.accels) {
+    AccelKind accel;
+    parse_accel_kind(name, accel);
+    WorkerPool pool(c.threads);
+    auto s = load(c.scene, accel, pool);
+    if (!s) return 1;
+    double seconds = 0;
+    const std::string path = c.accels.size() > 1 && !output.empty() ? name + "-" + output : output;
+    const ImageError e = converge(*s, reference, pool, spp, pass_spp, 4000, path, &seconds);
+    ordered_json j = scene_json(*s, accel);
+    j["threads"] = pool.threads();
+    j["reference"] = reference_path;
+    j["spp"] = spp;
+    j["seconds"] = seconds;
+    j["rmse"] = e.rmse;
+    j["relmse"] = e.relmse;
+    j["mean_ratio"] = {e.mean_ratio[0], e.mean_ratio[1], e.mean_ratio[2]};
+    std::cerr << name << ": " << spp << " spp, rmse " << e.rmse << ", relmse " << e.relmse << ", mean ratio "
+              << e.mean_ratio[0] << " " << e.mean_ratio[1] << " " << e.mean_ratio[2] << '\n';
+    out.push_back(j);
+  }
+  return emit(out, c.json) ? 0 : 1;
+}
+
+int run_throughput(const Common& c, int spp) {
+  ordered_json out = ordered_json::array();
+  for (const std::string& name : c.accels) {
+    AccelKind accel;
+    parse_accel_kind(name, accel);
+    WorkerPool pool(c.threads);
+    auto s = load(c.scene, accel, pool);
+    if (!s) return 1;
+    throughput(*s, pool, 1, 1);  // warm-up: page in the scene and the code
+    std::vector<double> rates;
+    for (int r = 0; r < c.runs; ++r) rates.push_back(throughput(*s, pool, spp, 2000 + r).samples_per_second);
+    ordered_json j = scene_json(*s, accel);
+    j["threads"] = pool.threads();
+    j["spp"] = spp;
+    j["samples_per_second"] = rates;
+    j["median_samples_per_second"] = median(rates);
+    std::cerr << name << ": " << median(rates) << " samples/s\n";
+    out.push_back(j);
+  }
+  return emit(out, c.json) ? 0 : 1;
+}
+
+int run_profile(const Common& c, int spp) {
+  ordered_json out = ordered_json::array();
+  for (const std::string& name : c.accels) {
+    AccelKind accel;
+    parse_accel_kind(name, accel);
+    WorkerPool pool(c.threads);
+    auto s = load(c.scene, accel, pool);
+    if (!s) return 1;
+    throughput(*s, pool, 1, 1);  // warm-up
+    std::vector<Profile> runs;
+    for (int r = 0; r < c.runs; ++r) runs.push_back(profile(*s, pool, spp, 3000 + r));
+    std::vector<double> share, render, traversal;
+    for (const Profile& p : runs) {
+      share.push_back(p.traversal_share());
+      render.push_back(p.render_seconds);
+      traversal.push_back(p.traversal_seconds);
+    }
+    ordered_json j = scene_json(*s, accel);
+    j["threads"] = pool.threads();
+    j["spp"] = spp;
+    j["method"] = "record every ray of a render, replay them through the accelerator alone";
+    j["rays"] = runs.front().rays;
+    j["shadow_rays"] = runs.front().shadow_rays;
+    j["rays_per_sample"] = static_cast<double>(runs.front().rays) / (static_cast<double>(s->scene->width) * s->scene->height * spp);
+    j["median_render_seconds"] = median(render);
+    j["median_traversal_seconds"] = median(traversal);
+    j["median_traversal_share"] = median(share);
+    std::cerr << name << ": traversal " << 100 * median(share) << "% of render time\n";
+    out.push_back(j);
+  }
+  return emit(out, c.json) ? 0 : 1;
+}
+
+void add_common(CLI::App& app, Common& c) {
+  app.add_option("scene", c.scene, "Scene file")->required();
+  app.add_option("--accel", c.accels, "Backends (embree, bvh), one measurement each")
+      ->check(CLI::IsMember(accel_kind_names()));
+  app.add_option("--threads", c.threads, "Worker threads")->check(CLI::Range(1, 4096));
+  app.add_option("--runs", c.runs, "Repetitions (the median is reported)")->check(CLI::Range(1, 1000));
+  app.add_option("--json", c.json, "Write the result here (default: standard output)");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"bench_render: time to error, samples per second and the traversal share of the path tracer"};
+  app.require_subcommand(1);
+  Common c;
+  std::string reference;
+  int pass_spp = 4, spp = 16;
+  double rmse = 0.005, relmse = 0.002, max_seconds = 120.0;
+
+  CLI::App* tte = app.add_subcommand("time-to-error", "Render time until RMSE and relative MSE reach their targets");
+  add_common(*tte, c);
+  tte->add_option("--reference", reference, "Reference image (linear EXR)")->required();
+  tte->add_option("--pass-spp", pass_spp, "Samples per pixel per progressive pass")->check(CLI::Range(1, 1 << 16));
+  tte->add_option("--rmse", rmse, "Target RMSE");
+  tte->add_option("--relmse", relmse, "Target relative MSE, mean of (x - r)^2 / (r^2 + 0.01)");
+  tte->add_option("--max-seconds", max_seconds, "Give up after this much render time");
+
+  std::string output;
+  CLI::App* cmp = app.add_subcommand("compare", "Render a fixed number of samples and compare with a reference");
+  add_common(*cmp, c);
+  cmp->add_option("--reference", reference, "Reference image (linear EXR)")->required();
+  cmp->add_option("--spp", spp, "Samples per pixel")->check(CLI::Range(1, 1 << 24));
+  cmp->add_option("--pass-spp", pass_spp, "Samples per pixel per pass")->check(CLI::Range(1, 1 << 16));
+  cmp->add_option("--output", output, "Write the image here (EXR); prefixed with the backend for several");
+
+  CLI::App* thr = app.add_subcommand("throughput", "Samples per second of one render");
+  add_common(*thr, c);
+  thr->add_option("--spp", spp, "Samples per pixel")->check(CLI::Range(1, 1 << 16));
+
+  CLI::App* prof = app.add_subcommand("profile", "Share of render time spent in ray traversal");
+  add_common(*prof, c);
+  prof->add_option("--spp", spp, "Samples per pixel")->check(CLI::Range(1, 1 << 16));
+
+  CLI11_PARSE(app, argc, argv);
+  if (tte->parsed()) return run_time_to_error(c, reference, pass_spp, rmse, relmse, max_seconds);
+  if (cmp->parsed()) return run_compare(c, reference, spp, pass_spp, output);
+  if (thr->parsed()) return run_throughput(c, spp);
+  return run_profile(c, spp);
+}
