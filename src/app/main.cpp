@@ -12,6 +12,7 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <cstdlib>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -52,6 +53,10 @@ struct Options {
   bool strict = false;
   bool quiet = false;
   std::string report;  // run record (JSON); empty: none
+  // Display images (PNG, JPEG, PPM); see src/io/display.h.
+  std::optional<float> exposure;  // stops; unset: the scene's
+  std::string view, display, look;
+  std::string ocio_config;  // unset: $OCIO
 };
 
 constexpr int kExitFailure = 1;
@@ -107,7 +112,30 @@ void add_options(CLI::App& app, Options& o) {
   app.add_flag("--strict", o.strict, "Treat warnings (e.g. unknown keys in legacy files) as errors");
   app.add_flag("--quiet", o.quiet, "Print errors only");
   app.add_option("--report", o.report, "Write a run record (JSON: settings, backend, time per phase)");
+  app.add_option("--exposure", o.exposure, "Display images: exposure in stops (default: the scene's)");
+  app.add_option("--view", o.view,
+                 "Display images: 'standard' (sRGB) or 'aces' (ACES 1.0 SDR video), or a view of the OCIO config");
+  app.add_option("--display", o.display, "Display images: a display of the OCIO config (default: its default)");
+  app.add_option("--look", o.look, "Display images: look(s) of the OCIO config, e.g. '+grade'");
+  app.add_option("--ocio-config", o.ocio_config, "OpenColorIO config file (default: $OCIO, if set)");
   app.set_version_flag("--version", version_text());
+}
+
+// The display pipeline for PNG/JPEG/PPM outputs: the scene's transform and
+// exposure, overridden from the command line; $OCIO names a config when
+// --ocio-config does not. The course transforms ignore the OCIO settings.
+pt::DisplaySettings display_settings(const Options& o, const pt::FilmDesc& film) {
+  pt::DisplaySettings d;
+  d.transform = film.display;
+  d.exposure = o.exposure.value_or(film.exposure.value);
+  d.view = o.view;
+  d.display = o.display;
+  d.look = o.look;
+  d.ocio_config = o.ocio_config;
+  if (d.ocio_config.empty()) {
+    if (const char* env = std::getenv("OCIO"); env != nullptr) d.ocio_config = env;
+  }
+  return d;
 }
 
 // Checks every output path before any work is done. Returns false after printing why.
@@ -173,6 +201,16 @@ int run(const Options& o) {
     return kExitFailure;
   }
 
+  // The display pipeline (checked before the expensive build, like the outputs).
+  const pt::DisplaySettings display = display_settings(o, desc->film);
+  if (display.transform != pt::DisplayTransform::Srgb && !(o.view.empty() && o.display.empty() && o.look.empty()))
+    std::cerr << "warning: --view, --display and --look apply to native scenes; this scene's display images "
+                 "use its course's documented curve (docs/rendering.md)\n";
+  if (!pt::DisplayEncoder::create(display, error)) {
+    std::cerr << "error: display images: " << error << '\n';
+    return kExitUsage;
+  }
+
   // Build.
   t0 = Clock::now();
   pt::WorkerPool pool(o.threads);
@@ -199,7 +237,6 @@ int run(const Options& o) {
 
   // Write.
   t0 = Clock::now();
-  const pt::DisplaySettings display{desc->film.display, desc->film.exposure};
   const pt::Image image = film.image();
   for (const std::string& path : o.outputs) {
     if (!pt::write_image(path, image, display, error)) {

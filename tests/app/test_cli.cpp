@@ -200,6 +200,61 @@ TEST_F(Cli, IntegratorOptionOverridesTheScene) {
   EXPECT_EQ(nlohmann::json::parse(slurp(path("run.json")))["image"]["integrator"], "path");
 }
 
+// A small native-format scene (display images go through OpenColorIO).
+std::string native_scene() {
+  return R"({"format": "pathtracer-scene", "version": 1,
+    "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0]},
+    "film": {"width": 24, "height": 16},
+    "materials": {"grey": {"diffuse": [0.5, 0.5, 0.5]}},
+    "lights": [{"type": "point", "position": [0, 2, 3], "intensity": [6, 6, 6]}],
+    "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "grey"}]})";
+}
+
+// Mean 8-bit code of a display image.
+double mean_code(const std::string& file) {
+  Image img;
+  std::string error;
+  EXPECT_TRUE(read_image(file, img, error)) << error;
+  double sum = 0;
+  for (const RGB& p : img.pixels) sum += p.r + p.g + p.b;
+  return 255.0 * sum / (3.0 * static_cast<double>(img.pixels.size()));
+}
+
+TEST_F(Cli, DisplayViewAndExposureChangeOnlyTheDisplayImage) {
+  // The CGR scene keeps its course curve; a native scene goes through OCIO.
+  write("native.json", native_scene());
+  ASSERT_EQ(run("native.json -o std.png -o std.exr").status, 0);
+  ASSERT_EQ(run("native.json -o aces.png -o aces.exr --view aces").status, 0);
+  ASSERT_EQ(run("native.json -o bright.png --exposure 1").status, 0);
+  EXPECT_NE(slurp(path("std.png")), slurp(path("aces.png")));
+  EXPECT_EQ(slurp(path("std.exr")).size(), slurp(path("aces.exr")).size());  // EXR: scene-linear, untouched
+  Image a, b;
+  std::string error;
+  ASSERT_TRUE(read_image(path("std.exr"), a, error));
+  ASSERT_TRUE(read_image(path("aces.exr"), b, error));
+  EXPECT_EQ(a.pixels, b.pixels);
+  EXPECT_GT(mean_code(path("bright.png")), mean_code(path("std.png")) + 5.0);
+}
+
+TEST_F(Cli, BadDisplayOptionsAreRefusedBeforeRendering) {
+  write("native.json", native_scene());
+  Result r = run("native.json -o out.png --view filmic");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("'standard', 'aces'"), std::string::npos) << r.err;
+  write("config.ocio", "ocio_profile_version: 2\nroles: {default: lin, scene_linear: lin}\n"
+                       "displays: {sRGB: [!<View> {name: Raw, colorspace: lin}]}\n"
+                       "colorspaces: [!<ColorSpace> {name: lin}]\n");
+  r = run("native.json -o out.png --ocio-config config.ocio --display P3");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("no display 'P3'"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out.find("render"), std::string::npos) << r.out;
+  EXPECT_EQ(outputs(), std::vector<std::string>{"config.ocio"});
+  // A course scene keeps its documented curve: the view is ignored, with a warning.
+  r = run("phong.json -o course.png --view aces");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: --view"), std::string::npos) << r.err;
+}
+
 TEST_F(Cli, NoReportForABadScene) {
   write("bad.json", "{ \"camera\": ");
   const Result r = run("bad.json -o out.png --report run.json");
