@@ -2,6 +2,7 @@
 //
 //   pathtracer SCENE -o OUT [-o OUT2 ...] [--accel embree|bvh] [--threads N] [--spp N]
 //              [--seed N] [--integrator NAME] [--max-depth N] [--filter box|gaussian|mitchell]
+//              [--sampler random|jittered|sobol]
 //              [--clamp X] [--width W] [--height H] [--strict] [--quiet] [--report FILE]
 //
 // Exit status: 0 success; 1 the scene, the render or an output failed (nothing
@@ -48,6 +49,7 @@ struct Options {
   std::string integrator;  // empty: the scene's value
   int max_depth = -1;      // < 0: the scene's value
   std::string filter;      // empty: the scene's value
+  std::string sampler = "random";  // the path integrator's sampler (docs/samplers.md)
   float clamp = -1.0f;     // < 0: the scene's value; 0 = off
   int width = 0, height = 0;
   bool strict = false;
@@ -102,6 +104,9 @@ void add_options(CLI::App& app, Options& o) {
       ->check(CLI::Range(0, kMaxDepth));
   app.add_option("--filter", o.filter, "Pixel filter of the path integrator (default: the scene's, box)")
       ->check(CLI::IsMember({"box", "gaussian", "mitchell"}));
+  app.add_option("--sampler", o.sampler, "Sampler of the path integrator (docs/samplers.md)")
+      ->check(CLI::IsMember(pt::sampler_type_names()))
+      ->capture_default_str();
   app.add_option("--clamp", o.clamp,
                  "Path integrator: clamp each sample's radiance to this largest channel value (0: off, the default)")
       ->check(CLI::Range(0.0f, std::numeric_limits<float>::max()));
@@ -190,6 +195,7 @@ int run(const Options& o) {
   if (o.filter == "gaussian") settings.filter = pt::PixelFilterType::Gaussian;
   if (o.filter == "mitchell") settings.filter = pt::PixelFilterType::Mitchell;
   if (o.filter == "box") settings.filter = pt::PixelFilterType::Box;
+  settings.sampler = pt::parse_sampler_type(o.sampler).value_or(pt::SamplerType::Random);
   settings.clamp = o.clamp >= 0.0f ? o.clamp : desc->render.clamp.value;
   const std::string integrator_name = o.integrator.empty() ? desc->render.integrator.value : o.integrator;
   std::string error;

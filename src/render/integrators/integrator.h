@@ -9,6 +9,7 @@
 
 #include "render/film/film.h"
 #include "render/render_scene.h"
+#include "render/samplers/sampler.h"
 
 namespace pt {
 
@@ -34,6 +35,7 @@ struct IntegratorSettings {
   PixelFilterType filter = PixelFilterType::Box;  // the path integrator's pixel filter
   float clamp = 0.0f;   // path: largest channel of one sample's radiance; 0 = no clamp
   LightStrategy light_strategy = LightStrategy::Mis;
+  SamplerType sampler = SamplerType::Random;  // path: where its random numbers come from (docs/samplers.md)
 };
 
 class Integrator {

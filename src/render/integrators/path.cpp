@@ -151,7 +151,8 @@ class PathIntegrator final : public Integrator {
 
   void render(const RenderScene& scene, Film& film, WorkerPool& pool) const override {
     const PathTracer tracer(scene, settings_);
-    render_samples(scene, film, pool, settings_, IndependentSampler(settings_.seed), filter_,
+    render_samples(scene, film, pool, settings_, make_sampler(settings_.sampler, settings_.spp, settings_.seed),
+                   filter_,
                    [&](const Ray& ray, Sampler& sampler) { return tracer.radiance(ray, sampler); });
   }
 

@@ -43,4 +43,31 @@ void StratifiedPixelSampler::start(uint64_t pixel_index, int index) {
   rest_ = Rng(hash_keys(hash_keys(seed_, kLensStream), pixel_index, sample));
 }
 
+std::vector<std::string> sampler_type_names() { return {"random", "jittered", "sobol"}; }
+
+const char* sampler_type_name(SamplerType type) {
+  switch (type) {
+    case SamplerType::Random: return "random";
+    case SamplerType::Jittered: return "jittered";
+    case SamplerType::Sobol: return "sobol";
+  }
+  return "random";
+}
+
+std::optional<SamplerType> parse_sampler_type(const std::string& name) {
+  if (name == "random") return SamplerType::Random;
+  if (name == "jittered") return SamplerType::Jittered;
+  if (name == "sobol") return SamplerType::Sobol;
+  return std::nullopt;
+}
+
+Sampler make_sampler(SamplerType type, int spp, uint64_t seed) {
+  switch (type) {
+    case SamplerType::Jittered: return JitteredSampler(spp, seed);
+    case SamplerType::Sobol: return SobolSampler(seed);
+    case SamplerType::Random: break;
+  }
+  return IndependentSampler(seed);
+}
+
 }  // namespace pt

@@ -19,10 +19,15 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <variant>
+#include <vector>
 
 #include "core/math.h"
 #include "core/rng.h"
+#include "render/samplers/jittered_sampler.h"
+#include "render/samplers/sobol_sampler.h"
 
 namespace pt {
 
@@ -81,25 +86,39 @@ class Sampler {
  public:
   Sampler(IndependentSampler s) : impl_(s) {}      // NOLINT: implicit by design
   Sampler(StratifiedPixelSampler s) : impl_(s) {}  // NOLINT
+  Sampler(JitteredSampler s) : impl_(s) {}         // NOLINT
+  Sampler(SobolSampler s) : impl_(s) {}            // NOLINT
 
   void start_pixel_sample(int x, int y, int index) {
     std::visit([&](auto& s) { s.start_pixel_sample(x, y, index); }, impl_);
   }
   float get_1d() {
-    if (auto* s = std::get_if<IndependentSampler>(&impl_)) return s->get_1d();
-    return std::get<StratifiedPixelSampler>(impl_).get_1d();
+    return std::visit([](auto& s) { return s.get_1d(); }, impl_);
   }
   Vec2f get_2d() {
-    if (auto* s = std::get_if<IndependentSampler>(&impl_)) return s->get_2d();
-    return std::get<StratifiedPixelSampler>(impl_).get_2d();
+    return std::visit([](auto& s) { return s.get_2d(); }, impl_);
   }
   Vec2f get_pixel_2d() {
-    if (auto* s = std::get_if<IndependentSampler>(&impl_)) return s->get_pixel_2d();
-    return std::get<StratifiedPixelSampler>(impl_).get_pixel_2d();
+    return std::visit([](auto& s) { return s.get_pixel_2d(); }, impl_);
   }
 
  private:
-  std::variant<IndependentSampler, StratifiedPixelSampler> impl_;
+  std::variant<IndependentSampler, StratifiedPixelSampler, JitteredSampler, SobolSampler> impl_;
 };
+
+// The samplers a user can choose for the path integrator (docs/samplers.md).
+enum class SamplerType {
+  Random,    // IndependentSampler
+  Jittered,  // JitteredSampler
+  Sobol,     // SobolSampler (Owen-scrambled, padded)
+};
+
+// "random", "jittered", "sobol".
+std::vector<std::string> sampler_type_names();
+const char* sampler_type_name(SamplerType type);
+std::optional<SamplerType> parse_sampler_type(const std::string& name);
+// The sampler of `type` for `spp` samples per pixel (jittered stratifies each
+// pass of spp samples) and `seed`.
+Sampler make_sampler(SamplerType type, int spp, uint64_t seed);
 
 }  // namespace pt
