@@ -58,6 +58,8 @@ struct BuildOptions {
   AccelKind accel = AccelKind::Embree;
   int width_override = 0;   // > 0 replaces the description's resolution
   int height_override = 0;
+  int max_resolution = 32768;       // per side, as LoadOptions
+  long long max_pixels = 1LL << 28;  // width * height, as LoadOptions
 };
 
 // Builds the render scene, or returns nullptr after reporting to `diag`

@@ -142,6 +142,19 @@ TEST_F(Cli, ResolutionOverride) {
   EXPECT_EQ(img.height, 48);  // keeps 32:24
 }
 
+TEST_F(Cli, OversizedResolutionOverrideIsRefusedBeforeAllocating) {
+  // Each side within the per-side limit, the product far beyond the pixel limit.
+  Result r = run("phong.json -o big.exr --width 32768 --height 32768");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("32768x32768 = 1073741824 pixels"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("bad_alloc"), std::string::npos) << r.err;
+  // One side given: the aspect ratio (32:24) makes the other exceed the per-side limit.
+  r = run("phong.json -o big.exr --height 32000");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("42667x32000"), std::string::npos) << r.err;
+  EXPECT_TRUE(outputs().empty());
+}
+
 TEST_F(Cli, SameImageForAnyThreadCount) {
   ASSERT_EQ(run("phong.json -o one.exr --threads 1 --spp 3").status, 0);
   ASSERT_EQ(run("phong.json -o two.exr --threads 2 --spp 3").status, 0);
