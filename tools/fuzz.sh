@@ -47,6 +47,9 @@ seed_files() {
   return 0
 }
 
+# The OBJ harness writes each input to a file (Assimp reads files): keep it in memory.
+[ -z "${TMPDIR:-}" ] && [ -w /dev/shm ] && export TMPDIR=/dev/shm
+
 found=0
 for h in "${harnesses[@]}"; do
   corpus="$build/fuzz-corpus/$h" seeds="$build/fuzz-seeds/$h" artifacts="$build/fuzz-artifacts/$h"
