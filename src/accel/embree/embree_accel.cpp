@@ -58,9 +58,28 @@ bool to_embree(const Ray& ray, RTCRay& out) {
   return true;
 }
 
+// Embree's own triangle geometry over the mesh's buffers (MeshTriangles::Native).
+RTCGeometry native_triangles(RTCDevice device, const TriangleMesh& m) {
+  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  if (geom == nullptr) return nullptr;
+  const std::size_t nv = m.positions.size();
+  if (m.positions.capacity() > nv) {  // Embree reads 16 bytes per vertex: the spare element covers the last
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.positions.data(), 0,
+                               sizeof(Vec3f), nv);
+  } else if (auto* dst = static_cast<Vec3f*>(
+                 rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(Vec3f), nv))) {
+    std::copy(m.positions.begin(), m.positions.end(), dst);
+  }
+  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.indices.data(), 0,
+                             3 * sizeof(uint32_t), m.triangle_count());
+  rtcSetGeometryMask(geom, kMask);
+  rtcCommitGeometry(geom);
+  return geom;
+}
+
 class EmbreeAccelerator final : public Accelerator {
  public:
-  EmbreeAccelerator() = default;
+  explicit EmbreeAccelerator(MeshTriangles meshes) : meshes_(meshes) {}
   ~EmbreeAccelerator() override {
     if (scene_ != nullptr) rtcReleaseScene(scene_);
   }
@@ -99,6 +118,7 @@ class EmbreeAccelerator final : public Accelerator {
   AccelStats stats() const override { return stats_; }
 
  private:
+  MeshTriangles meshes_;
   Device device_;  // destroyed after scene_ is released
   RTCScene scene_ = nullptr;
   Bounds3f bounds_;
@@ -133,6 +153,7 @@ bool EmbreeAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, D
         [&](const auto& shape) -> RTCGeometry {
           if constexpr (std::is_same_v<std::decay_t<decltype(shape)>, TriangleMesh>) {
             primitives += shape.triangle_count();
+            if (meshes_ == MeshTriangles::Native) return native_triangles(device, shape);
           } else {
             primitives += 1;
           }
@@ -156,7 +177,7 @@ bool EmbreeAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, D
   const auto stop = std::chrono::steady_clock::now();
   if (report_device_errors(device_, diag)) return false;
 
-  stats_.backend = device_.description();
+  stats_.backend = device_.description() + (meshes_ == MeshTriangles::Native ? " native triangles" : "");
   stats_.build_seconds = std::chrono::duration<double>(stop - start).count();
   stats_.memory_bytes = device_.bytes_in_use();
   stats_.primitive_count = primitives;
@@ -165,8 +186,9 @@ bool EmbreeAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, D
 
 }  // namespace
 
-std::unique_ptr<Accelerator> build(const SceneGeometry& geometry, WorkerPool& pool, Diagnostics& diag) {
-  auto accel = std::make_unique<EmbreeAccelerator>();
+std::unique_ptr<Accelerator> build(const SceneGeometry& geometry, WorkerPool& pool, Diagnostics& diag,
+                                   MeshTriangles meshes) {
+  auto accel = std::make_unique<EmbreeAccelerator>(meshes);
   if (!accel->build(geometry, pool, diag)) return nullptr;
   return accel;
 }

@@ -7,6 +7,17 @@
 
 namespace pt::embree {
 
-std::unique_ptr<Accelerator> build(const SceneGeometry& geometry, WorkerPool& pool, Diagnostics& diag);
+// How triangle meshes reach Embree.
+enum class MeshTriangles {
+  // User geometry, one primitive per triangle, calling our watertight routine
+  // (the renderer's --accel=embree; docs/geometry.md says why).
+  Watertight,
+  // Embree's own triangle geometry and intersector (RTC_GEOMETRY_TYPE_TRIANGLE):
+  // faster, but not watertight at vertices. The accelerator benchmark's yardstick.
+  Native,
+};
+
+std::unique_ptr<Accelerator> build(const SceneGeometry& geometry, WorkerPool& pool, Diagnostics& diag,
+                                   MeshTriangles meshes = MeshTriangles::Watertight);
 
 }  // namespace pt::embree
