@@ -64,13 +64,7 @@ void read_camera(ImportContext& ctx, const JsonValue& v) {
 void read_light(ImportContext& ctx, const JsonValue& v, std::size_t index) {
   if (!expect_object(ctx.read, v, "lightsources[" + std::to_string(index) + "]")) return;
   ObjectReader r(ctx.read, v, "light source");
-  const std::string type = read_legacy_type(r);
-  if (type.empty()) return;
-  if (type != "pointlight") {
-    warn_unsupported_type(r, "light", type, {"pointlight"});
-    return;
-  }
-  r.set_what("point light");
+  if (!accept_point_light(r)) return;
   PointLightDesc light;
   light.where = r.where();
   r.read_required("position", light.position);

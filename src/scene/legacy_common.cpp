@@ -32,6 +32,17 @@ void warn_unsupported_type(ObjectReader& r, std::string_view kind, const std::st
   r.context().diag.warning(v ? r.context().at(*v) : r.where(), std::move(message));
 }
 
+bool accept_point_light(ObjectReader& r) {
+  const std::string type = read_legacy_type(r);
+  if (type.empty()) return false;
+  if (type != "pointlight") {
+    warn_unsupported_type(r, "light", type, {"pointlight"});
+    return false;
+  }
+  r.set_what("point light");
+  return true;
+}
+
 void read_legacy_scene(ImportContext& ctx, const JsonValue& v, LegacyItemReader read_light,
                        LegacyItemReader read_shape) {
   if (!expect_object(ctx.read, v, "scene")) return;

@@ -20,6 +20,11 @@ std::string read_legacy_type(ObjectReader& r);
 void warn_unsupported_type(ObjectReader& r, std::string_view kind, const std::string& type,
                            std::initializer_list<std::string_view> supported);
 
+// Checks a light source's "type": true for "pointlight" (the only light both
+// course families define; the reader then names it "point light"); otherwise
+// reports it (an error if missing, a warning if unknown) and returns false.
+bool accept_point_light(ObjectReader& r);
+
 // Reads an item of a legacy list (a light or a shape) at `index`.
 using LegacyItemReader = void (*)(ImportContext& ctx, const JsonValue& v, std::size_t index);
 // Reads a legacy material object; returns its index in the scene, or -1 after an error.
