@@ -64,8 +64,16 @@ bool write_ppm(const std::string& path, const Image& image, const DisplayEncoder
 
 // Writes through OpenImageIO with an explicit format name (the temporary file's
 // name does not end in the real extension).
+void add_metadata(OIIO::ImageSpec& spec, const ImageMetadata& metadata, bool typed) {
+  for (const auto& [name, value] : metadata.strings) spec.attribute(name, value);
+  if (!typed) return;
+  for (const auto& [name, value] : metadata.ints) spec.attribute(name, value);
+  for (const auto& [name, value] : metadata.floats) spec.attribute(name, value);
+  for (const auto& [name, value] : metadata.matrices) spec.attribute(name, OIIO::TypeMatrix44, value.data());
+}
+
 bool write_oiio(const std::string& path, const char* format, const Image& image, const DisplaySettings& settings,
-                const DisplayEncoder* display, std::string& error) {
+                const DisplayEncoder* display, const ImageMetadata& metadata, std::string& error) {
   auto out = OIIO::ImageOutput::create(format);
   if (!out) {
     error = OIIO::geterror();
@@ -82,6 +90,7 @@ bool write_oiio(const std::string& path, const char* format, const Image& image,
     spec.attribute("ImageDescription", "display: " + display->description());
     if (std::strcmp(format, "jpeg") == 0) spec.attribute("Compression", "jpeg:95");
   }
+  add_metadata(spec, metadata, is_float);
   if (!out->open(path, spec)) {
     error = out->geterror();
     return false;
@@ -107,7 +116,8 @@ std::vector<std::string> supported_image_extensions() { return {".exr", ".png", 
 
 bool is_supported_image_path(const std::string& path) { return file_kind(path) != FileKind::Unsupported; }
 
-bool write_image(const std::string& path, const Image& image, const DisplaySettings& settings, std::string& error) {
+bool write_image(const std::string& path, const Image& image, const DisplaySettings& settings, std::string& error,
+                 const ImageMetadata& metadata) {
   const FileKind kind = file_kind(path);
   if (kind == FileKind::Unsupported) {
     error = "cannot write '" + path + "': unsupported image extension '" + lower_extension(path) +
@@ -135,9 +145,9 @@ bool write_image(const std::string& path, const Image& image, const DisplaySetti
       path,
       [&](const std::string& tmp, std::string& why) {
         switch (kind) {
-          case FileKind::Exr: return write_oiio(tmp, "openexr", image, settings, nullptr, why);
-          case FileKind::Png: return write_oiio(tmp, "png", image, settings, display.get(), why);
-          case FileKind::Jpeg: return write_oiio(tmp, "jpeg", image, settings, display.get(), why);
+          case FileKind::Exr: return write_oiio(tmp, "openexr", image, settings, nullptr, metadata, why);
+          case FileKind::Png: return write_oiio(tmp, "png", image, settings, display.get(), metadata, why);
+          case FileKind::Jpeg: return write_oiio(tmp, "jpeg", image, settings, display.get(), metadata, why);
           case FileKind::Ppm: return write_ppm(tmp, image, *display, why);
           case FileKind::Unsupported: break;
         }

@@ -11,6 +11,7 @@
 
 #include "core/image.h"
 #include "io/display.h"
+#include "io/image_metadata.h"
 #include "scene/scene_description.h"
 
 namespace pt {
@@ -20,8 +21,10 @@ std::vector<std::string> supported_image_extensions();
 bool is_supported_image_path(const std::string& path);
 
 // Returns false and fills `error` on failure (nothing is left at `path` then).
+// `metadata` goes into the header (all of it in EXR; strings only in PNG/JPEG;
+// nothing in PPM).
 bool write_image(const std::string& path, const Image& image, const DisplaySettings& settings,
-                 std::string& error);
+                 std::string& error, const ImageMetadata& metadata = {});
 
 // Reads an image (any format OpenImageIO reads) as float RGB: float files (EXR)
 // as they are; integer files (PNG, PPM) as code / max code, i.e. the display

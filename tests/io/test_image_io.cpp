@@ -158,6 +158,35 @@ TEST_F(ImageFiles, ExrRoundTripIsExactFloat) {
   EXPECT_NE(in->spec().get_string_attribute("Software").find("pathtracer"), std::string::npos);
 }
 
+TEST_F(ImageFiles, ExrCarriesTypedMetadataPngItsStrings) {
+  ImageMetadata meta;
+  meta.set("pathtracer:integrator", "path");
+  meta.set("pathtracer:spp", 64);
+  meta.set("pathtracer:renderSeconds", 1.5f);
+  ImageMetadata::Matrix m{};
+  for (int i = 0; i < 16; ++i) m[static_cast<std::size_t>(i)] = static_cast<float>(i) - 3.5f;
+  meta.set("worldToCamera", m);
+  std::string error;
+  ASSERT_TRUE(write_image(path("m.exr"), test_image(), display(DisplayTransform::Srgb), error, meta)) << error;
+  ASSERT_TRUE(write_image(path("m.png"), test_image(), display(DisplayTransform::Srgb), error, meta)) << error;
+
+  auto exr = OIIO::ImageInput::open(path("m.exr"));
+  ASSERT_TRUE(exr);
+  const OIIO::ImageSpec& spec = exr->spec();
+  EXPECT_EQ(spec.get_string_attribute("pathtracer:integrator"), "path");
+  EXPECT_EQ(spec.get_int_attribute("pathtracer:spp"), 64);
+  EXPECT_EQ(spec.get_float_attribute("pathtracer:renderSeconds"), 1.5f);
+  const OIIO::ParamValue* p = spec.find_attribute("worldToCamera");
+  ASSERT_NE(p, nullptr);
+  ASSERT_EQ(p->type(), OIIO::TypeMatrix44);
+  const float* back = static_cast<const float*>(p->data());
+  for (int i = 0; i < 16; ++i) EXPECT_EQ(back[i], m[static_cast<std::size_t>(i)]) << i;
+
+  auto png = OIIO::ImageInput::open(path("m.png"));
+  ASSERT_TRUE(png);
+  EXPECT_EQ(png->spec().get_string_attribute("pathtracer:integrator"), "path");
+}
+
 TEST_F(ImageFiles, ExtensionIsCaseInsensitive) {
   EXPECT_TRUE(is_supported_image_path("x/y/OUT.PNG"));
   EXPECT_TRUE(is_supported_image_path("a.Exr"));

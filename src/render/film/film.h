@@ -11,6 +11,8 @@
 #pragma once
 
 #include <cstdint>
+#include <iosfwd>
+#include <string>
 #include <vector>
 
 #include "core/color.h"
@@ -58,6 +60,15 @@ class Film {
   // The image: every pixel's sum / weight.
   Image image() const;
   void clear();
+
+  // The film's complete state (every pixel's sums and counts), for checkpoints:
+  // written and read back bit for bit, so that a render resumed from it adds up
+  // to exactly the image of an uninterrupted one. Binary, little-endian; the
+  // layout is in film.cpp. write_state returns false when the stream fails.
+  bool write_state(std::ostream& out) const;
+  // Replaces this film's state. Returns false, with `error` set and the film
+  // unchanged, when the stream does not hold a state of a film of this size.
+  bool read_state(std::istream& in, std::string& error);
 
  private:
   std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + x; }

@@ -24,6 +24,20 @@ enum class LightStrategy {
   BsdfOnly,   // BSDF sampling only (next-event estimation for delta lights only)
 };
 
+// Watches a render from outside: the command line's progress display, its
+// signal handling and time budget. Called from worker threads, so
+// implementations must be thread-safe.
+class RenderMonitor {
+ public:
+  virtual ~RenderMonitor() = default;
+  // Polled before each tile: true skips the tiles not yet started. The film
+  // then holds fewer samples in some pixels; each pixel's value is still the
+  // mean of its own samples (PixelSum counts them).
+  virtual bool cancelled() const { return false; }
+  // After each finished tile, with the number of pixel samples it rendered.
+  virtual void tile_done(int64_t pixel_samples) { (void)pixel_samples; }
+};
+
 struct IntegratorSettings {
   int max_depth = 5;    // recursion limit (path: the number of bounces)
   int spp = 1;          // samples per pixel
@@ -36,6 +50,7 @@ struct IntegratorSettings {
   float clamp = 0.0f;   // path: largest channel of one sample's radiance; 0 = no clamp
   LightStrategy light_strategy = LightStrategy::Mis;
   SamplerType sampler = SamplerType::Random;  // path: where its random numbers come from (docs/samplers.md)
+  RenderMonitor* monitor = nullptr;  // optional; not owned; the image does not depend on it unless it cancels
 };
 
 class Integrator {

@@ -32,6 +32,7 @@ void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, cons
   const int tiles_x = (width + tile - 1) / tile;
   const int tiles_y = (height + tile - 1) / tile;
   const bool lens = scene.camera.has_lens();
+  RenderMonitor* const monitor = settings.monitor;
 
   auto render_pixel = [&](Sampler& sampler, int x, int y) {
     const Vec2f corner(static_cast<float>(x), static_cast<float>(y));
@@ -52,9 +53,12 @@ void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, cons
       Sampler sampler = prototype;
       for (int ty = r.rows().begin(); ty != r.rows().end(); ++ty) {
         for (int tx = r.cols().begin(); tx != r.cols().end(); ++tx) {
+          if (monitor != nullptr && monitor->cancelled()) return;
           const int x1 = std::min(width, (tx + 1) * tile), y1 = std::min(height, (ty + 1) * tile);
           for (int y = ty * tile; y < y1; ++y)
             for (int x = tx * tile; x < x1; ++x) render_pixel(sampler, x, y);
+          if (monitor != nullptr)
+            monitor->tile_done(static_cast<int64_t>(x1 - tx * tile) * (y1 - ty * tile) * (end - first));
         }
       }
     });

@@ -1,0 +1,119 @@
+// Film state round trips (checkpoints) and the render monitor's hooks.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <sstream>
+
+#include "core/parallel.h"
+#include "render/film/film.h"
+#include "render/integrators/integrator.h"
+#include "test_scenes.h"
+
+namespace pt {
+namespace {
+
+Film filled_film(int w, int h) {
+  Film film(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      PixelSum s;
+      s.add(RGB(0.1f * x, 1.0f / 3.0f + y, 1e-30f * (x + 1)), 0.75f);
+      s.add(RGB(7.0f, 0.0f, 2.5f), 0.25f);
+      film.add(x, y, s);
+    }
+  return film;
+}
+
+TEST(FilmState, RoundTripIsBitExact) {
+  const Film film = filled_film(5, 3);
+  std::stringstream buffer;
+  ASSERT_TRUE(film.write_state(buffer));
+  Film back(5, 3);
+  std::string error;
+  ASSERT_TRUE(back.read_state(buffer, error)) << error;
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 5; ++x) {
+      const PixelSum &a = film.sum(x, y), &b = back.sum(x, y);
+      EXPECT_EQ(a.r, b.r);
+      EXPECT_EQ(a.g, b.g);
+      EXPECT_EQ(a.b, b.b);
+      EXPECT_EQ(a.weight, b.weight);
+      EXPECT_EQ(a.samples, b.samples);
+    }
+}
+
+TEST(FilmState, RejectsWrongSizeTruncationAndGarbage) {
+  const Film film = filled_film(4, 4);
+  std::stringstream buffer;
+  ASSERT_TRUE(film.write_state(buffer));
+  const std::string state = buffer.str();
+  std::string error;
+
+  Film other(4, 5);
+  std::istringstream wrong_size(state);
+  EXPECT_FALSE(other.read_state(wrong_size, error));
+  EXPECT_NE(error.find("4x4"), std::string::npos) << error;
+
+  Film target = filled_film(4, 4);
+  const double before = target.sum(1, 1).r;
+  std::istringstream truncated(state.substr(0, state.size() - 3));
+  EXPECT_FALSE(target.read_state(truncated, error));
+  EXPECT_NE(error.find("truncated"), std::string::npos) << error;
+  EXPECT_EQ(target.sum(1, 1).r, before);  // unchanged
+
+  std::istringstream garbage(std::string(200, 'x'));
+  EXPECT_FALSE(target.read_state(garbage, error));
+  EXPECT_NE(error.find("magic"), std::string::npos) << error;
+
+  std::istringstream trailing(state + "z");
+  EXPECT_FALSE(target.read_state(trailing, error));
+  EXPECT_NE(error.find("trailing"), std::string::npos) << error;
+}
+
+class CountingMonitor final : public RenderMonitor {
+ public:
+  explicit CountingMonitor(int64_t cancel_after) : cancel_after_(cancel_after) {}
+  bool cancelled() const override { return done_.load() >= cancel_after_; }
+  void tile_done(int64_t pixel_samples) override { done_ += pixel_samples; }
+  int64_t done() const { return done_.load(); }
+
+ private:
+  int64_t cancel_after_;
+  std::atomic<int64_t> done_{0};
+};
+
+TEST(RenderMonitor, CountsEveryPixelSampleAndCancelsBetweenTiles) {
+  WorkerPool pool(2);
+  SceneDescription d = test::empty_scene(40, 30, Vec3f(0, 0, 5), Vec3f(0, 0, 0), Vec3f(0, 1, 0));
+  test::add_sphere(d, Vec3f(0, 0, 0), 1.0f, test::add_material(d, test::diffuse_material(RGB(0.5f))));
+  test::add_point_light(d, Vec3f(2, 2, 4), RGB(10.0f), RGB(10.0f));
+  const auto scene = test::build(d, pool);
+  ASSERT_TRUE(scene);
+  IntegratorSettings settings;
+  settings.spp = 3;
+  settings.tile_size = 8;
+  std::string error;
+
+  CountingMonitor all(INT64_MAX);
+  settings.monitor = &all;
+  Film full(40, 30);
+  make_integrator("path", settings, error)->render(*scene, full, pool);
+  EXPECT_EQ(all.done(), 40 * 30 * 3);
+
+  CountingMonitor early(1);  // cancels once the first tile is done
+  settings.monitor = &early;
+  Film partial(40, 30);
+  make_integrator("path", settings, error)->render(*scene, partial, pool);
+  uint64_t samples = 0;
+  for (int y = 0; y < 30; ++y)
+    for (int x = 0; x < 40; ++x) {
+      samples += partial.sum(x, y).samples;
+      EXPECT_TRUE(partial.sum(x, y).samples == 0 || partial.sum(x, y).samples == 3);
+    }
+  EXPECT_EQ(static_cast<int64_t>(samples), early.done());
+  EXPECT_GT(samples, 0u);
+  EXPECT_LT(samples, 40u * 30u * 3u);  // the remaining tiles were skipped
+}
+
+}  // namespace
+}  // namespace pt
