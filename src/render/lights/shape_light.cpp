@@ -106,8 +106,11 @@ bool ShapeLight::sample_sphere_cone(const Sphere& s, Vec3f p, Vec2f u, LightSamp
   const Vec3f local = sample_uniform_cone(u, one_minus_cos_max);
   // The point where the direction meets the sphere: the angle alpha at the
   // centre between -axis and the point follows from the law of sines.
+  // sin^2(theta) from the sample's own components: 1 - cos^2 would cancel
+  // catastrophically for a small, distant sphere (theta ~ 1e-3), turning the
+  // point and its normal around and losing the sample's emission.
   const float cos_theta = local.z;
-  const float sin2_theta = std::max(0.0f, 1.0f - cos_theta * cos_theta);
+  const float sin2_theta = std::min(sin2_max, local.x * local.x + local.y * local.y);
   const float sin_max = std::sqrt(sin2_max);
   const float cos_alpha = sin2_theta / sin_max +
                           cos_theta * std::sqrt(std::max(0.0f, 1.0f - sin2_theta / sin2_max));
