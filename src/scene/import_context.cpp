@@ -14,12 +14,17 @@ namespace pt {
 
 std::string describe_search(const std::string& scene_path, const std::string& written) {
   const fs::path w(written);
-  if (w.is_absolute()) return "the path is absolute and no file exists there";
   std::error_code ec;
+  if (w.is_absolute())
+    return fs::is_directory(w, ec) ? "the path is a directory, not a file"
+                                   : "the path is absolute and no file exists there";
   fs::path dir = fs::path(scene_path).parent_path();
   if (dir.empty()) dir = ".";
   const fs::path in_scene = fs::absolute(dir, ec) / w;
   const fs::path in_cwd = fs::current_path(ec) / w;
+  for (const fs::path& candidate : {in_scene, in_cwd})
+    if (fs::is_directory(candidate, ec))
+      return "'" + candidate.lexically_normal().string() + "' is a directory, not a file";
   return "looked in the scene's directory ('" + in_scene.lexically_normal().string() +
          "') and the working directory ('" + in_cwd.lexically_normal().string() + "')";
 }

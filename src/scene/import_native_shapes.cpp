@@ -143,9 +143,12 @@ void read_native_shape(ImportContext& ctx, const JsonValue& v, std::size_t index
     default: shape.geometry = read_mesh(ctx, r); break;
   }
   r.finish();
-  if (!r.ok() || material == -2) return;
+  if (!r.ok()) return;
+  // An unknown material is already an error; the shape is kept (with the
+  // default material) so that validation still reports its other problems
+  // in the same run.
   ctx.scene.shapes.push_back(std::move(shape));
-  shape_material.push_back(material);
+  shape_material.push_back(material == -2 ? -1 : material);
 }
 
 }  // namespace pt
