@@ -16,6 +16,57 @@ Vec2f sample_uniform_disk_concentric(Vec2f u) {
   return {b * std::cos(phi), b * std::sin(phi)};
 }
 
+bool make_spherical_rectangle(Vec3f p, Vec3f c, Vec3f ex, Vec3f ey, SphericalRectangle& r) {
+  const float lx = length(ex), ly = length(ey);
+  if (!(lx > 0.0f) || !(ly > 0.0f)) return false;
+  r.o = p;
+  r.x = ex / lx;
+  r.y = ey / ly;
+  r.z = cross(r.x, r.y);
+  const Vec3f d = c - p;
+  r.x0 = dot(d, r.x);
+  r.y0 = dot(d, r.y);
+  r.z0 = dot(d, r.z);
+  if (r.z0 > 0.0f) {  // face the frame towards p
+    r.z0 = -r.z0;
+    r.z = -r.z;
+  }
+  if (!(r.z0 < 0.0f)) return false;
+  r.x1 = r.x0 + lx;
+  r.y1 = r.y0 + ly;
+  // The normals of the planes through p and each edge, and the rectangle's
+  // internal angles on the sphere between consecutive ones.
+  const float z0 = r.z0, z2 = z0 * z0;
+  const Vec3f n0 = Vec3f(0.0f, z0, -r.y0) / std::sqrt(z2 + r.y0 * r.y0);
+  const Vec3f n1 = Vec3f(-z0, 0.0f, r.x1) / std::sqrt(z2 + r.x1 * r.x1);
+  const Vec3f n2 = Vec3f(0.0f, -z0, r.y1) / std::sqrt(z2 + r.y1 * r.y1);
+  const Vec3f n3 = Vec3f(z0, 0.0f, -r.x0) / std::sqrt(z2 + r.x0 * r.x0);
+  auto angle = [](Vec3f a, Vec3f b) { return std::acos(std::clamp(-dot(a, b), -1.0f, 1.0f)); };
+  const float g0 = angle(n0, n1), g1 = angle(n1, n2), g2 = angle(n2, n3), g3 = angle(n3, n0);
+  r.b0 = n0.z;
+  r.b1 = n2.z;
+  r.k = 2.0f * kPi - g2 - g3;
+  r.solid_angle = g0 + g1 - r.k;
+  return r.solid_angle > 0.0f && std::isfinite(r.solid_angle);
+}
+
+Vec3f sample_spherical_rectangle(const SphericalRectangle& r, Vec2f u) {
+  // x: the spherical area swept from the edge at x0 is u.x times the whole.
+  const float au = u.x * r.solid_angle + r.k;
+  const float fu = (std::cos(au) * r.b0 - r.b1) / std::sin(au);
+  float cu = std::copysign(1.0f, fu) / std::sqrt(fu * fu + r.b0 * r.b0);
+  cu = std::clamp(cu, -1.0f, 1.0f);
+  float xu = -(cu * r.z0) / std::sqrt(std::max(0.0f, 1.0f - cu * cu));
+  xu = std::clamp(xu, r.x0, r.x1);
+  // y: uniform in the height of the projection onto the unit sphere along x = xu.
+  const float dd = std::sqrt(xu * xu + r.z0 * r.z0);
+  const float h0 = r.y0 / std::sqrt(dd * dd + r.y0 * r.y0);
+  const float h1 = r.y1 / std::sqrt(dd * dd + r.y1 * r.y1);
+  const float hv = h0 + u.y * (h1 - h0), hv2 = hv * hv;
+  const float yv = hv2 < 1.0f - 1e-6f ? std::clamp(hv * dd / std::sqrt(1.0f - hv2), r.y0, r.y1) : r.y1;
+  return r.o + r.x * xu + r.y * yv + r.z * r.z0;
+}
+
 Vec3f sample_uniform_hemisphere(Vec2f u) {
   const float z = u.x;
   const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
