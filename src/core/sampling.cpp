@@ -5,15 +5,31 @@
 
 namespace pt {
 
+namespace {
+
+// cos and sin of t in [-pi/4, pi/4] by their Taylor polynomials to degree 10
+// and 9: the truncation error is below 2e-9, under half a float ulp of the
+// results, at a fraction of the cost of a general sincos (the concentric map's
+// angles never leave this range).
+Vec2f cos_sin_quarter(float t) {
+  const float t2 = t * t;
+  const float c = 1.0f + t2 * (-1.0f / 2 + t2 * (1.0f / 24 + t2 * (-1.0f / 720 + t2 * (1.0f / 40320 + t2 * (-1.0f / 3628800)))));
+  const float s = t * (1.0f + t2 * (-1.0f / 6 + t2 * (1.0f / 120 + t2 * (-1.0f / 5040 + t2 * (1.0f / 362880)))));
+  return {c, s};
+}
+
+}  // namespace
+
 Vec2f sample_uniform_disk_concentric(Vec2f u) {
   const float a = 2.0f * u.x - 1.0f, b = 2.0f * u.y - 1.0f;
   if (a == 0.0f && b == 0.0f) return {0, 0};
   if (std::fabs(a) > std::fabs(b)) {
-    const float phi = 0.25f * kPi * (b / a);
-    return {a * std::cos(phi), a * std::sin(phi)};
+    const Vec2f cs = cos_sin_quarter(0.25f * kPi * (b / a));  // phi = pi/4 b/a
+    return {a * cs.x, a * cs.y};
   }
-  const float phi = 0.5f * kPi - 0.25f * kPi * (a / b);
-  return {b * std::cos(phi), b * std::sin(phi)};
+  // phi = pi/2 - t with t = pi/4 a/b: cos phi = sin t, sin phi = cos t.
+  const Vec2f cs = cos_sin_quarter(0.25f * kPi * (a / b));
+  return {b * cs.y, b * cs.x};
 }
 
 bool make_spherical_rectangle(Vec3f p, Vec3f c, Vec3f ex, Vec3f ey, SphericalRectangle& r) {
