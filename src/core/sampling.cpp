@@ -5,15 +5,82 @@
 
 namespace pt {
 
+namespace {
+
+// cos and sin of t in [-pi/4, pi/4] by their Taylor polynomials to degree 10
+// and 9: the truncation error is below 2e-9, under half a float ulp of the
+// results, at a fraction of the cost of a general sincos (the concentric map's
+// angles never leave this range).
+Vec2f cos_sin_quarter(float t) {
+  const float t2 = t * t;
+  const float c = 1.0f + t2 * (-1.0f / 2 + t2 * (1.0f / 24 + t2 * (-1.0f / 720 + t2 * (1.0f / 40320 + t2 * (-1.0f / 3628800)))));
+  const float s = t * (1.0f + t2 * (-1.0f / 6 + t2 * (1.0f / 120 + t2 * (-1.0f / 5040 + t2 * (1.0f / 362880)))));
+  return {c, s};
+}
+
+}  // namespace
+
 Vec2f sample_uniform_disk_concentric(Vec2f u) {
   const float a = 2.0f * u.x - 1.0f, b = 2.0f * u.y - 1.0f;
   if (a == 0.0f && b == 0.0f) return {0, 0};
   if (std::fabs(a) > std::fabs(b)) {
-    const float phi = 0.25f * kPi * (b / a);
-    return {a * std::cos(phi), a * std::sin(phi)};
+    const Vec2f cs = cos_sin_quarter(0.25f * kPi * (b / a));  // phi = pi/4 b/a
+    return {a * cs.x, a * cs.y};
   }
-  const float phi = 0.5f * kPi - 0.25f * kPi * (a / b);
-  return {b * std::cos(phi), b * std::sin(phi)};
+  // phi = pi/2 - t with t = pi/4 a/b: cos phi = sin t, sin phi = cos t.
+  const Vec2f cs = cos_sin_quarter(0.25f * kPi * (a / b));
+  return {b * cs.y, b * cs.x};
+}
+
+bool make_spherical_rectangle(Vec3f p, Vec3f c, Vec3f ex, Vec3f ey, SphericalRectangle& r) {
+  const float lx = length(ex), ly = length(ey);
+  if (!(lx > 0.0f) || !(ly > 0.0f)) return false;
+  r.o = p;
+  r.x = ex / lx;
+  r.y = ey / ly;
+  r.z = cross(r.x, r.y);
+  const Vec3f d = c - p;
+  r.x0 = dot(d, r.x);
+  r.y0 = dot(d, r.y);
+  r.z0 = dot(d, r.z);
+  if (r.z0 > 0.0f) {  // face the frame towards p
+    r.z0 = -r.z0;
+    r.z = -r.z;
+  }
+  if (!(r.z0 < 0.0f)) return false;
+  r.x1 = r.x0 + lx;
+  r.y1 = r.y0 + ly;
+  // The normals of the planes through p and each edge, and the rectangle's
+  // internal angles on the sphere between consecutive ones.
+  const float z0 = r.z0, z2 = z0 * z0;
+  const Vec3f n0 = Vec3f(0.0f, z0, -r.y0) / std::sqrt(z2 + r.y0 * r.y0);
+  const Vec3f n1 = Vec3f(-z0, 0.0f, r.x1) / std::sqrt(z2 + r.x1 * r.x1);
+  const Vec3f n2 = Vec3f(0.0f, -z0, r.y1) / std::sqrt(z2 + r.y1 * r.y1);
+  const Vec3f n3 = Vec3f(z0, 0.0f, -r.x0) / std::sqrt(z2 + r.x0 * r.x0);
+  auto angle = [](Vec3f a, Vec3f b) { return std::acos(std::clamp(-dot(a, b), -1.0f, 1.0f)); };
+  const float g0 = angle(n0, n1), g1 = angle(n1, n2), g2 = angle(n2, n3), g3 = angle(n3, n0);
+  r.b0 = n0.z;
+  r.b1 = n2.z;
+  r.k = 2.0f * kPi - g2 - g3;
+  r.solid_angle = g0 + g1 - r.k;
+  return r.solid_angle > 0.0f && std::isfinite(r.solid_angle);
+}
+
+Vec3f sample_spherical_rectangle(const SphericalRectangle& r, Vec2f u) {
+  // x: the spherical area swept from the edge at x0 is u.x times the whole.
+  const float au = u.x * r.solid_angle + r.k;
+  const float fu = (std::cos(au) * r.b0 - r.b1) / std::sin(au);
+  float cu = std::copysign(1.0f, fu) / std::sqrt(fu * fu + r.b0 * r.b0);
+  cu = std::clamp(cu, -1.0f, 1.0f);
+  float xu = -(cu * r.z0) / std::sqrt(std::max(0.0f, 1.0f - cu * cu));
+  xu = std::clamp(xu, r.x0, r.x1);
+  // y: uniform in the height of the projection onto the unit sphere along x = xu.
+  const float dd = std::sqrt(xu * xu + r.z0 * r.z0);
+  const float h0 = r.y0 / std::sqrt(dd * dd + r.y0 * r.y0);
+  const float h1 = r.y1 / std::sqrt(dd * dd + r.y1 * r.y1);
+  const float hv = h0 + u.y * (h1 - h0), hv2 = hv * hv;
+  const float yv = hv2 < 1.0f - 1e-6f ? std::clamp(hv * dd / std::sqrt(1.0f - hv2), r.y0, r.y1) : r.y1;
+  return r.o + r.x * xu + r.y * yv + r.z * r.z0;
 }
 
 Vec3f sample_uniform_hemisphere(Vec2f u) {

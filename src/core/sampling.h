@@ -64,6 +64,22 @@ inline float uniform_cone_pdf(float one_minus_cos_max) { return 1.0f / (2.0f * k
 // The density is 1 / area of the triangle.
 Vec3f sample_uniform_triangle(Vec2f u);
 
+// A rectangle as seen from a point p, ready to be sampled uniformly by solid
+// angle (Urena, Fajardo, King 2013, "An Area-Preserving Parametrization for
+// Spherical Rectangles"): corner c, perpendicular edges ex and ey. In the
+// rectangle's frame (x, y along the edges, z towards p's side so that the
+// plane is at z0 < 0) it spans [x0, x1] x [y0, y1].
+struct SphericalRectangle {
+  Vec3f o, x, y, z;             // p and the frame
+  float x0 = 0, x1 = 0, y0 = 0, y1 = 0, z0 = 0;
+  float b0 = 0, b1 = 0, k = 0;  // the parametrization's constants
+  float solid_angle = 0;        // the density of a sample is 1 / solid_angle
+};
+// False when p lies in the rectangle's plane (it subtends no solid angle).
+bool make_spherical_rectangle(Vec3f p, Vec3f c, Vec3f ex, Vec3f ey, SphericalRectangle& out);
+// The point of the rectangle whose direction from p is sample u.
+Vec3f sample_spherical_rectangle(const SphericalRectangle& r, Vec2f u);
+
 // Veach's power heuristic (beta = 2) for one sample of each of two strategies:
 // the weight of a sample of strategy f when g could have produced it too.
 inline float power_heuristic(float f_pdf, float g_pdf) {

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "accel/accelerator.h"
 #include "core/image.h"
@@ -22,15 +23,16 @@ struct LoadedScene {
   SceneDescription desc;
   std::unique_ptr<RenderScene> scene;
   double load_seconds = 0, build_seconds = 0;
+  SamplerType sampler = IntegratorSettings{}.sampler;  // the path integrator's sampler (--sampler)
 };
 
 // Loads and builds `path` on backend `accel` inside `pool`; nullopt after
 // printing the diagnostics to stderr.
 std::optional<LoadedScene> load(const std::string& path, AccelKind accel, WorkerPool& pool);
 
-// The scene's own integrator settings (max depth, filter, clamp), with `spp`
-// samples starting at `first_sample`.
-IntegratorSettings settings_for(const SceneDescription& desc, int spp, int first_sample, uint64_t seed);
+// The scene's own integrator settings (max depth, filter, clamp) and the
+// chosen sampler, with `spp` samples starting at `first_sample`.
+IntegratorSettings settings_for(const LoadedScene& s, int spp, int first_sample, uint64_t seed);
 
 // Error metrics over all pixels and the three channels, linear values.
 struct ImageError {
@@ -39,6 +41,27 @@ struct ImageError {
   double mean_ratio[3] = {0, 0, 0};  // per channel: mean(x) / mean(r)
 };
 ImageError compare(const Image& image, const Image& reference);
+
+// Where the squared error comes from: the pixels are put in regions by the
+// reference alone (docs/path-tracing.md, "Where the error is"):
+//  - "light interior": the emitter itself (a reference channel above
+//    kLightLevel, here and in the 8 neighbours);
+//  - "light edge": the rest of the pixels within 2 pixels of a light pixel
+//    (those the light's edge crosses, and their neighbours);
+//  - "edge": elsewhere, a 4-neighbour differs by more than 25% of the
+//    brighter one's luminance (object silhouettes, wall corners, shadow edges);
+//  - "smooth": the rest.
+// For each: its share of the pixels, its share of the image's squared error,
+// and its own RMSE.
+struct RegionError {
+  const char* name = "";
+  double pixel_share = 0, error_share = 0, rmse = 0;
+};
+inline constexpr double kLightLevel = 2.0;
+std::vector<RegionError> error_breakdown(const Image& image, const Image& reference);
+// The per-pixel squared error, mean over the channels, in every channel (an
+// image to look at, e.g. with a logarithmic colour scale).
+Image error_map(const Image& image, const Image& reference);
 
 using Clock = std::chrono::steady_clock;
 inline double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }

@@ -3,14 +3,18 @@
 //   bench_render time-to-error SCENE --reference EXR [--accel A] [--threads N] [--pass-spp K]
 //                [--rmse X] [--relmse Y] [--max-seconds S] [--runs R] [--json FILE]
 //   bench_render compare SCENE --reference EXR [--accel A ...] [--threads N] [--spp K] [--pass-spp P]
-//                [--output EXR] [--json FILE]
+//                [--seed S] [--output EXR] [--error-map EXR] [--json FILE]
 //   bench_render throughput SCENE [--accel A ...] [--threads N] [--spp K] [--runs R] [--json FILE]
 //   bench_render profile SCENE [--accel A ...] [--threads N] [--spp K] [--json FILE]
+//
+// Every subcommand takes --sampler random|jittered|sobol (default: the path
+// integrator's default) and records it in its JSON.
 //
 // tools/bench_render/run_benchmarks.py runs the set documented in
 // docs/performance.md and writes docs/bench/cornell.* and docs/bench/render.*.
 #include <algorithm>
 #include <fstream>
+#include <optional>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -33,7 +37,15 @@ struct Common {
   int threads = 2;
   int runs = 3;
   std::string json;
+  std::string sampler = sampler_type_name(IntegratorSettings{}.sampler);
 };
+
+// Loads the scene with the sampler of `c`; nullopt after printing why.
+std::optional<LoadedScene> load_for(const Common& c, AccelKind accel, WorkerPool& pool) {
+  auto s = load(c.scene, accel, pool);
+  if (s) s->sampler = parse_sampler_type(c.sampler).value_or(s->sampler);
+  return s;
+}
 
 double median(std::vector<double> v) {
   if (v.empty()) return -1;
@@ -59,6 +71,7 @@ ordered_json scene_json(const LoadedScene& s, AccelKind accel) {
           {"max_depth", s.desc.render.max_depth.value},
           {"accel", accel_kind_name(accel)},
           {"backend", stats.backend},
+          {"sampler", sampler_type_name(s.sampler)},
           {"primitives", stats.primitive_count},
           {"load_seconds", s.load_seconds},
           {"build_seconds", s.build_seconds}};
@@ -77,7 +90,7 @@ int run_time_to_error(const Common& c, const std::string& reference_path, int pa
     AccelKind accel;
     parse_accel_kind(name, accel);
     WorkerPool pool(c.threads);
-    auto s = load(c.scene, accel, pool);
+    auto s = load_for(c, accel, pool);
     if (!s) return 1;
     if (s->scene->width != reference.width || s->scene->height != reference.height) {
       std::cerr << "bench_render: the reference is " << reference.width << "x" << reference.height << '\n';
@@ -119,7 +132,8 @@ int run_time_to_error(const Common& c, const std::string& reference_path, int pa
   return emit(out, c.json) ? 0 : 1;
 }
 
-int run_compare(const Common& c, const std::string& reference_path, int spp, int pass_spp, const std::string& output) {
+int run_compare(const Common& c, const std::string& reference_path, int spp, int pass_spp, uint64_t seed,
+                const std::string& output, const std::string& map_output) {
   Image reference;
   std::string error;
   if (!read_image(reference_path, reference, error)) {
@@ -131,19 +145,36 @@ int run_compare(const Common& c, const std::string& reference_path, int spp, int
     AccelKind accel;
     parse_accel_kind(name, accel);
     WorkerPool pool(c.threads);
-    auto s = load(c.scene, accel, pool);
+    auto s = load_for(c, accel, pool);
     if (!s) return 1;
     double seconds = 0;
     const std::string path = c.accels.size() > 1 && !output.empty() ? name + "-" + output : output;
-    const ImageError e = converge(*s, reference, pool, spp, pass_spp, 4000, path, &seconds);
+    Image image;
+    const ImageError e = converge(*s, reference, pool, spp, pass_spp, seed, path, &seconds, &image);
+    if (!map_output.empty()) {
+      const std::string map_path = c.accels.size() > 1 ? name + "-" + map_output : map_output;
+      if (!write_image(map_path, error_map(image, reference), DisplaySettings{}, error)) {
+        std::cerr << "bench_render: " << error << '\n';
+        return 1;
+      }
+    }
+    ordered_json regions = ordered_json::array();
+    for (const RegionError& r : error_breakdown(image, reference)) {
+      regions.push_back({{"region", r.name}, {"pixel_share", r.pixel_share}, {"error_share", r.error_share},
+                         {"rmse", r.rmse}});
+      std::cerr << "  " << r.name << ": " << 100 * r.pixel_share << "% of pixels, " << 100 * r.error_share
+                << "% of the squared error, rmse " << r.rmse << '\n';
+    }
     ordered_json j = scene_json(*s, accel);
     j["threads"] = pool.threads();
     j["reference"] = reference_path;
     j["spp"] = spp;
+    j["seed"] = seed;
     j["seconds"] = seconds;
     j["rmse"] = e.rmse;
     j["relmse"] = e.relmse;
     j["mean_ratio"] = {e.mean_ratio[0], e.mean_ratio[1], e.mean_ratio[2]};
+    j["error_by_region"] = regions;
     std::cerr << name << ": " << spp << " spp, rmse " << e.rmse << ", relmse " << e.relmse << ", mean ratio "
               << e.mean_ratio[0] << " " << e.mean_ratio[1] << " " << e.mean_ratio[2] << '\n';
     out.push_back(j);
@@ -157,7 +188,7 @@ int run_throughput(const Common& c, int spp) {
     AccelKind accel;
     parse_accel_kind(name, accel);
     WorkerPool pool(c.threads);
-    auto s = load(c.scene, accel, pool);
+    auto s = load_for(c, accel, pool);
     if (!s) return 1;
     throughput(*s, pool, 1, 1);  // warm-up: page in the scene and the code
     std::vector<double> rates;
@@ -179,7 +210,7 @@ int run_profile(const Common& c, int spp) {
     AccelKind accel;
     parse_accel_kind(name, accel);
     WorkerPool pool(c.threads);
-    auto s = load(c.scene, accel, pool);
+    auto s = load_for(c, accel, pool);
     if (!s) return 1;
     throughput(*s, pool, 1, 1);  // warm-up
     std::vector<Profile> runs;
@@ -213,6 +244,8 @@ void add_common(CLI::App& app, Common& c) {
   app.add_option("--threads", c.threads, "Worker threads")->check(CLI::Range(1, 4096));
   app.add_option("--runs", c.runs, "Repetitions (the median is reported)")->check(CLI::Range(1, 1000));
   app.add_option("--json", c.json, "Write the result here (default: standard output)");
+  app.add_option("--sampler", c.sampler, "Sampler of the path integrator (docs/samplers.md)")
+      ->check(CLI::IsMember(sampler_type_names()));
 }
 
 }  // namespace
@@ -240,6 +273,10 @@ int main(int argc, char** argv) {
   cmp->add_option("--spp", spp, "Samples per pixel")->check(CLI::Range(1, 1 << 24));
   cmp->add_option("--pass-spp", pass_spp, "Samples per pixel per pass")->check(CLI::Range(1, 1 << 16));
   cmp->add_option("--output", output, "Write the image here (EXR); prefixed with the backend for several");
+  std::string map_output;
+  uint64_t compare_seed = 4000;
+  cmp->add_option("--seed", compare_seed, "Seed of the render");
+  cmp->add_option("--error-map", map_output, "Write the per-pixel squared error here (EXR); prefixed likewise");
 
   CLI::App* thr = app.add_subcommand("throughput", "Samples per second of one render");
   add_common(*thr, c);
@@ -251,7 +288,7 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   if (tte->parsed()) return run_time_to_error(c, reference, pass_spp, rmse, relmse, max_seconds);
-  if (cmp->parsed()) return run_compare(c, reference, spp, pass_spp, output);
+  if (cmp->parsed()) return run_compare(c, reference, spp, pass_spp, compare_seed, output, map_output);
   if (thr->parsed()) return run_throughput(c, spp);
   return run_profile(c, spp);
 }

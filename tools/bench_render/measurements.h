@@ -30,9 +30,10 @@ TimeToError time_to_error(const LoadedScene& s, const Image& reference, WorkerPo
                           double target_rmse, double target_relmse, double max_seconds, uint64_t seed);
 
 // Renders `spp` samples in progressive passes of `pass_spp` and compares the
-// result with the reference; writes the image to `output` if not empty.
+// result with the reference; writes the image to `output` if not empty and
+// hands it back in `result` if not null.
 ImageError converge(const LoadedScene& s, const Image& reference, WorkerPool& pool, int spp, int pass_spp,
-                    uint64_t seed, const std::string& output, double* seconds);
+                    uint64_t seed, const std::string& output, double* seconds, Image* result = nullptr);
 
 struct Throughput {
   int spp = 0;

@@ -16,7 +16,7 @@ TimeToError time_to_error(const LoadedScene& s, const Image& reference, WorkerPo
   int spp = 0;
   std::string error;
   while (render_seconds < max_seconds && (out.seconds_to_rmse < 0 || out.seconds_to_relmse < 0)) {
-    const auto integrator = make_integrator(s.desc.render.integrator, settings_for(s.desc, pass_spp, spp, seed), error);
+    const auto integrator = make_integrator(s.desc.render.integrator, settings_for(s, pass_spp, spp, seed), error);
     const auto t = Clock::now();
     integrator->render(*s.scene, film, pool);
     render_seconds += seconds_since(t);
@@ -37,13 +37,13 @@ TimeToError time_to_error(const LoadedScene& s, const Image& reference, WorkerPo
 }
 
 ImageError converge(const LoadedScene& s, const Image& reference, WorkerPool& pool, int spp, int pass_spp,
-                    uint64_t seed, const std::string& output, double* seconds) {
+                    uint64_t seed, const std::string& output, double* seconds, Image* result) {
   Film film(s.scene->width, s.scene->height);
   std::string error;
   *seconds = 0;
   for (int first = 0; first < spp; first += pass_spp) {
     const int n = std::min(pass_spp, spp - first);
-    const auto integrator = make_integrator(s.desc.render.integrator, settings_for(s.desc, n, first, seed), error);
+    const auto integrator = make_integrator(s.desc.render.integrator, settings_for(s, n, first, seed), error);
     const auto t = Clock::now();
     integrator->render(*s.scene, film, pool);
     *seconds += seconds_since(t);
@@ -51,13 +51,14 @@ ImageError converge(const LoadedScene& s, const Image& reference, WorkerPool& po
   const Image image = film.image();
   if (!output.empty() && !write_image(output, image, DisplaySettings{}, error))
     std::fprintf(stderr, "bench_render: %s\n", error.c_str());
+  if (result) *result = image;
   return compare(image, reference);
 }
 
 Throughput throughput(const LoadedScene& s, WorkerPool& pool, int spp, uint64_t seed) {
   Throughput out;
   std::string error;
-  const auto integrator = make_integrator(s.desc.render.integrator, settings_for(s.desc, spp, 0, seed), error);
+  const auto integrator = make_integrator(s.desc.render.integrator, settings_for(s, spp, 0, seed), error);
   Film film(s.scene->width, s.scene->height);
   const auto t = Clock::now();
   integrator->render(*s.scene, film, pool);

@@ -22,7 +22,7 @@ Vec3f quad_normal(const Quad& q) {
 
 }  // namespace
 
-ShapeLight::ShapeLight(const Shape& shape, uint32_t shape_id, const Material& material)
+ShapeLight::ShapeLight(const Shape& shape, uint32_t shape_id, const Material& material, bool solid_angle_rectangles)
     : shape_(&shape), shape_id_(shape_id), material_(&material) {
   if (const auto* s = std::get_if<Sphere>(&shape)) {
     area_ = 4.0f * kPi * s->radius * s->radius;
@@ -55,6 +55,55 @@ ShapeLight::ShapeLight(const Shape& shape, uint32_t shape_id, const Material& ma
     parts_ = Distribution1D({side, cap, cap});
   }
   if (!(area_ > 0.0f) || !std::isfinite(area_)) area_ = 0.0f;
+  if (area_ > 0.0f) detect_parallelogram();
+  rectangle_ = solid_angle_rectangles && parallelogram_ &&
+               std::fabs(dot(para_.e1, para_.e2)) <= 1e-4f * length(para_.e1) * length(para_.e2);
+}
+
+bool ShapeLight::spherical_rectangle(Vec3f p, SphericalRectangle& r) const {
+  return rectangle_ && make_spherical_rectangle(p, para_.p0, para_.e1, para_.e2, r) &&
+         r.solid_angle >= kMinSphericalRectangle;
+}
+
+bool ShapeLight::make_parallelogram(Vec3f a, Vec3f b, Vec3f c, Vec3f d, Vec3f n, Triangle& out) {
+  const Vec3f e1 = b - a, e2 = d - a;
+  const float size = length(e1) + length(e2);
+  // The diagonals bisect each other: a + c = b + d.
+  if (!(length(a + c - b - d) <= 1e-5f * size)) return false;
+  const Vec3f c12 = cross(e1, e2);
+  const float len = length(c12);
+  if (!(len > 0.0f) || !(dot(c12, n) > 0.9999f * len)) return false;  // planar, and facing n
+  out = {a, e1, e2, n};
+  return true;
+}
+
+void ShapeLight::detect_parallelogram() {
+  if (const auto* q = std::get_if<Quad>(shape_)) {
+    parallelogram_ = make_parallelogram(q->v[0], q->v[1], q->v[2], q->v[3], triangles_[0].n, para_);
+    return;
+  }
+  const auto* m = std::get_if<TriangleMesh>(shape_);
+  if (!m || m->triangle_count() != 2) return;
+  if (!(dot(triangles_[0].n, triangles_[1].n) > 0.9999f)) return;  // both halves face the same way
+  const uint32_t* t0 = &m->indices[0];
+  const uint32_t* t1 = &m->indices[3];
+  // The corner of each triangle that the other lacks; the other two are shared.
+  int own0 = -1, own1 = -1, shared = 0;
+  for (int i = 0; i < 3; ++i) {
+    const bool in1 = t0[i] == t1[0] || t0[i] == t1[1] || t0[i] == t1[2];
+    if (in1) ++shared;
+    else own0 = i;
+    if (t1[i] != t0[0] && t1[i] != t0[1] && t1[i] != t0[2]) own1 = i;
+  }
+  if (shared != 2 || own0 < 0 || own1 < 0) return;
+  // Around the quad: own0, the next corner of t0, own1, the corner after that.
+  const Vec3f a = m->positions[t0[own0]];
+  const Vec3f b = m->positions[t0[(own0 + 1) % 3]];
+  const Vec3f c = m->positions[t1[own1]];
+  const Vec3f d = m->positions[t0[(own0 + 2) % 3]];
+  // Orient e1 x e2 along the triangles' normal.
+  const Vec3f n = triangles_[0].n;
+  parallelogram_ = make_parallelogram(a, b, c, d, n, para_) || make_parallelogram(a, d, c, b, n, para_);
 }
 
 float ShapeLight::power() const {
@@ -63,6 +112,11 @@ float ShapeLight::power() const {
 }
 
 void ShapeLight::sample_area(Vec2f u, Vec3f& q, Vec3f& n) const {
+  if (parallelogram_) {
+    q = para_.p0 + para_.e1 * u.x + para_.e2 * u.y;
+    n = para_.n;
+    return;
+  }
   if (const auto* s = std::get_if<Sphere>(shape_)) {
     n = sample_uniform_sphere(u);
     q = s->center + n * s->radius;
@@ -129,11 +183,22 @@ bool ShapeLight::sample_sphere_cone(const Sphere& s, Vec3f p, Vec2f u, LightSamp
 
 bool ShapeLight::sample(Vec3f p, Vec2f u, LightSample& s) const {
   if (!(area_ > 0.0f)) return false;
+  // A one-sided flat light sends nothing to the points behind its plane.
+  if (parallelogram_ && !material_->two_sided && !(dot(p - para_.p0, para_.n) > 0.0f)) return false;
   s.delta = false;
   s.infinite = false;
   const auto* sphere = std::get_if<Sphere>(shape_);
+  SphericalRectangle rect;
   if (sphere && length_squared(p - sphere->center) > sphere->radius * sphere->radius * 1.0001f) {
     sample_sphere_cone(*sphere, p, u, s);
+  } else if (spherical_rectangle(p, rect)) {
+    s.p_light = sample_spherical_rectangle(rect, u);
+    s.n_light = para_.n;
+    const Vec3f d = s.p_light - p;
+    const float d2 = length_squared(d);
+    if (!(d2 > 0.0f)) return false;
+    s.wi = d / std::sqrt(d2);
+    s.pdf = 1.0f / rect.solid_angle;
   } else {
     sample_area(u, s.p_light, s.n_light);
     const Vec3f d = s.p_light - p;
@@ -161,6 +226,8 @@ float ShapeLight::pdf(Vec3f p, Vec3f wi, Vec3f q, Vec3f n) const {
       return uniform_cone_pdf(omc);
     }
   }
+  SphericalRectangle rect;
+  if (spherical_rectangle(p, rect)) return 1.0f / rect.solid_angle;
   const float d2 = length_squared(q - p);
   const float cos_l = std::fabs(dot(n, wi));
   if (!(cos_l > 0.0f)) return 0.0f;

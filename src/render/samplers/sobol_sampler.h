@@ -18,6 +18,7 @@
 
 #include "core/math.h"
 #include "core/rng.h"
+#include "render/samplers/low_discrepancy.h"
 
 namespace pt {
 
@@ -28,7 +29,7 @@ class SobolSampler {
   void start_pixel_sample(int x, int y, int index) {
     const uint64_t pixel = (static_cast<uint64_t>(static_cast<uint32_t>(y)) << 32) | static_cast<uint32_t>(x);
     pixel_key_ = hash_keys(seed_, pixel);
-    index_ = static_cast<uint32_t>(index < 0 ? 0 : index);
+    reversed_index_ = reverse_bits32(static_cast<uint32_t>(index < 0 ? 0 : index));
     dimension_ = 1;
   }
   float get_1d();
@@ -40,7 +41,7 @@ class SobolSampler {
 
   uint64_t seed_;
   uint64_t pixel_key_ = 0;  // hash(seed, pixel)
-  uint32_t index_ = 0;
+  uint32_t reversed_index_ = 0;  // the sample index, bits reversed
   uint32_t dimension_ = 1;  // dimension pair 0 is the pixel area
 };
 
