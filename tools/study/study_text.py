@@ -1,0 +1,97 @@
+"""The fixed prose of the report (docs/report/README.md); the numbers in it come
+from the run. Kept apart from the code that computes them."""
+
+METHOD = """## How it was measured
+
+- **Error**: MSE as the course defines it (`pt-imgerr`, `pt::compute_image_error`, docs/samplers.md):
+  linear RGB clamped to [0, 1], the three channels' squared differences summed per pixel, averaged over
+  the pixels of the region. RMSE slopes are half the MSE slopes.
+- **Checkpoints**: `build/tools/study/pt-converge` renders in one process and measures the error at
+  each checkpoint. For `random` and `sobol` one progressive render per seed: samples [0, n) of every
+  pixel are exactly the n-spp render (the sample values depend only on seed, pixel, sample index and
+  dimension), so the passes [previous, n) are added to the same film. `jittered` stratifies over the
+  total sample count (n samples are an a x b grid with a * b = n), so a prefix of a larger jittered
+  render is not an n-spp jittered render: **every jittered checkpoint is its own render** from an empty
+  film, and its time is that render's time. Wall time counts the integrator's render calls only (not
+  the scene build, the film resolve or the error computation).
+- **Seeds**: every curve is repeated with independent seeds; the slope is fitted for each seed by
+  least squares on log MSE against log spp (on all checkpoints, and on the powers of two alone), and
+  the table gives the mean and its standard error over the seeds. The plotted curve is the mean MSE
+  over the seeds. Checkpoints of one progressive render are correlated, which is why the spread is
+  taken across seeds, not from the residuals of one fit.
+- **References**: each study scene rendered twice with `sobol` at the reference spp with two seeds
+  far from the study's; the MSE between the two is twice one reference's own noise. That noise is
+  drawn as the dash-dotted line in the plots and compared with the smallest MSE the study measures
+  (it must be under 10% of it; if it is not, the report says so). This is how "no visible noise" was
+  checked: numerically, at the region's scale, rather than by eye."""
+
+LITERATURE = """Expected MSE slopes (twice the RMSE slopes in the literature):
+
+| integrand | random | jittered | scrambled (0,2)-sequence (sobol) |
+|---|---|---|---|
+| any (finite variance) | -1 | | |
+| smooth, 2D | -1 | -2 | -3 (times log N), at powers of two |
+| 2D with edges (discontinuities along curves) | -1 | -1.5 (Mitchell 1996) | -1.5 |
+
+- **random**: independent samples, MSE = variance / N, slope -1 whatever the integrand.
+- **jittered**: one sample per stratum of an a x b grid; for a smooth 2D integrand the variance
+  per stratum falls as the stratum's area squared, giving -2; with an edge only the O(sqrt N) strata
+  the edge crosses keep variance, giving -1.5 (Mitchell, "Consequences of stratified sampling in
+  graphics", SIGGRAPH 1996).
+- **sobol** (Owen-scrambled (0,2)-sequence, padded): at powers of two each dimension pair is a
+  (0,m,2)-net, and a scrambled net's variance is O(N^-3 log N) for smooth integrands (Owen 1997) —
+  at least as good as jittered, and better than -2 — and O(N^-1.5) across edges, the same rate as
+  jittered with a smaller constant. Between powers of two the prefix is not a net, so the all-points
+  fit sits between the power-of-two fit and jittered.
+- **Padding**: both stratified samplers stratify each 2D pair (and 1D dimension) on its own and pair
+  them up at random. An integrand that is a sum of functions of single pairs converges at the rates
+  above; the part that couples two pairs (the interaction in the ANOVA sense, e.g. where a soft
+  shadow's visibility depends on both the point seen through the pixel and the point sampled on the
+  light, or a defocused edge that depends on both the pixel and the lens position) is only sampled at
+  random, at slope -1. So in a scene whose integrand couples the pairs, the stratified curves start
+  steep and bend towards -1 once the coupled part dominates: the fitted slope lands between -1 and the
+  2D rate, and on the powers-of-two fit too. This is the main reason the measured slopes of the
+  soft-shadow and thin-lens scenes are shallower than the 2D rates above."""
+
+SPEED_NOTES = """Render wall time against MSE, one seed, for `--accel embree` and `--accel bvh` and each
+sampler, 2 render threads. For `random` and `sobol` the time at a checkpoint is the cumulative time
+of one progressive render; for `jittered` it is the time of a separate render at that spp (a user
+would render once at the chosen spp). The budget per configuration is given in the equal-time table
+headers (the last column); each run stops at the first checkpoint past it. The Cornell box is
+`scenes/cornell-box.json` at 256x256 (64 bounces) against the Cycles render at 8192 spp in
+`../shared/reference/cornell-box/`; that reference comes from another renderer, so part of the MSE
+at high spp is the difference between the renderers, which no sampler removes (the curves flatten
+there)."""
+
+EXPECTED = {
+    "aa-edges": ("The only integrand is the 2D pixel area (a box filter over emitters: indicator "
+                 "functions with straight and circular edges), the case of Mitchell's analysis. "
+                 "Expected: random -1, jittered -1.5, sobol -1.5 with a smaller constant; pixels "
+                 "without an edge have no variance at all."),
+    "soft-shadow": ("Each pixel integrates over its area (the floor seen through it is smooth) and "
+                    "over the light's area (visibility has an edge in the penumbra), and the MIS "
+                    "BSDF sample adds a pair. One pair alone would converge at -1.5 (edge in the light "
+                    "pair) or better; but where the penumbra is, visibility depends jointly on the "
+                    "pixel position and the light sample, which padding samples at random (slope -1)."),
+    "thin-lens": ("A 4D integrand: pixel area times lens disk. A defocused edge is crossed by a ray "
+                  "depending on pixel and lens position together, so most of the variance is in the "
+                  "coupling of the two pairs, which padded samplers do not stratify: expected close "
+                  "to -1 for every sampler, the stratified ones with a smaller constant."),
+}
+
+
+def discussion(scene, conv):
+    """One paragraph: what the scene isolates, what was expected, what was measured."""
+    def s(sampler, subset):
+        fit = conv[sampler]["fit"][subset]
+        return "%.2f" % fit["mean"] if fit["mean"] is not None else "n/a"
+    measured = ("Measured (all points / powers of two): random %s / %s, jittered %s / %s, sobol %s / %s." % (
+        s("random", "all"), s("random", "pow2"), s("jittered", "all"), s("jittered", "pow2"),
+        s("sobol", "all"), s("sobol", "pow2")))
+    ratios = []
+    last = {k: conv[k]["curve"][-1][1] for k in ("random", "jittered", "sobol")}
+    if last["random"] > 0:
+        ratios = ["at %d spp jittered has %.3gx and sobol %.3gx the MSE of random" % (
+            conv["random"]["curve"][-1][0], last["jittered"] / last["random"], last["sobol"] / last["random"])]
+    return "**Discussion.** %s %s%s" % (EXPECTED.get(scene, ""), measured,
+                                         (" At the end, " + ratios[0] + ".") if ratios else "")
