@@ -93,7 +93,7 @@ def main():
                 for sampler in run["samplers"]:
                     name = run["speed"]["%s/%s/%s" % (case, accel, sampler)]
                     rows = list(csv.DictReader(open(os.path.join(data, name))))
-                    check(len(rows) >= 2 and {x["accel"] for x in rows} == {accel}, "%s: rows" % name)
+                    check(len(rows) >= 1 and {x["accel"] for x in rows} == {accel}, "%s: rows" % name)
             check(any(v is not None for v in summary["speed"][case]["equal_time"].values()),
                   "%s: empty equal-time table" % case)
             check(any(v is not None for v in summary["speed"][case]["equal_error"].values()),

@@ -11,6 +11,8 @@ from study_text import discussion, LITERATURE, SPEED_NOTES, METHOD
 # Fits start at this spp: below it the curves are pre-asymptotic (jittered at
 # 10 spp is a 2x5 grid; Sobol' at 10 spp is not a net).
 FIT_MIN_SPP = 16
+# The low- and high-spp fits meet here: where a curve bends (padding), they differ.
+SPLIT_SPP = 256
 
 
 def _fmt_slope(s):
@@ -45,9 +47,12 @@ def convergence_section(out, data, run, summary):
                                      rows_by_sampler, ref["noise_mse"])
         md += ["### %s — %s" % (name, what), "",
                "![%s](convergence-%s.png) ([SVG](convergence-%s.svg))" % (name, name, name), ""]
+        split = SPLIT_SPP if run["cfg"]["checkpoints"][-1] > SPLIT_SPP else run["cfg"]["checkpoints"][-1] // 4
         md += ["| sampler | MSE slope, all points | MSE slope, powers of two | RMSE slope (all) | "
-               "MSE at %d spp | MSE at %d spp |" % (run["cfg"]["checkpoints"][0], run["cfg"]["checkpoints"][-1]),
-               "|---|---|---|---|---|---|"]
+               "MSE slope %d-%d | MSE slope %d-%d | MSE at %d spp | MSE at %d spp |" % (
+                   FIT_MIN_SPP, split, split, run["cfg"]["checkpoints"][-1], run["cfg"]["checkpoints"][0],
+                   run["cfg"]["checkpoints"][-1]),
+               "|---|---|---|---|---|---|---|---|"]
         summary["convergence"][name] = {}
         smallest = None
         for sampler, rows in rows_by_sampler.items():
@@ -55,9 +60,13 @@ def convergence_section(out, data, run, summary):
             curve = mean_curve(rows)
             smallest = curve[-1][1] if smallest is None else min(smallest, curve[-1][1])
             summary["convergence"][name][sampler] = {"fit": fit, "curve": curve}
+            low = slope_summary([r for r in rows if r["spp"] <= split], FIT_MIN_SPP)["all"]
+            high = slope_summary([r for r in rows if r["spp"] >= split], split)["all"]
+            fit["low"], fit["high"] = low, high
             rmse = fit["all"]["mean"] / 2 if fit["all"]["mean"] is not None else None
-            md.append("| %s | %s | %s | %s | %s | %s |" % (sampler, _fmt_slope(fit["all"]), _fmt_slope(fit["pow2"]),
-                                                         _g(rmse), _g(curve[0][1]), _g(curve[-1][1])))
+            md.append("| %s | %s | %s | %s | %s | %s | %s | %s |" % (
+                sampler, _fmt_slope(fit["all"]), _fmt_slope(fit["pow2"]), _g(rmse), _fmt_slope(low),
+                _fmt_slope(high), _g(curve[0][1]), _g(curve[-1][1])))
         ratio = ref["noise_mse"] / smallest if smallest else None
         summary["convergence"][name]["reference_noise_ratio"] = ratio
         md += ["", "Slopes: least squares of log MSE against log spp for each seed (spp >= %d), mean ± standard "
@@ -80,13 +89,20 @@ def speed_section(out, data, run, summary):
         # Times every configuration covers: from the latest first checkpoint to the earliest last one.
         t_lo = max(t[0][0] for t in traces.values())
         t_hi = min(t[-1][0] for t in traces.values())
-        times = sorted({float("%.2g" % max(t_lo, t_hi * f)) for f in (0.1, 0.3)} | {float("%.2g" % t_hi)})
+        times = sorted({min(t_hi, float("%.2g" % max(t_lo, t_hi * f))) for f in (0.1, 0.3, 1.0)})
         times = [t for t in times if t_lo <= t <= t_hi] or [t_hi]
         base = traces[("embree", "random")]
+        rate = []
+        for (accel, sampler), rows in by_config.items():
+            last = max(rows, key=lambda r: r["spp"])
+            rate.append("%s/%s %.3g" % (accel, sampler, last["spp"] / last["seconds"]))
         md += ["### %s" % case, "", "![%s](speed-%s.png) ([SVG](speed-%s.svg))" % (case, case, case), "",
+               "Budget %g s of rendering per configuration. Samples per pixel per second at the last checkpoint "
+               "(the cost of a sample; for jittered, of its last render): %s." % (run["budgets"][case],
+                                                                                 ", ".join(rate)), "",
                "**Equal time**: MSE reached after T seconds of rendering (log-log interpolation between "
                "checkpoints; in brackets, relative to embree/random).", "",
-               "| accel | sampler | " + " | ".join("T = %g s" % t for t in times) + " |",
+               "| accel | sampler | " + " | ".join("T = %.3g s" % t for t in times) + " |",
                "|---|---|" + "---|" * len(times)]
         case_summary = {"equal_time": {}, "equal_error": {}}
         for (accel, sampler), trace in traces.items():
@@ -99,7 +115,7 @@ def speed_section(out, data, run, summary):
         targets = [x for x in (mse_at_time(base, t) for t in times) if x]
         md += ["", "**Equal error**: seconds each configuration needs to reach the MSE that embree/random reaches "
                "at %s s (in brackets, speed-up over embree/random; — : not reached within the budget)." %
-               ", ".join("%g" % t for t in times[:len(targets)]), "",
+               ", ".join("%.3g" % t for t in times[:len(targets)]), "",
                "| accel | sampler | " + " | ".join("MSE %s" % _g(x) for x in targets) + " |",
                "|---|---|" + "---|" * len(targets)]
         for (accel, sampler), trace in traces.items():
