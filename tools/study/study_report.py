@@ -6,7 +6,7 @@ import os
 
 import study_plots
 from study_fit import mean_curve, mse_at_time, read_rows, slope_summary, time_to_mse, time_trace
-from study_text import discussion, LITERATURE, SPEED_NOTES, METHOD
+from study_text import discussion, LITERATURE, SPEED_NOTES, SPEED_VERDICT, METHOD
 
 # Fits start at this spp: below it the curves are pre-asymptotic (jittered at
 # 10 spp is a 2x5 grid; Sobol' at 10 spp is not a net).
@@ -125,7 +125,14 @@ def speed_section(out, data, run, summary):
                 cells.append("%s (%s)" % (_g(t), "%.2fx" % (b / t) if t and b else "—"))
                 case_summary["equal_error"]["%s/%s/%.3g" % (accel, sampler, x)] = t
             md.append("| %s | %s | %s |" % (accel, sampler, " | ".join(cells)))
-        md.append("")
+        common = set.intersection(*[{r["spp"] for r in rows} for rows in by_config.values()])
+        if common:
+            n = max(common)
+            at_n = {k: next(r["mse"] for r in rows if r["spp"] == n) for k, rows in by_config.items()}
+            case_summary["equal_spp"] = {"spp": n, "mse": {"%s/%s" % k: v for k, v in at_n.items()}}
+            md += ["", "**Equal spp**: MSE at %d spp, the last checkpoint every configuration reached: %s." % (
+                n, ", ".join("%s/%s %s" % (a, sm, _g(v)) for (a, sm), v in at_n.items()))]
+        md += ["", SPEED_VERDICT.get(case, ""), ""]
         summary["speed"][case] = case_summary
     return md
 

@@ -105,7 +105,8 @@ VERDICT = {
                     "hundred spp, as padding predicts: the low-spp fits are steep, the high-spp fits shallow. "
                     "The reference's own noise is a few percent of the smallest MSE, too little to cause the bend. "
                     "Sobol' does not reach -3 here because the integrand is not smooth (the penumbra) and its "
-                    "pairs are coupled; it keeps the lowest error at every spp."),
+                    "pairs are coupled; it keeps the lowest error at every spp. The jittered curve is jagged "
+                    "between powers of two: counts like 310 = 10 x 31 give elongated strata."),
     "thin-lens": ("All three slopes are close to -1: the variance is almost all in the coupling of the pixel "
                   "and lens pairs, which no padded sampler stratifies, so stratification only lowers the "
                   "constant (by about 3x here), not the rate. A sampler stratifying the 4D integrand jointly "
@@ -130,3 +131,25 @@ def discussion(scene, conv):
         ratio = " At %d spp jittered has %.3gx and sobol %.3gx the MSE of random." % (
             conv["random"]["curve"][-1][0], last["jittered"] / last["random"], last["sobol"] / last["random"])
     return "**Discussion.** %s %s%s %s" % (EXPECTED.get(scene, ""), measured, ratio, VERDICT.get(scene, ""))
+
+
+# The speed cases, in words (written from the full run; the tables beside it are recomputed).
+SPEED_VERDICT = {
+    "cornell-box": ("**Discussion.** With 64 bounces most of the Cornell box's variance is in the deep "
+                    "dimensions of the path, which the padded samplers stratify only pair by pair, so at a few spp "
+                    "the three samplers give the same error and the curves coincide; the stratified samplers pull "
+                    "ahead only as spp grows (see the equal-spp line: at the end of the budget jittered and sobol "
+                    "have clearly less error than random at equal spp). Their throughput, measured under load, was "
+                    "0.7x to 1.1x random's (the samples-per-second line), so at equal time the gain is smaller "
+                    "than at equal spp and, at these budgets, of the order of the timing noise. The backends give "
+                    "the same images (equal MSE at equal spp) and differ only in time; on a machine under load "
+                    "their samples-per-second ratio is not trustworthy to better than about 20% "
+                    "(docs/bench/ has the backend timings measured for that purpose). Part of the MSE at the "
+                    "end is the difference between this renderer and Cycles."),
+    "soft-shadow": ("**Discussion.** Direct light only, so the stratified samplers' gain is large at every spp "
+                    "(see the convergence section) and it survives their cost per sample: at equal time both "
+                    "reach several times less error than random, whichever backend. Sobol' costs more per sample "
+                    "than random here (1.4x to 1.9x the time in these runs: its hashing and scrambling are a "
+                    "larger share of a sample when a sample is only three short rays), which is why at equal "
+                    "time it is not consistently better than jittered although at equal spp it is. The 32x32 image makes the times short and, under load, noisy."),
+}
