@@ -72,9 +72,10 @@ def settings(quick):
 
 
 def run(cmd, log):
+    """Runs cmd from the repository root (so paths inside it, like the scene column of the CSVs, are relative)."""
     log.write("$ " + " ".join(cmd) + "\n")
     log.flush()
-    result = subprocess.run(cmd, capture_output=True, text=True)
+    result = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT)
     log.write(result.stdout + result.stderr)
     if result.returncode != 0:
         sys.exit("error: %s failed (exit %d):\n%s" % (cmd[0], result.returncode, result.stderr.strip()))
@@ -106,7 +107,7 @@ def make_references(cfg, tools, data, threads, log):
 
 def converge(tools, scene, ref, out_csv, accel, sampler, checkpoints, seeds, threads, log, rect=None,
              max_seconds=None):
-    cmd = [tools["converge"], scene, "--reference", ref, "--accel", accel, "--sampler", sampler,
+    cmd = [tools["converge"], os.path.relpath(scene, ROOT), "--reference", ref, "--accel", accel, "--sampler", sampler,
            "--checkpoints", ",".join(map(str, checkpoints)), "--seeds", ",".join(map(str, seeds)),
            "--threads", str(threads), "--csv", out_csv]
     if rect:
@@ -169,6 +170,7 @@ def main():
     parser.add_argument("--report-only", action="store_true",
                         help="rewrite README.md and the plots from data/ of an earlier run (no rendering)")
     args = parser.parse_args()
+    args.build, args.out = os.path.abspath(args.build), os.path.abspath(args.out)  # commands run from the root
     if not need_matplotlib():
         return EXIT_NO_MATPLOTLIB
     tools = {"pathtracer": os.path.join(args.build, "pathtracer"),
