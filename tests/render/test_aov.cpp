@@ -192,6 +192,25 @@ TEST(Aov, PathLightingSplitSumsToTheBeauty) {
   }
 }
 
+TEST(Aov, DiffuseOnlySceneHasNoSpecularLight) {
+  WorkerPool pool(2);
+  const auto scene = plane_scene(pool);  // Lambert and kd-only Phong: no glossy or mirror lobe
+  ASSERT_TRUE(scene);
+  IntegratorSettings settings;
+  settings.spp = 4;
+  std::string error;
+  Film film(kW, kH, PixelRect{0, 0, kW, kH}, aovs("diffuse_direct,diffuse_indirect,specular_direct,specular_indirect"));
+  make_integrator("path", settings, error)->render(*scene, film, pool);
+  double diffuse = 0.0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      for (AovType t : {AovType::SpecularDirect, AovType::SpecularIndirect})
+        for (float c : film.aov_value(t, x, y)) ASSERT_EQ(c, 0.0f) << x << "," << y;
+      for (float c : film.aov_value(AovType::DiffuseDirect, x, y)) diffuse += c;
+    }
+  EXPECT_GT(diffuse, 0.0);
+}
+
 TEST(Aov, VarianceAndSampleCountMatchTheSamples) {
   WorkerPool pool(2);
   const auto scene = lighting_scene(pool);
