@@ -76,12 +76,13 @@ void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, cons
     const Vec2f corner(static_cast<float>(x), static_cast<float>(y));
     PixelSum sum;
     std::fill(scratch.begin(), scratch.end(), 0.0);
+    AovSample aov;  // reset per sample only when the film has AOVs
     for (int s = first; s < end; ++s) {
       sampler.start_pixel_sample(x, y, s);
       const FilterSample fs = filter.sample(sampler.get_pixel_2d());
       const Vec2f film_px = corner + fs.offset;
       const Ray ray = lens ? scene.camera.generate_ray(film_px, sampler.get_2d()) : scene.camera.generate_ray(film_px);
-      AovSample aov;
+      if (aov_doubles > 0) aov = AovSample{};
       const RGB c = radiance(ray, sampler, lighting ? &aov : nullptr);
       const bool finite = c.is_finite();
       if (!finite) bad.record(x, y, s, c);
