@@ -170,14 +170,12 @@ void Film::add_aovs(int x, int y, const double* scratch) {
   }
 }
 
-std::vector<float> Film::aov_value(AovType type, int x, int y) const {
-  std::size_t i = 0;
-  while (i < aovs_.size() && aovs_[i].type != type) ++i;
-  if (i == aovs_.size()) return {};
+void Film::aov_values(std::size_t layer, std::size_t pixel, float* out) const {
+  const AovType type = aovs_[layer].type;
   const AovInfo& info = aov_info(type);
-  const double* d = aov_data_.data() + index(x, y) * static_cast<std::size_t>(stride_) + offset_[i];
-  const PixelSum& p = sum(x, y);
-  std::vector<float> out(static_cast<std::size_t>(info.channels), 0.0f);
+  const double* d = aov_data_.data() + pixel * static_cast<std::size_t>(stride_) + offset_[layer];
+  const PixelSum& p = pixels_[pixel];
+  std::fill(out, out + info.channels, 0.0f);
   switch (info.accumulation) {
     case Accumulation::FilteredAverage:
       if (p.weight != 0.0)
@@ -202,7 +200,16 @@ std::vector<float> Film::aov_value(AovType type, int x, int y) const {
       out[0] = static_cast<float>(d[0]);
       break;
   }
-  return out;
+}
+
+std::vector<float> Film::aov_value(AovType type, int x, int y) const {
+  for (std::size_t i = 0; i < aovs_.size(); ++i) {
+    if (aovs_[i].type != type) continue;
+    std::vector<float> out(static_cast<std::size_t>(aov_info(type).channels));
+    aov_values(i, index(x, y), out.data());
+    return out;
+  }
+  return {};
 }
 
 LayeredImage Film::layers() const {
@@ -224,7 +231,8 @@ LayeredImage Film::layers() const {
     p[3] = pixels_[i].samples > 0 ? 1.0f : 0.0f;
   }
   out.layers.push_back(std::move(beauty));
-  for (const AovRequest& r : aovs_) {
+  for (std::size_t l = 0; l < aovs_.size(); ++l) {
+    const AovRequest& r = aovs_[l];
     const AovInfo& info = aov_info(r.type);
     ImageLayer layer;
     layer.name = info.name;
@@ -232,10 +240,8 @@ LayeredImage Film::layers() const {
     for (int c = 0; c < info.channels; ++c)
       layer.channels.push_back(info.channels == 1 ? std::string(info.name)
                                                   : std::string(info.name) + "." + info.suffix[c]);
-    layer.values.reserve(n * static_cast<std::size_t>(info.channels));
-    for (int y = crop_.y0; y < crop_.y1; ++y)
-      for (int x = crop_.x0; x < crop_.x1; ++x)
-        for (float v : aov_value(r.type, x, y)) layer.values.push_back(v);
+    layer.values.resize(n * static_cast<std::size_t>(info.channels));
+    for (std::size_t i = 0; i < n; ++i) aov_values(l, i, &layer.values[i * static_cast<std::size_t>(info.channels)]);
     out.layers.push_back(std::move(layer));
   }
   return out;

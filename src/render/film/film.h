@@ -131,6 +131,8 @@ class Film {
   bool read_state(std::istream& in, std::string& error);
 
  private:
+  // The final values of AOV number `layer` of pixel number `pixel` (in the crop, row-major) into `out`.
+  void aov_values(std::size_t layer, std::size_t pixel, float* out) const;
   std::size_t index(int x, int y) const {
     return static_cast<std::size_t>(y - crop_.y0) * static_cast<std::size_t>(crop_.width()) +
            static_cast<std::size_t>(x - crop_.x0);

@@ -37,9 +37,11 @@ bool get(std::istream& in, T& v) {
 std::string describe_aovs(const std::vector<AovRequest>& aovs) {
   if (aovs.empty()) return "none";
   std::string s;
-  for (const AovRequest& r : aovs)
-    s += (s.empty() ? "" : ",") + std::string(aov_info(r.type).name) +
-         (r.channel_type == ChannelType::Half ? ":half" : ":float");
+  for (const AovRequest& r : aovs) {
+    if (!s.empty()) s += ',';
+    s += aov_info(r.type).name;
+    s += r.channel_type == ChannelType::Half ? ":half" : ":float";
+  }
   return s;
 }
 
