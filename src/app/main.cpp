@@ -218,6 +218,17 @@ bool crop_window(const Options& o, int width, int height, pt::PixelRect& out) {
   return true;
 }
 
+// The replayed sample's AOVs, one per line: its first hit and, for the path
+// integrator, its lighting split (docs/output.md).
+void print_replay_aovs(const pt::Film& film, int x, int y) {
+  for (const pt::AovRequest& r : film.aovs()) {
+    if (r.type == pt::AovType::Samples || r.type == pt::AovType::Variance) continue;
+    std::cout << "  " << pt::aov_info(r.type).name << ":";
+    for (float v : film.aov_value(r.type, x, y)) std::cout << ' ' << v;
+    std::cout << '\n';
+  }
+}
+
 int run(const Options& o) {
   if (o.outputs.empty() && o.replay.empty()) {
     std::cerr << "error: --output is required (except with --replay)\n";
@@ -228,6 +239,10 @@ int run(const Options& o) {
   if (std::string why; !o.aov.empty() && !pt::parse_aov_list(o.aov, aovs, why)) {
     std::cerr << "error: --aov: " << why << '\n';
     return kExitUsage;
+  }
+  if (!o.replay.empty()) {  // a replay reports every AOV of its one sample (they draw no random numbers)
+    aovs.clear();
+    for (const pt::AovInfo& info : pt::aov_catalogue()) aovs.push_back({info.type, info.default_type});
   }
   pt::AccelKind accel = pt::AccelKind::Embree;
   pt::parse_accel_kind(o.accel, accel);  // already validated by CLI11
@@ -316,6 +331,7 @@ int run(const Options& o) {
     const pt::RGB v = non_finite.total() > 0 ? non_finite.value : s.value();
     std::cout << std::setprecision(9) << "replay pixel (" << crop.x0 << ", " << crop.y0 << ") sample "
               << settings.only_sample << ": radiance " << v.r << " " << v.g << " " << v.b << '\n';
+    print_replay_aovs(film, crop.x0, crop.y0);
   }
 
   // Write.

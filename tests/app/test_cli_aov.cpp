@@ -131,6 +131,9 @@ TEST_F(CliOutput, ReplayPrintsTheSampleOfAOneSppRender) {
   EXPECT_EQ(v[0], one.at(12, 10).r);
   EXPECT_EQ(v[1], one.at(12, 10).g);
   EXPECT_EQ(v[2], one.at(12, 10).b);
+  // The sample's AOVs follow: pixel (12, 10) sees the sphere (object 1; the triangle is 2).
+  EXPECT_NE(r.out.find("  IndexOB: 1\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("  diffuse_direct:"), std::string::npos) << r.out;
 }
 
 }  // namespace
