@@ -207,6 +207,11 @@ bool crop_window(const Options& o, int width, int height, pt::PixelRect& out) {
            static_cast<int>(std::ceil(c[2] * width)), static_cast<int>(std::ceil(c[3] * height))};
   } else if (!o.crop_px.empty()) {
     const std::vector<int>& c = o.crop_px;
+    if (c[0] > width || c[1] > height || c[2] > width || c[3] > height) {  // also keeps X + W from overflowing
+      std::cerr << "error: --crop-px: " << c[2] << "x" << c[3] << " at (" << c[0] << ", " << c[1]
+                << ") is not inside the " << width << "x" << height << " frame\n";
+      return false;
+    }
     out = {c[0], c[1], c[0] + c[2], c[1] + c[3]};
   }
   if (out.x0 < 0 || out.y0 < 0 || out.empty() || out.x1 > width || out.y1 > height) {
@@ -324,7 +329,7 @@ int run(const Options& o) {
   integrator->render(*scene, film, pool);
   const double render_s = seconds_since(t0);
   const pt::NonFiniteReport& non_finite = film.non_finite();
-  if (non_finite.total() > 0)
+  if (non_finite.total() > 0 && !o.quiet)
     std::cerr << "warning: " << non_finite.describe() << "; they were added as black (replay one with --replay X,Y,N)\n";
   if (!o.replay.empty()) {
     const pt::PixelSum& s = film.sum(crop.x0, crop.y0);

@@ -84,6 +84,7 @@ TEST_F(CliOutput, UnknownAovIsAUsageErrorListingTheValidNames) {
 TEST_F(CliOutput, BadCropsAndReplaysAreUsageErrors) {
   for (const char* args : {"-o out.exr --crop 0.5,0.5,0.4,1", "-o out.exr --crop 0,0,1", "-o out.exr --crop 0,0,1,1.5",
                            "-o out.exr --crop-px 30,0,5,5", "-o out.exr --crop-px 0,0,0,5",
+                           "-o out.exr --crop-px 2147483647,0,5,5", "-o out.exr --crop-px 0,0,5,2147483647",
                            "-o out.exr --crop 0,0,1,1 --crop-px 0,0,4,4", "--replay 40,3,0", "--replay 3,3,1",
                            "--replay 3,3"}) {
     const Result r = run(args);
