@@ -4,10 +4,13 @@
 //              [--seed N] [--integrator NAME] [--max-depth N] [--filter box|gaussian|mitchell]
 //              [--sampler random|jittered|sobol]
 //              [--clamp X] [--width W] [--height H] [--strict] [--quiet] [--report FILE]
+//              [--aov LIST] [--crop X0,Y0,X1,Y1 | --crop-px X,Y,W,H] [--replay X,Y,N]
 //
+// Outputs, AOVs, crops and replays: docs/output.md.
 // Exit status: 0 success; 1 the scene, the render or an output failed (nothing
 // is written for a bad scene); 2 a bad command line (CLI11's message).
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <iomanip>
 #include <iostream>
@@ -31,6 +34,7 @@
 #include "core/parallel.h"
 #include "io/image_io.h"
 #include "io/run_record.h"
+#include "render/film/aov.h"
 #include "render/film/film.h"
 #include "render/film/filter.h"
 #include "render/integrators/integrator.h"
@@ -59,6 +63,11 @@ struct Options {
   std::optional<float> exposure;  // stops; unset: the scene's
   std::string view, display, look;
   std::string ocio_config;  // unset: $OCIO
+  // docs/output.md
+  std::string aov;                 // --aov list; empty: beauty only
+  std::vector<double> crop;        // fractions x0, y0, x1, y1; empty: the full frame
+  std::vector<int> crop_px;        // pixels x, y, w, h; empty: the full frame
+  std::vector<int> replay;         // x, y, sample; empty: a normal render
 };
 
 constexpr int kExitFailure = 1;
@@ -88,7 +97,6 @@ void add_options(CLI::App& app, Options& o) {
   app.add_option("scene", o.scene, "Scene file (native, Path of Light or CGR JSON)")->required();
   app.add_option("-o,--output", o.outputs,
                  "Output image (.exr, .png, .ppm); repeat to write several formats from one render")
-      ->required()
       ->allow_extra_args(false);
   app.add_option("--accel", o.accel, "Acceleration structure")
       ->check(CLI::IsMember(pt::accel_kind_names()))
@@ -123,6 +131,20 @@ void add_options(CLI::App& app, Options& o) {
   app.add_option("--display", o.display, "Display images: a display of the OCIO config (default: its default)");
   app.add_option("--look", o.look, "Display images: look(s) of the OCIO config, e.g. '+grade'");
   app.add_option("--ocio-config", o.ocio_config, "OpenColorIO config file (default: $OCIO, if set)");
+  app.add_option("--aov", o.aov,
+                 "Extra EXR layers, comma-separated, each optionally ':half' or ':float' (docs/output.md): " +
+                     join(pt::aov_names(), ", "));
+  auto* crop = app.add_option("--crop", o.crop, "Render only this region: X0,Y0,X1,Y1 as fractions of the frame")
+                   ->delimiter(',')
+                   ->expected(4);
+  app.add_option("--crop-px", o.crop_px, "Render only this region: X,Y,W,H in pixels")
+      ->delimiter(',')
+      ->expected(4)
+      ->excludes(crop);
+  app.add_option("--replay", o.replay,
+                 "Render only sample N of pixel (X, Y) (as a full render draws it) and print its radiance: X,Y,N")
+      ->delimiter(',')
+      ->expected(3);
   app.set_version_flag("--version", version_text());
 }
 
@@ -170,8 +192,63 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+// The region to render, in pixels of a width x height frame; false after printing why.
+bool crop_window(const Options& o, int width, int height, pt::PixelRect& out) {
+  out = {0, 0, width, height};
+  if (!o.replay.empty()) {
+    out = {o.replay[0], o.replay[1], o.replay[0] + 1, o.replay[1] + 1};
+  } else if (!o.crop.empty()) {
+    const std::vector<double>& c = o.crop;
+    if (!(0.0 <= c[0] && c[0] < c[2] && c[2] <= 1.0 && 0.0 <= c[1] && c[1] < c[3] && c[3] <= 1.0)) {
+      std::cerr << "error: --crop: need 0 <= X0 < X1 <= 1 and 0 <= Y0 < Y1 <= 1\n";
+      return false;
+    }
+    out = {static_cast<int>(std::floor(c[0] * width)), static_cast<int>(std::floor(c[1] * height)),
+           static_cast<int>(std::ceil(c[2] * width)), static_cast<int>(std::ceil(c[3] * height))};
+  } else if (!o.crop_px.empty()) {
+    const std::vector<int>& c = o.crop_px;
+    if (c[0] > width || c[1] > height || c[2] > width || c[3] > height) {  // also keeps X + W from overflowing
+      std::cerr << "error: --crop-px: " << c[2] << "x" << c[3] << " at (" << c[0] << ", " << c[1]
+                << ") is not inside the " << width << "x" << height << " frame\n";
+      return false;
+    }
+    out = {c[0], c[1], c[0] + c[2], c[1] + c[3]};
+  }
+  if (out.x0 < 0 || out.y0 < 0 || out.empty() || out.x1 > width || out.y1 > height) {
+    std::cerr << "error: " << (o.replay.empty() ? "the crop" : "the replayed pixel") << " [" << out.x0 << ", "
+              << out.x1 << ") x [" << out.y0 << ", " << out.y1 << ") is not inside the " << width << "x" << height
+              << " frame\n";
+    return false;
+  }
+  return true;
+}
+
+// The replayed sample's AOVs, one per line: its first hit and, for the path
+// integrator, its lighting split (docs/output.md).
+void print_replay_aovs(const pt::Film& film, int x, int y) {
+  for (const pt::AovRequest& r : film.aovs()) {
+    if (r.type == pt::AovType::Samples || r.type == pt::AovType::Variance) continue;
+    std::cout << "  " << pt::aov_info(r.type).name << ":";
+    for (float v : film.aov_value(r.type, x, y)) std::cout << ' ' << v;
+    std::cout << '\n';
+  }
+}
+
 int run(const Options& o) {
+  if (o.outputs.empty() && o.replay.empty()) {
+    std::cerr << "error: --output is required (except with --replay)\n";
+    return kExitUsage;
+  }
   if (!check_outputs(o.outputs)) return kExitUsage;
+  std::vector<pt::AovRequest> aovs;
+  if (std::string why; !o.aov.empty() && !pt::parse_aov_list(o.aov, aovs, why)) {
+    std::cerr << "error: --aov: " << why << '\n';
+    return kExitUsage;
+  }
+  if (!o.replay.empty()) {  // a replay reports every AOV of its one sample (they draw no random numbers)
+    aovs.clear();
+    for (const pt::AovInfo& info : pt::aov_catalogue()) aovs.push_back({info.type, info.default_type});
+  }
   pt::AccelKind accel = pt::AccelKind::Embree;
   pt::parse_accel_kind(o.accel, accel);  // already validated by CLI11
 
@@ -197,6 +274,14 @@ int run(const Options& o) {
   if (o.filter == "box") settings.filter = pt::PixelFilterType::Box;
   settings.sampler = pt::parse_sampler_type(o.sampler).value_or(pt::SamplerType::Random);
   settings.clamp = o.clamp >= 0.0f ? o.clamp : desc->render.clamp.value;
+  if (!o.replay.empty()) {
+    if (o.replay[2] < 0 || o.replay[2] >= settings.spp) {
+      std::cerr << "error: --replay: sample " << o.replay[2] << " is not one of the render's " << settings.spp
+                << " samples per pixel\n";
+      return kExitUsage;
+    }
+    settings.only_sample = o.replay[2];
+  }
   const std::string integrator_name = o.integrator.empty() ? desc->render.integrator.value : o.integrator;
   std::string error;
   const std::unique_ptr<pt::Integrator> integrator = pt::make_integrator(integrator_name, settings, error);
@@ -235,17 +320,42 @@ int run(const Options& o) {
   }
   const double build_s = seconds_since(t0);
 
+  pt::PixelRect crop;
+  if (!crop_window(o, scene->width, scene->height, crop)) return kExitUsage;
+
   // Render.
   t0 = Clock::now();
-  pt::Film film(scene->width, scene->height);
+  pt::Film film(scene->width, scene->height, crop, aovs);
   integrator->render(*scene, film, pool);
   const double render_s = seconds_since(t0);
+  const pt::NonFiniteReport& non_finite = film.non_finite();
+  if (non_finite.total() > 0 && !o.quiet)
+    std::cerr << "warning: " << non_finite.describe() << "; they were added as black (replay one with --replay X,Y,N)\n";
+  if (!o.replay.empty()) {
+    const pt::PixelSum& s = film.sum(crop.x0, crop.y0);
+    const pt::RGB v = non_finite.total() > 0 ? non_finite.value : s.value();
+    std::cout << std::setprecision(9) << "replay pixel (" << crop.x0 << ", " << crop.y0 << ") sample "
+              << settings.only_sample << ": radiance " << v.r << " " << v.g << " " << v.b << '\n';
+    print_replay_aovs(film, crop.x0, crop.y0);
+  }
 
   // Write.
   t0 = Clock::now();
-  const pt::Image image = film.image();
+  const pt::LayeredImage image = film.layers();
+  pt::RenderStamp stamp;
+  stamp.render_seconds = render_s;
+  stamp.spp = settings.spp;
+  stamp.seed = settings.seed;
+  stamp.backend = scene->accel->stats().backend;
+  stamp.integrator = integrator_name;
+  stamp.software_version = PT_VERSION;
+  stamp.has_camera = true;
+  stamp.world_to_camera = scene->camera.world_to_camera();
+  stamp.world_to_ndc = scene->camera.world_to_ndc();
+  pt::ImageMetadata metadata;
+  pt::add_render_stamp(metadata, stamp);
   for (const std::string& path : o.outputs) {
-    if (!pt::write_image(path, image, display, error)) {
+    if (!pt::write_layered_image(path, image, display, error, metadata)) {
       std::cerr << "error: " << error << '\n';
       return kExitFailure;
     }
@@ -277,7 +387,7 @@ int run(const Options& o) {
     }
   }
 
-  if (!o.quiet) {
+  if (!o.quiet && !o.outputs.empty()) {
     std::cout << std::fixed << std::setprecision(3) << "wrote " << join(o.outputs, ", ") << " ("
               << scene->width << "x" << scene->height << ", " << integrator_name << ", " << settings.spp
               << " spp, " << pool.threads() << " threads"

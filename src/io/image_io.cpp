@@ -13,6 +13,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "io/atomic_file.h"
+#include "io/exr_layers.h"
 
 namespace pt {
 
@@ -64,14 +65,6 @@ bool write_ppm(const std::string& path, const Image& image, const DisplayEncoder
 
 // Writes through OpenImageIO with an explicit format name (the temporary file's
 // name does not end in the real extension).
-void add_metadata(OIIO::ImageSpec& spec, const ImageMetadata& metadata, bool typed) {
-  for (const auto& [name, value] : metadata.strings) spec.attribute(name, value);
-  if (!typed) return;
-  for (const auto& [name, value] : metadata.ints) spec.attribute(name, value);
-  for (const auto& [name, value] : metadata.floats) spec.attribute(name, value);
-  for (const auto& [name, value] : metadata.matrices) spec.attribute(name, OIIO::TypeMatrix44, value.data());
-}
-
 bool write_oiio(const std::string& path, const char* format, const Image& image, const DisplaySettings& settings,
                 const DisplayEncoder* display, const ImageMetadata& metadata, std::string& error) {
   auto out = OIIO::ImageOutput::create(format);
@@ -90,7 +83,7 @@ bool write_oiio(const std::string& path, const char* format, const Image& image,
     spec.attribute("ImageDescription", "display: " + display->description());
     if (std::strcmp(format, "jpeg") == 0) spec.attribute("Compression", "jpeg:95");
   }
-  add_metadata(spec, metadata, is_float);
+  add_image_metadata(spec, metadata, is_float);
   if (!out->open(path, spec)) {
     error = out->geterror();
     return false;
@@ -153,6 +146,29 @@ bool write_image(const std::string& path, const Image& image, const DisplaySetti
         }
         return false;
       },
+      error);
+}
+
+bool write_layered_image(const std::string& path, const LayeredImage& image, const DisplaySettings& settings,
+                         std::string& error, const ImageMetadata& metadata) {
+  if (file_kind(path) != FileKind::Exr) {
+    if (image.layers.empty() || image.layers[0].channels.size() < 3) {
+      error = "cannot write '" + path + "': the image has no beauty layer";
+      return false;
+    }
+    const ImageLayer& beauty = image.layers[0];
+    const std::size_t n = beauty.channels.size();
+    Image rgb(image.width, image.height);
+    for (std::size_t i = 0; i < rgb.pixels.size() && (i + 1) * n <= beauty.values.size(); ++i)
+      rgb.pixels[i] = RGB(beauty.values[i * n], beauty.values[i * n + 1], beauty.values[i * n + 2]);
+    return write_image(path, rgb, settings, error, metadata);
+  }
+  if (image.width <= 0 || image.height <= 0) {
+    error = "cannot write '" + path + "': the image is empty";
+    return false;
+  }
+  return write_atomically(
+      path, [&](const std::string& tmp, std::string& why) { return write_exr_layers(tmp, image, metadata, why); },
       error);
 }
 

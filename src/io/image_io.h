@@ -12,6 +12,7 @@
 #include "core/image.h"
 #include "io/display.h"
 #include "io/image_metadata.h"
+#include "io/layered_image.h"
 #include "scene/scene_description.h"
 
 namespace pt {
@@ -25,6 +26,12 @@ bool is_supported_image_path(const std::string& path);
 // nothing in PPM).
 bool write_image(const std::string& path, const Image& image, const DisplaySettings& settings,
                  std::string& error, const ImageMetadata& metadata = {});
+
+// Writes a multi-layer image: EXR gets every layer (io/exr_layers.h) with the
+// image's data window inside its frame; PNG/JPEG/PPM get the beauty's RGB of
+// the data window only (a crop is written as a smaller image).
+bool write_layered_image(const std::string& path, const LayeredImage& image, const DisplaySettings& settings,
+                         std::string& error, const ImageMetadata& metadata = {});
 
 // Reads an image (any format OpenImageIO reads) as float RGB: float files (EXR)
 // as they are; integer files (PNG, PPM) as code / max code, i.e. the display

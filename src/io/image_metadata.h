@@ -2,9 +2,12 @@
 // for PNG/JPEG, text entries where the format has them (PPM has none).
 // Names follow OpenEXR's standard attributes where one exists (worldToCamera,
 // worldToNDC, chromaticities, ...) and use the "pathtracer:" prefix otherwise.
+// Every EXR also carries chromaticities (Rec.709 / sRGB primaries, D65 white),
+// written by the EXR writer itself.
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -24,5 +27,37 @@ struct ImageMetadata {
   void set(const std::string& name, float value) { floats.emplace_back(name, value); }
   void set(const std::string& name, const Matrix& value) { matrices.emplace_back(name, value); }
 };
+
+// What the command line knows about a render, for the image headers
+// (docs/output.md lists the attribute names). Filled by the application.
+struct RenderStamp {
+  double render_seconds = 0.0;
+  int spp = 0;
+  uint64_t seed = 0;
+  std::string backend;     // the accelerator's description
+  std::string integrator;
+  std::string software_version;
+  bool partial = false;    // the render stopped early (signal, time budget): some pixels have fewer samples
+  bool has_camera = false;
+  ImageMetadata::Matrix world_to_camera{}, world_to_ndc{};
+};
+
+// Adds `stamp` to `metadata`: pathtracer:renderTime (float seconds),
+// pathtracer:spp, pathtracer:partial (int 0/1), pathtracer:seed,
+// pathtracer:backend, pathtracer:integrator, pathtracer:version (strings),
+// and worldToCamera / worldToNDC when has_camera.
+inline void add_render_stamp(ImageMetadata& metadata, const RenderStamp& stamp) {
+  metadata.set("pathtracer:renderTime", static_cast<float>(stamp.render_seconds));
+  metadata.set("pathtracer:spp", stamp.spp);
+  metadata.set("pathtracer:partial", stamp.partial ? 1 : 0);
+  metadata.set("pathtracer:seed", std::to_string(stamp.seed));  // 64 bits: a string
+  metadata.set("pathtracer:backend", stamp.backend);
+  metadata.set("pathtracer:integrator", stamp.integrator);
+  metadata.set("pathtracer:version", stamp.software_version);
+  if (stamp.has_camera) {
+    metadata.set("worldToCamera", stamp.world_to_camera);
+    metadata.set("worldToNDC", stamp.world_to_ndc);
+  }
+}
 
 }  // namespace pt

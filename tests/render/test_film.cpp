@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
+#include <cstring>
 #include <sstream>
 
 #include "core/parallel.h"
@@ -68,6 +70,71 @@ TEST(FilmState, RejectsWrongSizeTruncationAndGarbage) {
   std::istringstream trailing(state + "z");
   EXPECT_FALSE(target.read_state(trailing, error));
   EXPECT_NE(error.find("trailing"), std::string::npos) << error;
+}
+
+// A cropped film with AOVs and a non-finite report, rendered for real.
+Film rendered_film(WorkerPool& pool, const std::vector<AovRequest>& aovs) {
+  SceneDescription d = test::empty_scene(24, 18, Vec3f(0, 0, 5), Vec3f(0, 0, 0), Vec3f(0, 1, 0));
+  test::add_sphere(d, Vec3f(0, 0, 0), 1.0f, test::add_material(d, test::diffuse_material(RGB(0.5f))));
+  test::add_point_light(d, Vec3f(2, 2, 4), RGB(10.0f), RGB(10.0f));
+  const auto scene = test::build(d, pool);
+  Film film(24, 18, PixelRect{3, 2, 20, 15}, aovs);
+  IntegratorSettings settings;
+  settings.spp = 3;
+  std::string error;
+  make_integrator("path", settings, error)->render(*scene, film, pool);
+  NonFiniteReport bad;
+  bad.record(5, 4, 2, RGB(1.0f, std::nanf(""), 0.0f));
+  film.add_non_finite(bad);
+  return film;
+}
+
+TEST(FilmState, AovsCropAndNonFiniteReportRoundTripBitExactly) {
+  WorkerPool pool(2);
+  std::vector<AovRequest> aovs;
+  for (const AovInfo& info : aov_catalogue()) aovs.push_back({info.type, info.default_type});
+  const Film film = rendered_film(pool, aovs);
+  std::stringstream buffer;
+  ASSERT_TRUE(film.write_state(buffer));
+  Film back(24, 18, PixelRect{3, 2, 20, 15}, aovs);
+  std::string error;
+  ASSERT_TRUE(back.read_state(buffer, error)) << error;
+  const LayeredImage a = film.layers(), b = back.layers();
+  ASSERT_EQ(a.layers.size(), aovs.size() + 1);
+  for (std::size_t i = 0; i < a.layers.size(); ++i) {
+    ASSERT_EQ(a.layers[i].values.size(), b.layers[i].values.size());
+    EXPECT_EQ(0, std::memcmp(a.layers[i].values.data(), b.layers[i].values.data(),
+                             a.layers[i].values.size() * sizeof(float)))
+        << a.layers[i].name;
+  }
+  EXPECT_EQ(back.non_finite().nan, 1u);
+  EXPECT_EQ(back.non_finite().x, 5);
+  EXPECT_EQ(back.non_finite().sample, 2);
+  // Adding to a restored film continues exactly where the original was.
+  std::stringstream again;
+  ASSERT_TRUE(back.write_state(again));
+  EXPECT_EQ(again.str(), buffer.str());
+}
+
+TEST(FilmState, RejectsAnotherCropOrAovList) {
+  WorkerPool pool(1);
+  const std::vector<AovRequest> aovs = {{AovType::Albedo, ChannelType::Half}};
+  std::stringstream buffer;
+  ASSERT_TRUE(rendered_film(pool, aovs).write_state(buffer));
+  const std::string state = buffer.str();
+  std::string error;
+  Film other_crop(24, 18, PixelRect{3, 2, 20, 16}, aovs);
+  std::istringstream in1(state);
+  EXPECT_FALSE(other_crop.read_state(in1, error));
+  EXPECT_NE(error.find("crop"), std::string::npos) << error;
+  Film other_aovs(24, 18, PixelRect{3, 2, 20, 15}, {{AovType::Albedo, ChannelType::Float}});
+  std::istringstream in2(state);
+  EXPECT_FALSE(other_aovs.read_state(in2, error));
+  EXPECT_NE(error.find("albedo:half"), std::string::npos) << error;
+  Film none(24, 18, PixelRect{3, 2, 20, 15});
+  std::istringstream in3(state);
+  EXPECT_FALSE(none.read_state(in3, error));
+  EXPECT_NE(error.find("none"), std::string::npos) << error;
 }
 
 class CountingMonitor final : public RenderMonitor {

@@ -76,4 +76,26 @@ bool Camera::project(Vec3f world, Vec2f& film_px) const {
   return true;
 }
 
+std::array<float, 16> Camera::world_to_camera() const {
+  const Vec3f r = normalize(right_), u = normalize(up_), f = forward_;
+  return {r.x, u.x, -f.x, 0.0f,  //
+          r.y, u.y, -f.y, 0.0f,  //
+          r.z, u.z, -f.z, 0.0f,  //
+          -dot(origin_, r), -dot(origin_, u), dot(origin_, f), 1.0f};
+}
+
+std::array<float, 16> Camera::world_to_ndc() const {
+  // Camera space to clip space: x' = x / |right_|, y' = y / |up_|, z' = 1, w' = -z.
+  const std::array<float, 16> c = world_to_camera();
+  const float sx = 1.0f / length(right_), sy = 1.0f / length(up_);
+  std::array<float, 16> m{};
+  for (int row = 0; row < 4; ++row) {
+    m[row * 4 + 0] = c[row * 4 + 0] * sx;
+    m[row * 4 + 1] = c[row * 4 + 1] * sy;
+    m[row * 4 + 2] = row == 3 ? 1.0f : 0.0f;
+    m[row * 4 + 3] = -c[row * 4 + 2];
+  }
+  return m;
+}
+
 }  // namespace pt

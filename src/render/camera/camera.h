@@ -8,6 +8,8 @@
 // focus_distance), so that plane is sharp and everything else is blurred.
 #pragma once
 
+#include <array>
+
 #include "core/math.h"
 #include "scene/scene_description.h"
 
@@ -30,6 +32,15 @@ class Camera {
   // Projects a world point to film pixel coordinates (through the lens
   // centre); false if behind the camera.
   bool project(Vec3f world, Vec2f& film_px) const;
+
+  // OpenEXR's worldToCamera and worldToNDC (docs/output.md): 4x4 matrices for
+  // row vectors (p' = (x, y, z, 1) * M, translation in the last row), stored
+  // row-major. Camera space: x right, y up, the camera looking down -z. NDC
+  // after dividing by w: x in [-1, 1] left to right and y in [-1, 1] bottom to
+  // top across the full frame, z = 1 / depth; i.e. pixel
+  // ((x + 1) / 2 * width, (1 - y) / 2 * height), as project() computes.
+  std::array<float, 16> world_to_camera() const;
+  std::array<float, 16> world_to_ndc() const;
 
   Vec3f position() const { return origin_; }
   Vec3f forward() const { return forward_; }

@@ -1,94 +1,250 @@
 #include "render/film/film.h"
 
 #include <algorithm>
-#include <bit>
-#include <cstring>
-#include <istream>
-#include <ostream>
+#include <cmath>
+#include <sstream>
+#include <tuple>
 
 namespace pt {
 
 namespace {
 
-// State layout (version 1): the 8-byte magic, then uint32 version, width,
-// height, then per pixel (row-major, row 0 at the top) r, g, b, weight as
-// IEEE doubles and samples as uint64, all little-endian.
-constexpr char kMagic[8] = {'P', 'T', 'F', 'I', 'L', 'M', '\r', '\n'};
-constexpr uint32_t kStateVersion = 1;
-static_assert(std::endian::native == std::endian::little, "film states are written in the host's byte order");
-
-template <typename T>
-void put(std::ostream& out, const T& v) {
-  out.write(reinterpret_cast<const char*>(&v), sizeof v);
+PixelRect clip(PixelRect r, int width, int height) {
+  r.x0 = std::clamp(r.x0, 0, width);
+  r.x1 = std::clamp(r.x1, r.x0, width);
+  r.y0 = std::clamp(r.y0, 0, height);
+  r.y1 = std::clamp(r.y1, r.y0, height);
+  return r;
 }
-template <typename T>
-bool get(std::istream& in, T& v) {
-  return static_cast<bool>(in.read(reinterpret_cast<char*>(&v), sizeof v));
+
+void add_weighted(double* s, float w, float a, float b, float c) {
+  s[0] += static_cast<double>(w) * a;
+  s[1] += static_cast<double>(w) * b;
+  s[2] += static_cast<double>(w) * c;
+}
+
+void add_weighted(double* s, float w, RGB v) { add_weighted(s, w, v.r, v.g, v.b); }
+
+// First-sample layers: n values and a flag (1 once set).
+void set_first(double* s, int n, const float* v) {
+  if (s[n] != 0.0) return;
+  for (int c = 0; c < n; ++c) s[c] = v[c];
+  s[n] = 1.0;
 }
 
 }  // namespace
 
-Film::Film(int width, int height)
-    : width_(std::max(width, 0)), height_(std::max(height, 0)),
-      pixels_(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_)) {}
+void NonFiniteReport::record(int px, int py, int sample_index, RGB v) {
+  if (std::isnan(v.r) || std::isnan(v.g) || std::isnan(v.b)) {
+    ++nan;
+  } else if (v.r == kInfinity || v.g == kInfinity || v.b == kInfinity) {
+    ++pos_inf;
+  } else {
+    ++neg_inf;
+  }
+  if (!has_first || std::tie(py, px, sample_index) < std::tie(y, x, sample)) {
+    has_first = true;
+    x = px;
+    y = py;
+    sample = sample_index;
+    value = v;
+  }
+}
+
+void NonFiniteReport::merge(const NonFiniteReport& o) {
+  nan += o.nan;
+  pos_inf += o.pos_inf;
+  neg_inf += o.neg_inf;
+  if (o.has_first && (!has_first || std::tie(o.y, o.x, o.sample) < std::tie(y, x, sample))) {
+    has_first = true;
+    x = o.x;
+    y = o.y;
+    sample = o.sample;
+    value = o.value;
+  }
+}
+
+std::string NonFiniteReport::describe() const {
+  std::ostringstream os;
+  os << total() << " non-finite sample" << (total() == 1 ? "" : "s") << " (" << nan << " NaN, " << pos_inf
+     << " +Inf, " << neg_inf << " -Inf)";
+  if (has_first)
+    os << "; first at pixel (" << x << ", " << y << ") sample " << sample << ": (" << value.r << ", " << value.g
+       << ", " << value.b << ")";
+  return os.str();
+}
+
+Film::Film(int width, int height) : Film(width, height, PixelRect{0, 0, width, height}) {}
+
+Film::Film(int width, int height, PixelRect crop, std::vector<AovRequest> aovs)
+    : width_(std::max(width, 0)), height_(std::max(height, 0)), crop_(clip(crop, width_, height_)),
+      pixels_(static_cast<std::size_t>(crop_.width()) * static_cast<std::size_t>(crop_.height())),
+      aovs_(std::move(aovs)) {
+  for (const AovRequest& r : aovs_) {
+    offset_.push_back(stride_);
+    const AovInfo& info = aov_info(r.type);
+    stride_ += info.state_doubles;
+    if (r.type <= AovType::MaterialId) wants_geometry_ = true;
+    if (info.path_only) wants_lighting_ = true;
+  }
+  aov_data_.assign(pixels_.size() * static_cast<std::size_t>(stride_), 0.0);
+}
+
+bool Film::wants(AovType type) const {
+  return std::any_of(aovs_.begin(), aovs_.end(), [&](const AovRequest& r) { return r.type == type; });
+}
 
 Image Film::image() const {
-  Image out(width_, height_);
+  Image out(crop_.width(), crop_.height());
   for (std::size_t i = 0; i < pixels_.size(); ++i) out.pixels[i] = pixels_[i].value();
   return out;
 }
 
-void Film::clear() { std::fill(pixels_.begin(), pixels_.end(), PixelSum{}); }
-
-bool Film::write_state(std::ostream& out) const {
-  out.write(kMagic, sizeof kMagic);
-  put(out, kStateVersion);
-  put(out, static_cast<uint32_t>(width_));
-  put(out, static_cast<uint32_t>(height_));
-  for (const PixelSum& p : pixels_) {
-    put(out, p.r);
-    put(out, p.g);
-    put(out, p.b);
-    put(out, p.weight);
-    put(out, p.samples);
-  }
-  return static_cast<bool>(out);
+void Film::clear() {
+  std::fill(pixels_.begin(), pixels_.end(), PixelSum{});
+  std::fill(aov_data_.begin(), aov_data_.end(), 0.0);
+  non_finite_ = {};
 }
 
-bool Film::read_state(std::istream& in, std::string& error) {
-  char magic[sizeof kMagic];
-  uint32_t version = 0, w = 0, h = 0;
-  if (!in.read(magic, sizeof magic) || std::memcmp(magic, kMagic, sizeof kMagic) != 0) {
-    error = "not a film state (bad magic)";
-    return false;
-  }
-  if (!get(in, version) || version != kStateVersion) {
-    error = "unsupported film state version " + std::to_string(version) + " (expected " +
-            std::to_string(kStateVersion) + ")";
-    return false;
-  }
-  if (!get(in, w) || !get(in, h)) {
-    error = "truncated film state header";
-    return false;
-  }
-  if (static_cast<int64_t>(w) != width_ || static_cast<int64_t>(h) != height_) {
-    error = "film state is " + std::to_string(w) + "x" + std::to_string(h) + ", the render is " +
-            std::to_string(width_) + "x" + std::to_string(height_);
-    return false;
-  }
-  std::vector<PixelSum> pixels(pixels_.size());
-  for (PixelSum& p : pixels) {
-    if (!get(in, p.r) || !get(in, p.g) || !get(in, p.b) || !get(in, p.weight) || !get(in, p.samples)) {
-      error = "truncated film state";
-      return false;
+void Film::accumulate(double* scratch, const AovSample& a, RGB radiance, float w, bool non_finite) const {
+  for (std::size_t i = 0; i < aovs_.size(); ++i) {
+    double* s = scratch + offset_[i];
+    switch (aovs_[i].type) {
+      case AovType::Albedo: add_weighted(s, w, a.albedo); break;
+      case AovType::Normal: add_weighted(s, w, a.normal.x, a.normal.y, a.normal.z); break;
+      case AovType::Position: {
+        const float v[3] = {a.position.x, a.position.y, a.position.z};
+        set_first(s, 3, v);
+        break;
+      }
+      case AovType::Depth: set_first(s, 1, &a.depth); break;
+      case AovType::ObjectId: {
+        const float v = static_cast<float>(a.object);
+        set_first(s, 1, &v);
+        break;
+      }
+      case AovType::MaterialId: {
+        const float v = static_cast<float>(a.material);
+        set_first(s, 1, &v);
+        break;
+      }
+      case AovType::Emission: if (!non_finite) add_weighted(s, w, a.emission); break;
+      case AovType::DiffuseDirect: if (!non_finite) add_weighted(s, w, a.diffuse_direct); break;
+      case AovType::DiffuseIndirect: if (!non_finite) add_weighted(s, w, a.diffuse_indirect); break;
+      case AovType::SpecularDirect: if (!non_finite) add_weighted(s, w, a.specular_direct); break;
+      case AovType::SpecularIndirect: if (!non_finite) add_weighted(s, w, a.specular_indirect); break;
+      case AovType::Variance:
+        if (!non_finite) {
+          for (int c = 0; c < 3; ++c) {
+            const double v = radiance[c];
+            s[c] += v;
+            s[3 + c] += v * v;
+          }
+        }
+        break;
+      case AovType::Samples: break;  // the beauty's count
+      case AovType::NonFinite: if (non_finite) s[0] = 1.0; break;
     }
   }
-  if (in.peek() != std::char_traits<char>::eof()) {
-    error = "film state has trailing data";
-    return false;
+}
+
+void Film::add_aovs(int x, int y, const double* scratch) {
+  double* film = aov_data_.data() + index(x, y) * static_cast<std::size_t>(stride_);
+  for (std::size_t i = 0; i < aovs_.size(); ++i) {
+    const AovInfo& info = aov_info(aovs_[i].type);
+    double* d = film + offset_[i];
+    const double* s = scratch + offset_[i];
+    switch (info.accumulation) {
+      case Accumulation::FilteredAverage:
+      case Accumulation::Sum:
+        for (int c = 0; c < info.state_doubles; ++c) d[c] += s[c];
+        break;
+      case Accumulation::FirstSample:
+        if (d[info.channels] == 0.0 && s[info.channels] != 0.0)
+          std::copy(s, s + info.state_doubles, d);
+        break;
+      case Accumulation::Max:
+        d[0] = std::max(d[0], s[0]);
+        break;
+    }
   }
-  pixels_ = std::move(pixels);
-  return true;
+}
+
+void Film::aov_values(std::size_t layer, std::size_t pixel, float* out) const {
+  const AovType type = aovs_[layer].type;
+  const AovInfo& info = aov_info(type);
+  const double* d = aov_data_.data() + pixel * static_cast<std::size_t>(stride_) + offset_[layer];
+  const PixelSum& p = pixels_[pixel];
+  std::fill(out, out + info.channels, 0.0f);
+  switch (info.accumulation) {
+    case Accumulation::FilteredAverage:
+      if (p.weight != 0.0)
+        for (int c = 0; c < info.channels; ++c) out[c] = static_cast<float>(d[c] / p.weight);
+      break;
+    case Accumulation::FirstSample:
+      for (int c = 0; c < info.channels; ++c) out[c] = static_cast<float>(d[c]);
+      break;
+    case Accumulation::Sum:
+      if (type == AovType::Samples) {
+        out[0] = static_cast<float>(p.samples);
+      } else if (p.samples >= 2) {  // variance of the mean: unbiased sample variance / n
+        const double n = static_cast<double>(p.samples);
+        for (int c = 0; c < 3; ++c) {
+          const double mean = d[c] / n;
+          const double var = std::max(0.0, (d[3 + c] - d[c] * mean) / (n - 1.0));
+          out[c] = static_cast<float>(var / n);
+        }
+      }
+      break;
+    case Accumulation::Max:
+      out[0] = static_cast<float>(d[0]);
+      break;
+  }
+}
+
+std::vector<float> Film::aov_value(AovType type, int x, int y) const {
+  for (std::size_t i = 0; i < aovs_.size(); ++i) {
+    if (aovs_[i].type != type) continue;
+    std::vector<float> out(static_cast<std::size_t>(aov_info(type).channels));
+    aov_values(i, index(x, y), out.data());
+    return out;
+  }
+  return {};
+}
+
+LayeredImage Film::layers() const {
+  LayeredImage out;
+  out.full_width = width_;
+  out.full_height = height_;
+  out.x = crop_.x0;
+  out.y = crop_.y0;
+  out.width = crop_.width();
+  out.height = crop_.height();
+  const std::size_t n = out.pixel_count();
+  ImageLayer beauty{"", {"R", "G", "B", "A"}, ChannelType::Float, std::vector<float>(n * 4)};
+  for (std::size_t i = 0; i < n; ++i) {
+    const RGB v = pixels_[i].value();
+    float* p = &beauty.values[i * 4];
+    p[0] = v.r;
+    p[1] = v.g;
+    p[2] = v.b;
+    p[3] = pixels_[i].samples > 0 ? 1.0f : 0.0f;
+  }
+  out.layers.push_back(std::move(beauty));
+  for (std::size_t l = 0; l < aovs_.size(); ++l) {
+    const AovRequest& r = aovs_[l];
+    const AovInfo& info = aov_info(r.type);
+    ImageLayer layer;
+    layer.name = info.name;
+    layer.type = r.channel_type;
+    for (int c = 0; c < info.channels; ++c)
+      layer.channels.push_back(info.channels == 1 ? std::string(info.name)
+                                                  : std::string(info.name) + "." + info.suffix[c]);
+    layer.values.resize(n * static_cast<std::size_t>(info.channels));
+    for (std::size_t i = 0; i < n; ++i) aov_values(l, i, &layer.values[i * static_cast<std::size_t>(info.channels)]);
+    out.layers.push_back(std::move(layer));
+  }
+  return out;
 }
 
 }  // namespace pt

@@ -5,6 +5,11 @@
 // sum / weight_sum. Because sums add, passes over sample ranges rendered one
 // after another (or elsewhere) merge into the same image.
 //
+// A film covers a frame of width x height pixels but stores only its crop
+// window (the whole frame by default); pixel coordinates are always the
+// frame's. Requested AOV layers (render/film/aov.h) are stored beside the
+// beauty, per pixel, in double; a film without AOVs stores nothing for them.
+//
 // Each pixel is written by exactly one task at a time (the render loop gives
 // every pixel to one task), so adding needs no synchronisation and the result
 // does not depend on the tile order.
@@ -17,6 +22,8 @@
 
 #include "core/color.h"
 #include "core/image.h"
+#include "io/layered_image.h"
+#include "render/film/aov.h"
 
 namespace pt {
 
@@ -48,33 +55,98 @@ struct PixelSum {
   }
 };
 
+// Pixels [x0, x1) x [y0, y1) of the frame.
+struct PixelRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  int width() const { return x1 - x0; }
+  int height() const { return y1 - y0; }
+  bool empty() const { return x1 <= x0 || y1 <= y0; }
+  bool contains(int x, int y) const { return x >= x0 && x < x1 && y >= y0 && y < y1; }
+  bool operator==(const PixelRect&) const = default;
+};
+
+// Non-finite samples caught before they reach the film (they are added as
+// black). Counts are per kind; the first offender is the smallest
+// (y, x, sample index), so it does not depend on thread scheduling.
+struct NonFiniteReport {
+  uint64_t nan = 0, pos_inf = 0, neg_inf = 0;  // a sample with any NaN channel counts as NaN, else +-Inf
+  bool has_first = false;
+  int x = 0, y = 0, sample = 0;
+  RGB value;  // the offending estimate
+
+  uint64_t total() const { return nan + pos_inf + neg_inf; }
+  // Counts a non-finite `value` of sample `sample` of pixel (x, y).
+  void record(int px, int py, int sample_index, RGB v);
+  void merge(const NonFiniteReport& o);
+  // "3 non-finite samples (2 NaN, 1 +Inf, 0 -Inf); first at pixel (4, 7) sample 12: (nan, 0, 1)".
+  std::string describe() const;
+};
+
 class Film {
  public:
   Film(int width, int height);
-  int width() const { return width_; }
+  // A film of the frame that stores only `crop` (clipped to the frame) and the requested AOVs.
+  Film(int width, int height, PixelRect crop, std::vector<AovRequest> aovs = {});
+  int width() const { return width_; }    // the frame
   int height() const { return height_; }
+  const PixelRect& crop() const { return crop_; }
 
+  // Frame coordinates, inside crop().
   void add(int x, int y, const PixelSum& s) { pixels_[index(x, y)].add(s); }
   const PixelSum& sum(int x, int y) const { return pixels_[index(x, y)]; }
   RGB pixel(int x, int y) const { return pixels_[index(x, y)].value(); }
-  // The image: every pixel's sum / weight.
+  // The image of the crop window: every pixel's sum / weight.
   Image image() const;
   void clear();
 
-  // The film's complete state (every pixel's sums and counts), for checkpoints:
-  // written and read back bit for bit, so that a render resumed from it adds up
-  // to exactly the image of an uninterrupted one. Binary, little-endian; the
-  // layout is in film.cpp. write_state returns false when the stream fails.
+  // AOVs. A pixel's samples are gathered in a scratch array of aov_doubles()
+  // zeros (accumulate() per sample, lowest sample index first), then added
+  // with add_aovs().
+  const std::vector<AovRequest>& aovs() const { return aovs_; }
+  bool wants(AovType type) const;
+  bool wants_geometry() const { return wants_geometry_; }  // albedo, N, P, Z or ids
+  bool wants_lighting() const { return wants_lighting_; }  // the path integrator's split
+  int aov_doubles() const { return stride_; }
+  void accumulate(double* scratch, const AovSample& sample, RGB radiance, float weight, bool non_finite) const;
+  void add_aovs(int x, int y, const double* scratch);
+  // The final values of AOV `type` at (x, y) (channels().size() floats); empty if not requested.
+  std::vector<float> aov_value(AovType type, int x, int y) const;
+
+  const NonFiniteReport& non_finite() const { return non_finite_; }
+  void add_non_finite(const NonFiniteReport& r) { non_finite_.merge(r); }
+
+  // The beauty (R, G, B, A; A = 1 where the pixel has samples) and every
+  // requested AOV over the crop window, for the image writers.
+  LayeredImage layers() const;
+
+  // The film's complete state (every pixel's sums and counts, the AOV sums,
+  // the non-finite report), for checkpoints: written and read back bit for
+  // bit, so that a render resumed from it adds up to exactly the image of an
+  // uninterrupted one. Binary, little-endian; the layout is in film.cpp.
+  // write_state returns false when the stream fails.
   bool write_state(std::ostream& out) const;
   // Replaces this film's state. Returns false, with `error` set and the film
-  // unchanged, when the stream does not hold a state of a film of this size.
+  // unchanged, when the stream does not hold a state of a film of this size,
+  // crop and AOV list.
   bool read_state(std::istream& in, std::string& error);
 
  private:
-  std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + x; }
+  // The final values of AOV number `layer` of pixel number `pixel` (in the crop, row-major) into `out`.
+  void aov_values(std::size_t layer, std::size_t pixel, float* out) const;
+  std::size_t index(int x, int y) const {
+    return static_cast<std::size_t>(y - crop_.y0) * static_cast<std::size_t>(crop_.width()) +
+           static_cast<std::size_t>(x - crop_.x0);
+  }
 
   int width_, height_;
+  PixelRect crop_;
   std::vector<PixelSum> pixels_;
+  std::vector<AovRequest> aovs_;
+  std::vector<int> offset_;  // per request: its first double in a pixel's AOV block
+  int stride_ = 0;           // doubles per pixel for all AOVs
+  bool wants_geometry_ = false, wants_lighting_ = false;
+  std::vector<double> aov_data_;  // pixels * stride_
+  NonFiniteReport non_finite_;
 };
 
 }  // namespace pt

@@ -117,8 +117,11 @@ class BvhCostIntegrator final : public Integrator {
     for (int y = 0; y < film.height(); ++y)
       for (int x = 0; x < film.width(); ++x) image.at(x, y) = cost_colour(costs.pixel(x, y).r / top);
     draw_legend(image, top, saturated);
-    for (int y = 0; y < film.height(); ++y) {
-      for (int x = 0; x < film.width(); ++x) {
+    // Only the film's crop is kept; the scale is the whole frame's, so a crop
+    // shows the same colours as a full render.
+    const PixelRect& crop = film.crop();
+    for (int y = crop.y0; y < crop.y1; ++y) {
+      for (int x = crop.x0; x < crop.x1; ++x) {
         PixelSum s;
         s.add(image.at(x, y), 1.0f);
         film.add(x, y, s);

@@ -15,6 +15,7 @@
 #include "core/sampling.h"
 #include "geometry/shapes.h"
 #include "render/integrators/builtin.h"
+#include "render/integrators/path_aov.h"
 #include "render/integrators/render_loop.h"
 #include "render/materials/bsdf.h"
 #include "render/render_scene.h"
@@ -34,7 +35,9 @@ class PathTracer {
         clamp_(settings.clamp),
         strategy_(settings.light_strategy) {}
 
-  RGB radiance(Ray ray, Sampler& sampler) const {
+  // `aov`, when not null, receives the lighting split (path_aov.h).
+  RGB radiance(Ray ray, Sampler& sampler, AovSample* aov = nullptr) const {
+    PathAovRecorder rec(aov);
     RGB L, beta(1.0f);
     bool specular = true;  // the camera ray, or a delta lobe: no light sampling could have found this
     float prev_pdf = 0.0f;
@@ -44,24 +47,39 @@ class PathTracer {
       Intersection isect;
       if (!scene_.intersect(ray, isect)) {
         const RGB le = scene_.escaped_radiance(ray.dir);
-        if (!le.is_black()) L += beta * le * escape_weight(ray.dir, specular, prev_pdf);
+        if (!le.is_black()) {
+          const RGB term = beta * le * escape_weight(ray.dir, specular, prev_pdf);
+          L += term;
+          if (rec.active()) rec.found(depth, term);
+        }
         break;
       }
       const Material& m = *isect.material;
       const Vec3f wo = -ray.dir;
       if (m.emits()) {
         const RGB le = m.emitted(isect.geo.ng, wo);
-        if (!le.is_black()) L += beta * le * emitter_weight(isect, ray.dir, specular, prev_pdf, prev_p);
+        if (!le.is_black()) {
+          const RGB term = beta * le * emitter_weight(isect, ray.dir, specular, prev_pdf, prev_p);
+          L += term;
+          if (rec.active()) rec.found(depth, term);
+        }
       }
       if (depth >= max_depth_) break;
 
       const Bsdf bsdf(m, isect.geo, wo);
       if (bsdf.black()) break;
-      if (!bsdf.delta_only() && !lights_.empty()) L += beta * direct_light(isect, bsdf, wo, sampler);
+      if (rec.active() && depth == 0) rec.first_vertex(m, isect.geo, wo, bsdf);
+      if (!bsdf.delta_only() && !lights_.empty()) {
+        Vec3f wi_light;
+        const RGB term = beta * direct_light(isect, bsdf, wo, sampler, &wi_light);
+        L += term;
+        if (rec.active() && !term.is_black()) rec.light(depth, term, wo, wi_light);
+      }
 
       BsdfSample bs;
       const float u_lobe = sampler.get_1d();
       if (!bsdf.sample(wo, u_lobe, sampler.get_2d(), bs)) break;
+      if (rec.active() && depth == 0) rec.first_bounce(wo, bs);
       beta *= bs.weight;
       eta2 *= bs.eta2;
       if (beta.is_black()) break;
@@ -80,7 +98,10 @@ class PathTracer {
     }
     if (clamp_ > 0.0f) {
       const float peak = L.max_component();
-      if (peak > clamp_) L *= clamp_ / peak;
+      if (peak > clamp_) {
+        L *= clamp_ / peak;
+        if (rec.active()) rec.scale(clamp_ / peak);
+      }
     }
     return L;
   }
@@ -109,7 +130,9 @@ class PathTracer {
   }
 
   // Next-event estimation: one light, chosen by power, sampled at one point.
-  RGB direct_light(const Intersection& isect, const Bsdf& bsdf, Vec3f wo, Sampler& sampler) const {
+  // `wi_out`, when not null, receives the sampled light direction (for the AOV split).
+  RGB direct_light(const Intersection& isect, const Bsdf& bsdf, Vec3f wo, Sampler& sampler,
+                   Vec3f* wi_out = nullptr) const {
     const float u_light = sampler.get_1d();
     const Vec2f u = sampler.get_2d();
     float pmf = 0.0f;
@@ -119,6 +142,7 @@ class PathTracer {
     if (!sample_light(lights_[static_cast<std::size_t>(index)], isect.geo.p, u, ls)) return {};
     if (ls.L.is_black() || !(ls.pdf > 0.0f)) return {};
     if (!ls.delta && strategy_ == LightStrategy::BsdfOnly) return {};
+    if (wi_out != nullptr) *wi_out = ls.wi;
     const RGB f = bsdf.f(wo, ls.wi);
     if (f.is_black()) return {};
     Ray shadow;
@@ -153,7 +177,7 @@ class PathIntegrator final : public Integrator {
     const PathTracer tracer(scene, settings_);
     render_samples(scene, film, pool, settings_, make_sampler(settings_.sampler, settings_.spp, settings_.seed),
                    filter_,
-                   [&](const Ray& ray, Sampler& sampler) { return tracer.radiance(ray, sampler); });
+                   [&](const Ray& ray, Sampler& sampler, AovSample* aov) { return tracer.radiance(ray, sampler, aov); });
   }
 
  private:

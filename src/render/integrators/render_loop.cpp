@@ -1,6 +1,8 @@
 #include "render/integrators/render_loop.h"
 
 #include <algorithm>
+#include <mutex>
+#include <vector>
 
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
@@ -10,6 +12,18 @@
 #include "render/render_scene.h"
 
 namespace pt {
+
+namespace {
+
+// The albedo AOV: the diffuse colour kd * Cd (texture applied) of Phong and
+// Lambert materials, the tint of a mirror, white for glass.
+RGB surface_albedo(const Material& m, const SurfaceGeometry& geo) {
+  if (m.type == MaterialType::Glass || (m.type == MaterialType::Phong && m.refractive)) return RGB(1.0f);
+  if (m.type == MaterialType::Mirror) return m.specular;
+  return m.diffuse_at(geo.uv) * m.kd;
+}
+
+}  // namespace
 
 Vec2f sample_position(int x, int y, int index, int spp, uint64_t seed, uint64_t pixel_index) {
   StratifiedPixelSampler sampler(spp, seed, 1);
@@ -23,46 +37,87 @@ Vec2f lens_position(int index, uint64_t seed, uint64_t pixel_index) {
   return sampler.get_2d();
 }
 
+void first_hit_aovs(const RenderScene& scene, const Ray& ray, AovSample& aov) {
+  Intersection isect;
+  if (!scene.intersect(ray, isect)) return;
+  aov.hit = true;
+  aov.albedo = surface_albedo(*isect.material, isect.geo);
+  const Vec3f wo = -ray.dir;
+  const bool front = dot(isect.geo.ng, wo) >= 0.0f;
+  aov.normal = front ? isect.geo.ns : -isect.geo.ns;
+  aov.position = isect.geo.p;
+  aov.depth = dot(isect.geo.p - scene.camera.position(), scene.camera.forward());
+  aov.object = isect.hit.shape + 1;
+  aov.material = isect.hit.shape < scene.shape_material.size()
+                     ? static_cast<uint32_t>(scene.shape_material[isect.hit.shape]) + 1
+                     : 0;
+}
+
 void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, const IntegratorSettings& settings,
                     const Sampler& prototype, const PixelFilter& filter, SampleRadianceFn radiance) {
-  const int width = film.width(), height = film.height();
+  const PixelRect crop = film.crop();
   const int tile = std::max(1, settings.tile_size);
-  const int first = std::max(0, settings.first_sample);
-  const int end = first + std::max(0, settings.spp);
-  const int tiles_x = (width + tile - 1) / tile;
-  const int tiles_y = (height + tile - 1) / tile;
+  int first = std::max(0, settings.first_sample);
+  int end = first + std::max(0, settings.spp);
+  if (settings.only_sample >= 0) {
+    first = settings.only_sample;
+    end = first + 1;
+  }
+  const int tiles_x = (crop.width() + tile - 1) / tile;
+  const int tiles_y = (crop.height() + tile - 1) / tile;
   const bool lens = scene.camera.has_lens();
   RenderMonitor* const monitor = settings.monitor;
+  const bool geometry = film.wants_geometry(), lighting = film.wants_lighting();
+  const std::size_t aov_doubles = static_cast<std::size_t>(film.aov_doubles());
+  std::mutex report_mutex;
+  NonFiniteReport report;
 
-  auto render_pixel = [&](Sampler& sampler, int x, int y) {
+  auto render_pixel = [&](Sampler& sampler, std::vector<double>& scratch, NonFiniteReport& bad, int x, int y) {
     const Vec2f corner(static_cast<float>(x), static_cast<float>(y));
     PixelSum sum;
+    std::fill(scratch.begin(), scratch.end(), 0.0);
+    AovSample aov;  // reset per sample only when the film has AOVs
     for (int s = first; s < end; ++s) {
       sampler.start_pixel_sample(x, y, s);
       const FilterSample fs = filter.sample(sampler.get_pixel_2d());
       const Vec2f film_px = corner + fs.offset;
       const Ray ray = lens ? scene.camera.generate_ray(film_px, sampler.get_2d()) : scene.camera.generate_ray(film_px);
-      const RGB c = radiance(ray, sampler);
-      sum.add(c.is_finite() ? c : RGB(), fs.weight);
+      if (aov_doubles > 0) aov = AovSample{};
+      const RGB c = radiance(ray, sampler, lighting ? &aov : nullptr);
+      const bool finite = c.is_finite();
+      if (!finite) bad.record(x, y, s, c);
+      sum.add(finite ? c : RGB(), fs.weight);
+      if (aov_doubles > 0) {
+        if (geometry) first_hit_aovs(scene, ray, aov);
+        film.accumulate(scratch.data(), aov, c, fs.weight, !finite);
+      }
     }
     film.add(x, y, sum);
+    if (aov_doubles > 0) film.add_aovs(x, y, scratch.data());
   };
 
   pool.run([&] {
     tbb::parallel_for(tbb::blocked_range2d<int>(0, tiles_y, 0, tiles_x), [&](const tbb::blocked_range2d<int>& r) {
       Sampler sampler = prototype;
+      std::vector<double> scratch(aov_doubles);
+      NonFiniteReport bad;
       for (int ty = r.rows().begin(); ty != r.rows().end(); ++ty) {
         for (int tx = r.cols().begin(); tx != r.cols().end(); ++tx) {
-          if (monitor != nullptr && monitor->cancelled()) return;
-          const int x1 = std::min(width, (tx + 1) * tile), y1 = std::min(height, (ty + 1) * tile);
-          for (int y = ty * tile; y < y1; ++y)
-            for (int x = tx * tile; x < x1; ++x) render_pixel(sampler, x, y);
-          if (monitor != nullptr)
-            monitor->tile_done(static_cast<int64_t>(x1 - tx * tile) * (y1 - ty * tile) * (end - first));
+          if (monitor != nullptr && monitor->cancelled()) break;
+          const int x0 = crop.x0 + tx * tile, y0 = crop.y0 + ty * tile;
+          const int x1 = std::min(crop.x1, x0 + tile), y1 = std::min(crop.y1, y0 + tile);
+          for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x) render_pixel(sampler, scratch, bad, x, y);
+          if (monitor != nullptr) monitor->tile_done(static_cast<int64_t>(x1 - x0) * (y1 - y0) * (end - first));
         }
+      }
+      if (bad.total() > 0) {
+        const std::lock_guard<std::mutex> lock(report_mutex);
+        report.merge(bad);
       }
     });
   });
+  film.add_non_finite(report);
 }
 
 void render_pixels(const RenderScene& scene, Film& film, WorkerPool& pool, const IntegratorSettings& settings,
@@ -70,7 +125,7 @@ void render_pixels(const RenderScene& scene, Film& film, WorkerPool& pool, const
   const StratifiedPixelSampler sampler(settings.spp, settings.seed, film.width());
   const PixelFilter box(PixelFilterType::Box);
   render_samples(scene, film, pool, settings, sampler, box,
-                 [&](const Ray& ray, Sampler&) { return radiance(ray); });
+                 [&](const Ray& ray, Sampler&, AovSample*) { return radiance(ray); });
 }
 
 }  // namespace pt

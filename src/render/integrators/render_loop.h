@@ -10,6 +10,7 @@
 #include "core/color.h"
 #include "core/function_ref.h"
 #include "core/math.h"
+#include "render/film/aov.h"
 #include "render/film/filter.h"
 #include "render/integrators/integrator.h"
 #include "render/samplers/sampler.h"
@@ -35,16 +36,25 @@ Vec2f lens_position(int index, uint64_t seed, uint64_t pixel_index);
 
 // Computes one radiance estimate for a camera ray.
 using RadianceFn = FunctionRef<RGB(const Ray&)>;
-// Computes one radiance estimate for a camera ray, drawing further dimensions from `sampler`.
-using SampleRadianceFn = FunctionRef<RGB(const Ray&, Sampler&)>;
+// Computes one radiance estimate for a camera ray, drawing further dimensions
+// from `sampler`. `aov` is null unless the film asks for the path integrator's
+// lighting split (Film::wants_lighting()); then the estimate's parts go there.
+using SampleRadianceFn = FunctionRef<RGB(const Ray&, Sampler&, AovSample* aov)>;
 
 // The general loop: for samples [settings.first_sample, + settings.spp) of every
 // pixel, starts `sampler` (a prototype copied into each task) at the sample,
 // draws the film position through `filter`, the lens position if the camera has
-// a lens, and adds weight * radiance to the film. Non-finite estimates count as
-// black. Runs tiles of settings.tile_size pixels in parallel inside `pool`.
+// a lens, and adds weight * radiance to the film. Only the film's crop window is
+// rendered (in frame coordinates, so its pixels equal a full render's). With
+// settings.only_sample >= 0 only that sample index is rendered (replay).
+// Non-finite estimates count as black and are reported in film.non_finite().
+// Geometric AOVs (Film::wants_geometry) come from intersecting the camera ray
+// once more. Runs tiles of settings.tile_size pixels in parallel inside `pool`.
 void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, const IntegratorSettings& settings,
                     const Sampler& sampler, const PixelFilter& filter, SampleRadianceFn radiance);
+
+// Fills the geometric part of `aov` (albedo, normal, position, depth, ids) for a camera ray.
+void first_hit_aovs(const RenderScene& scene, const Ray& ray, AovSample& aov);
 
 // The classic integrators' loop: render_samples with the StratifiedPixelSampler
 // and the box filter, so each pixel is the average (in double) of `radiance`

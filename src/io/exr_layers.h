@@ -1,0 +1,25 @@
+// Writing multi-layer EXR files through OpenImageIO (internal to pt_io; the
+// public entry point is write_layered_image in io/image_io.h).
+#pragma once
+
+#include <string>
+
+#include <OpenImageIO/imageio.h>
+
+#include "io/image_metadata.h"
+#include "io/layered_image.h"
+
+namespace pt {
+
+// Puts `metadata` into `spec`: strings always; ints, floats and matrices when
+// `typed` (EXR). For EXR (`typed`) also the chromaticities: Rec.709 / sRGB
+// primaries and the D65 white point.
+void add_image_metadata(OIIO::ImageSpec& spec, const ImageMetadata& metadata, bool typed);
+
+// Writes `image` to `path` as one single-part EXR: channels R, G, B, A, then
+// each AOV's channels in the image's layer order, each stored as its layer's
+// type; data window = the image's window, display window = its frame.
+bool write_exr_layers(const std::string& path, const LayeredImage& image, const ImageMetadata& metadata,
+                      std::string& error);
+
+}  // namespace pt

@@ -1,0 +1,96 @@
+#include "render/film/aov.h"
+
+#include <algorithm>
+
+namespace pt {
+
+namespace {
+
+using A = Accumulation;
+constexpr ChannelType kHalf = ChannelType::Half, kFloat = ChannelType::Float;
+
+// Defaults: half where 11 bits of mantissa are plenty (albedo, normals, the
+// mask); float for positions, depths, ids and radiance-valued layers.
+const std::vector<AovInfo> kCatalogue = {
+    {AovType::Albedo, "albedo", 3, {"R", "G", "B"}, kHalf, A::FilteredAverage, 3, false},
+    {AovType::Normal, "N", 3, {"X", "Y", "Z"}, kHalf, A::FilteredAverage, 3, false},
+    {AovType::Position, "P", 3, {"X", "Y", "Z"}, kFloat, A::FirstSample, 4, false},
+    {AovType::Depth, "Z", 1, {"", "", ""}, kFloat, A::FirstSample, 2, false},
+    {AovType::ObjectId, "IndexOB", 1, {"", "", ""}, kFloat, A::FirstSample, 2, false},
+    {AovType::MaterialId, "IndexMA", 1, {"", "", ""}, kFloat, A::FirstSample, 2, false},
+    {AovType::Emission, "emission", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, true},
+    {AovType::DiffuseDirect, "diffuse_direct", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, true},
+    {AovType::DiffuseIndirect, "diffuse_indirect", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, true},
+    {AovType::SpecularDirect, "specular_direct", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, true},
+    {AovType::SpecularIndirect, "specular_indirect", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, true},
+    {AovType::Variance, "variance", 3, {"R", "G", "B"}, kFloat, A::Sum, 6, false},
+    {AovType::Samples, "samples", 1, {"", "", ""}, kFloat, A::Sum, 0, false},
+    {AovType::NonFinite, "nonfinite", 1, {"", "", ""}, kHalf, A::Max, 1, false},
+};
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t");
+  if (b == std::string::npos) return {};
+  return s.substr(b, s.find_last_not_of(" \t") - b + 1);
+}
+
+}  // namespace
+
+const std::vector<AovInfo>& aov_catalogue() { return kCatalogue; }
+
+const AovInfo& aov_info(AovType type) { return kCatalogue[static_cast<std::size_t>(type)]; }
+
+std::vector<std::string> aov_names() {
+  std::vector<std::string> names;
+  for (const AovInfo& info : kCatalogue) names.emplace_back(info.name);
+  return names;
+}
+
+bool parse_aov_list(const std::string& list, std::vector<AovRequest>& out, std::string& error) {
+  std::vector<AovRequest> result;
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', start), list.size());
+    const std::string item = trim(list.substr(start, comma - start));
+    start = comma + 1;
+    if (item.empty()) {
+      if (comma == list.size() && !result.empty()) break;
+      error = "empty AOV name in '" + list + "'";
+      return false;
+    }
+    const std::size_t colon = item.find(':');
+    const std::string name = trim(item.substr(0, colon));
+    const AovInfo* info = nullptr;
+    for (const AovInfo& i : kCatalogue)
+      if (name == i.name) info = &i;
+    if (info == nullptr) {
+      error = "unknown AOV '" + name + "'; valid names are:";
+      for (const AovInfo& i : kCatalogue) error += std::string(" ") + i.name;
+      return false;
+    }
+    AovRequest request{info->type, info->default_type};
+    if (colon != std::string::npos) {
+      const std::string type = trim(item.substr(colon + 1));
+      if (type == "half") {
+        request.channel_type = ChannelType::Half;
+      } else if (type == "float") {
+        request.channel_type = ChannelType::Float;
+      } else {
+        error = "AOV '" + name + "': unknown pixel type '" + type + "' (half or float)";
+        return false;
+      }
+    }
+    for (const AovRequest& r : result)
+      if (r.type == request.type) {
+        error = "AOV '" + name + "' is requested more than once";
+        return false;
+      }
+    result.push_back(request);
+  }
+  std::sort(result.begin(), result.end(),
+            [](const AovRequest& a, const AovRequest& b) { return a.type < b.type; });
+  out = std::move(result);
+  return true;
+}
+
+}  // namespace pt

@@ -1,0 +1,82 @@
+// Arbitrary output variables (AOVs): the extra layers a render can write
+// beside the beauty (docs/output.md). Each has a fixed name, channel names, a
+// default storage type and an accumulation kind; none is computed or stored
+// unless requested.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/color.h"
+#include "core/math.h"
+#include "io/layered_image.h"
+
+namespace pt {
+
+enum class AovType : uint8_t {
+  Albedo,            // albedo.R/G/B: the first hit's diffuse reflectance (see docs/output.md)
+  Normal,            // N.X/Y/Z: world-space shading normal of the first hit, facing the camera
+  Position,          // P.X/Y/Z: world-space position of the first hit
+  Depth,             // Z: camera-space depth of the first hit along the view axis
+  ObjectId,          // IndexOB: 1 + shape index of the first hit, 0 for none
+  MaterialId,        // IndexMA: 1 + material index of the first hit, 0 for none
+  Emission,          // emission.R/G/B (path): emitters seen directly by the camera
+  DiffuseDirect,     // diffuse_direct.R/G/B (path)
+  DiffuseIndirect,   // diffuse_indirect.R/G/B (path)
+  SpecularDirect,    // specular_direct.R/G/B (path)
+  SpecularIndirect,  // specular_indirect.R/G/B (path)
+  Variance,          // variance.R/G/B: variance of the pixel mean, per channel
+  Samples,           // samples: the pixel's sample count
+  NonFinite,         // nonfinite: 1 where a NaN or infinite sample was caught, else 0
+};
+
+// How a layer's samples combine into the pixel value.
+enum class Accumulation : uint8_t {
+  FilteredAverage,  // sum of weight * value / sum of weights, with the beauty's filter weights
+  FirstSample,      // the value of the pixel's first sample (lowest sample index): ids, P, Z
+  Sum,              // sums kept as they are (variance: sum and sum of squares; samples)
+  Max,              // the largest value seen (the non-finite mask)
+};
+
+struct AovInfo {
+  AovType type;
+  const char* name;                    // as given to --aov
+  int channels;                        // 1 or 3
+  std::array<const char*, 3> suffix;   // channel names after "name."; a single channel is named `name`
+  ChannelType default_type;
+  Accumulation accumulation;
+  int state_doubles;                   // doubles per pixel in the film
+  bool path_only;                      // filled only by the path integrator (others leave it black)
+};
+
+// Every AOV, in the order the film stores and the EXR lists them.
+const std::vector<AovInfo>& aov_catalogue();
+const AovInfo& aov_info(AovType type);
+std::vector<std::string> aov_names();
+
+struct AovRequest {
+  AovType type;
+  ChannelType channel_type;
+};
+
+// Parses "--aov" lists: comma-separated names, each optionally followed by
+// ":half" or ":float" (e.g. "albedo:half,N,Z:float"). Duplicates are an error.
+// The result is sorted in catalogue order. Returns false with `error` listing
+// the valid names for an unknown name.
+bool parse_aov_list(const std::string& list, std::vector<AovRequest>& out, std::string& error);
+
+// What one camera sample contributes to the AOVs besides its radiance. The
+// render loop fills the geometric part (only when a geometric AOV is
+// requested), the path integrator the lighting split (only when asked).
+struct AovSample {
+  bool hit = false;
+  RGB albedo;
+  Vec3f normal, position;
+  float depth = kInfinity;           // +inf for a ray that hits nothing
+  uint32_t object = 0, material = 0; // 1 + index, 0 = nothing hit
+  RGB emission, diffuse_direct, diffuse_indirect, specular_direct, specular_indirect;
+};
+
+}  // namespace pt

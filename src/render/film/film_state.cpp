@@ -1,0 +1,171 @@
+// Film::write_state / read_state: checkpoints of a film, bit for bit.
+#include <algorithm>
+#include <bit>
+#include <cstring>
+#include <istream>
+#include <ostream>
+
+#include "render/film/film.h"
+
+namespace pt {
+
+namespace {
+
+// State layout (version 2), all little-endian:
+//   the 8-byte magic; uint32 version, width, height; int32 crop x0, y0, x1, y1;
+//   uint32 AOV count, then per AOV uint8 type and uint8 channel type;
+//   the non-finite report: uint64 nan, pos_inf, neg_inf; uint8 has_first;
+//   int32 x, y, sample; float r, g, b;
+//   per pixel of the crop (row-major, top row first): r, g, b, weight as IEEE
+//   doubles and samples as uint64;
+//   then the AOV block: per pixel, aov_doubles() doubles.
+// Version 1 (beauty only, no crop) is no longer read: its checkpoints predate
+// AOVs and the non-finite report.
+constexpr char kMagic[8] = {'P', 'T', 'F', 'I', 'L', 'M', '\r', '\n'};
+constexpr uint32_t kStateVersion = 2;
+static_assert(std::endian::native == std::endian::little, "film states are written in the host's byte order");
+
+template <typename T>
+void put(std::ostream& out, const T& v) {
+  out.write(reinterpret_cast<const char*>(&v), sizeof v);
+}
+template <typename T>
+bool get(std::istream& in, T& v) {
+  return static_cast<bool>(in.read(reinterpret_cast<char*>(&v), sizeof v));
+}
+
+std::string describe_aovs(const std::vector<AovRequest>& aovs) {
+  if (aovs.empty()) return "none";
+  std::string s;
+  for (const AovRequest& r : aovs) {
+    if (!s.empty()) s += ',';
+    s += aov_info(r.type).name;
+    s += r.channel_type == ChannelType::Half ? ":half" : ":float";
+  }
+  return s;
+}
+
+}  // namespace
+
+bool Film::write_state(std::ostream& out) const {
+  out.write(kMagic, sizeof kMagic);
+  put(out, kStateVersion);
+  put(out, static_cast<uint32_t>(width_));
+  put(out, static_cast<uint32_t>(height_));
+  for (int v : {crop_.x0, crop_.y0, crop_.x1, crop_.y1}) put(out, static_cast<int32_t>(v));
+  put(out, static_cast<uint32_t>(aovs_.size()));
+  for (const AovRequest& r : aovs_) {
+    put(out, static_cast<uint8_t>(r.type));
+    put(out, static_cast<uint8_t>(r.channel_type));
+  }
+  const NonFiniteReport& nf = non_finite_;
+  put(out, nf.nan);
+  put(out, nf.pos_inf);
+  put(out, nf.neg_inf);
+  put(out, static_cast<uint8_t>(nf.has_first));
+  for (int v : {nf.x, nf.y, nf.sample}) put(out, static_cast<int32_t>(v));
+  for (float v : {nf.value.r, nf.value.g, nf.value.b}) put(out, v);
+  for (const PixelSum& p : pixels_) {
+    put(out, p.r);
+    put(out, p.g);
+    put(out, p.b);
+    put(out, p.weight);
+    put(out, p.samples);
+  }
+  if (!aov_data_.empty())
+    out.write(reinterpret_cast<const char*>(aov_data_.data()),
+              static_cast<std::streamsize>(aov_data_.size() * sizeof(double)));
+  return static_cast<bool>(out);
+}
+
+bool Film::read_state(std::istream& in, std::string& error) {
+  char magic[sizeof kMagic];
+  uint32_t version = 0, w = 0, h = 0;
+  if (!in.read(magic, sizeof magic) || std::memcmp(magic, kMagic, sizeof kMagic) != 0) {
+    error = "not a film state (bad magic)";
+    return false;
+  }
+  if (!get(in, version) || version != kStateVersion) {
+    error = "unsupported film state version " + std::to_string(version) + " (expected " +
+            std::to_string(kStateVersion) + ")";
+    return false;
+  }
+  int32_t c[4];
+  uint32_t count = 0;
+  if (!get(in, w) || !get(in, h) || !get(in, c[0]) || !get(in, c[1]) || !get(in, c[2]) || !get(in, c[3]) ||
+      !get(in, count)) {
+    error = "truncated film state header";
+    return false;
+  }
+  if (static_cast<int64_t>(w) != width_ || static_cast<int64_t>(h) != height_) {
+    error = "film state is " + std::to_string(w) + "x" + std::to_string(h) + ", the render is " +
+            std::to_string(width_) + "x" + std::to_string(height_);
+    return false;
+  }
+  if (PixelRect{c[0], c[1], c[2], c[3]} != crop_) {
+    error = "film state covers pixels [" + std::to_string(c[0]) + "," + std::to_string(c[2]) + ")x[" +
+            std::to_string(c[1]) + "," + std::to_string(c[3]) + "), the render's crop is [" +
+            std::to_string(crop_.x0) + "," + std::to_string(crop_.x1) + ")x[" + std::to_string(crop_.y0) + "," +
+            std::to_string(crop_.y1) + ")";
+    return false;
+  }
+  if (count > aov_catalogue().size()) {
+    error = "film state lists " + std::to_string(count) + " AOVs (corrupt)";
+    return false;
+  }
+  std::vector<AovRequest> aovs;
+  for (uint32_t i = 0; i < count; ++i) {
+    uint8_t type = 0, channel_type = 0;
+    if (!get(in, type) || !get(in, channel_type)) {
+      error = "truncated film state header";
+      return false;
+    }
+    if (type >= aov_catalogue().size() || channel_type > 1) {
+      error = "film state lists an unknown AOV (corrupt)";
+      return false;
+    }
+    aovs.push_back({static_cast<AovType>(type), static_cast<ChannelType>(channel_type)});
+  }
+  const auto same = [](const AovRequest& a, const AovRequest& b) {
+    return a.type == b.type && a.channel_type == b.channel_type;
+  };
+  if (!std::equal(aovs.begin(), aovs.end(), aovs_.begin(), aovs_.end(), same)) {
+    error = "film state has AOVs " + describe_aovs(aovs) + ", the render asks for " + describe_aovs(aovs_);
+    return false;
+  }
+  NonFiniteReport nf;
+  uint8_t has_first = 0;
+  int32_t fx = 0, fy = 0, fs = 0;
+  if (!get(in, nf.nan) || !get(in, nf.pos_inf) || !get(in, nf.neg_inf) || !get(in, has_first) || !get(in, fx) ||
+      !get(in, fy) || !get(in, fs) || !get(in, nf.value.r) || !get(in, nf.value.g) || !get(in, nf.value.b)) {
+    error = "truncated film state header";
+    return false;
+  }
+  nf.has_first = has_first != 0;
+  nf.x = fx;
+  nf.y = fy;
+  nf.sample = fs;
+  std::vector<PixelSum> pixels(pixels_.size());
+  for (PixelSum& p : pixels) {
+    if (!get(in, p.r) || !get(in, p.g) || !get(in, p.b) || !get(in, p.weight) || !get(in, p.samples)) {
+      error = "truncated film state";
+      return false;
+    }
+  }
+  std::vector<double> aov_data(aov_data_.size());
+  if (!aov_data.empty() && !in.read(reinterpret_cast<char*>(aov_data.data()),
+                                    static_cast<std::streamsize>(aov_data.size() * sizeof(double)))) {
+    error = "truncated film state";
+    return false;
+  }
+  if (in.peek() != std::char_traits<char>::eof()) {
+    error = "film state has trailing data";
+    return false;
+  }
+  pixels_ = std::move(pixels);
+  aov_data_ = std::move(aov_data);
+  non_finite_ = nf;
+  return true;
+}
+
+}  // namespace pt
