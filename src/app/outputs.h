@@ -1,0 +1,36 @@
+// The images a render writes (-o, repeatable) and their display pipeline.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "io/display.h"
+#include "io/image_metadata.h"
+
+namespace pt {
+
+struct FilmDesc;
+struct Image;
+struct Options;
+
+// Checks every output path before any work is done. Returns false after printing why.
+bool check_outputs(const std::vector<std::string>& outputs);
+
+// The display pipeline for PNG/JPEG/PPM outputs: the scene's transform and
+// exposure, overridden from the command line; $OCIO names a config when
+// --ocio-config does not.
+DisplaySettings display_settings(const Options& o, const FilmDesc& film);
+
+// The header attributes saying what the render reached: "pathtracer:spp"
+// (complete samples per pixel), "pathtracer:partial" (1 when a signal stopped
+// it; then some pixels hold more samples than that), seed and integrator.
+ImageMetadata render_metadata(int spp, bool partial, uint64_t seed, const std::string& integrator);
+
+// Writes `image` to every output. Returns false after printing the first error.
+bool write_outputs(const std::vector<std::string>& outputs, const Image& image, const DisplaySettings& display,
+                   const ImageMetadata& metadata);
+
+std::string join(const std::vector<std::string>& items, const char* sep);
+
+}  // namespace pt
