@@ -17,6 +17,9 @@ using Clock = std::chrono::steady_clock;
 // less than about this long (no tiny passes once the speed is known).
 constexpr double kPassShareOfTimeLeft = 0.5;
 constexpr double kMinPassSeconds = 0.25;
+// ... and at most about this long: a signal is only seen between tiles, and
+// checkpoints only between passes, so long passes would delay both.
+constexpr double kMaxPassSeconds = 4.0;
 // Default pass size under a time budget when passes must be equal (jittered).
 constexpr int kDefaultEqualPass = 4;
 
@@ -40,7 +43,8 @@ int adaptive_pass_size(double seconds_per_spp, double seconds_left, int previous
   if (!(seconds_per_spp > 0)) return std::min(spp_left, std::max(1, previous * 2));
   const double fits = seconds_left / seconds_per_spp;  // samples per pixel that still fit
   if (fits < 1.0) return 0;
-  const double aim = std::max(kMinPassSeconds, kPassShareOfTimeLeft * seconds_left) / seconds_per_spp;
+  const double aim =
+      std::clamp(kPassShareOfTimeLeft * seconds_left, kMinPassSeconds, kMaxPassSeconds) / seconds_per_spp;
   const double n = std::min({fits, std::max(1.0, aim), static_cast<double>(spp_left)});
   return static_cast<int>(std::clamp(std::floor(n), 1.0, static_cast<double>(1 << 30)));
 }

@@ -87,7 +87,7 @@ std::size_t value_end(const std::string& text, std::size_t pos) {
 }
 
 std::string path_text(const std::vector<Segment>& segs, std::size_t n) {
-  if (n == 0) return "the top-level value";
+  if (n == 0) return "the top level of the scene file";
   std::string s;
   for (std::size_t i = 0; i < n; ++i) {
     if (segs[i].is_index) {
