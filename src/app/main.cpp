@@ -73,6 +73,7 @@ struct Job {
   CheckpointInfo identity;  // scene hash and settings, for --checkpoint and --resume
 };
 
+// Returns std::nullopt after printing why, with `status` the exit status.
 std::optional<Job> prepare(const Options& o, double& parse_s, int& status) {
   status = kExitFailure;
   const auto t0 = Clock::now();
@@ -152,10 +153,15 @@ std::optional<Job> prepare(const Options& o, double& parse_s, int& status) {
   }
 
   // What a checkpoint must match.
+  if (o.checkpoint.empty() && o.resume.empty()) return job;
   std::string extra;
   for (const std::string& ov : o.overrides) extra += ov + '\n';
   job.identity.scene = o.scene;
   job.identity.scene_hash = scene_content_hash(o.scene, extra, error);
+  if (job.identity.scene_hash.empty()) {
+    std::cerr << "error: checkpoint: " << error << '\n';
+    return std::nullopt;
+  }
   job.identity.settings = {{"integrator", job.integrator}, {"width", job.width}, {"height", job.height},
                            {"max_depth", s.max_depth}, {"seed", s.seed}, {"sampler", sampler_type_name(s.sampler)},
                            {"filter", pixel_filter_name(s.filter)}, {"clamp", s.clamp}};
@@ -174,7 +180,6 @@ std::optional<Job> prepare(const Options& o, double& parse_s, int& status) {
     }
     plan.start_spp = saved.spp_done;
   }
-  status = 0;
   return job;
 }
 

@@ -15,8 +15,12 @@ using Clock = std::chrono::steady_clock;
 // Under a time budget, a pass is aimed at no more than this share of the time
 // left, so a misestimate of one pass cannot overshoot by much, and never at
 // less than about this long (no tiny passes once the speed is known).
-constexpr double kPassShareOfTimeLeft = 0.5;
-constexpr double kMinPassSeconds = 0.25;
+// The last pass is planned to end at kSafety of the budget: the speed varies
+// (other processes, the scene's harder parts), and a pass, once started,
+// completes.
+constexpr double kPassShareOfTimeLeft = 0.25;
+constexpr double kMinPassSeconds = 0.1;
+constexpr double kSafety = 0.9;
 // ... and at most about this long: a signal is only seen between tiles, and
 // checkpoints only between passes, so long passes would delay both.
 constexpr double kMaxPassSeconds = 4.0;
@@ -41,7 +45,7 @@ int fixed_pass_size(const PassPlan& plan) {
 int adaptive_pass_size(double seconds_per_spp, double seconds_left, int previous, int spp_left) {
   if (seconds_left <= 0 || spp_left <= 0) return 0;
   if (!(seconds_per_spp > 0)) return std::min(spp_left, std::max(1, previous * 2));
-  const double fits = seconds_left / seconds_per_spp;  // samples per pixel that still fit
+  const double fits = kSafety * seconds_left / seconds_per_spp;  // samples per pixel that still fit
   if (fits < 1.0) return 0;
   const double aim =
       std::clamp(kPassShareOfTimeLeft * seconds_left, kMinPassSeconds, kMaxPassSeconds) / seconds_per_spp;
@@ -65,7 +69,7 @@ RenderOutcome render_passes(const RenderScene& scene, Film& film, WorkerPool& po
     int n = adaptive ? adaptive_pass_size(seconds_per_spp, left, previous, target - out.spp_done)
                      : std::min(fixed, target - out.spp_done);
     // Under a budget a fixed-size pass runs only if it is expected to fit.
-    if (!adaptive && plan.time_budget_s > 0 && seconds_per_spp > 0 && seconds_per_spp * n > left) n = 0;
+    if (!adaptive && plan.time_budget_s > 0 && seconds_per_spp > 0 && seconds_per_spp * n > kSafety * left) n = 0;
     if (n <= 0) break;
     if (plan.equal_passes && n < fixed) break;  // a smaller last pass would break the stratification
     settings.first_sample = out.spp_done;

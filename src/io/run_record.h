@@ -59,6 +59,9 @@ struct RunRecord {
   PhaseTimings timings;
   int64_t pixel_samples = 0;   // camera samples rendered by this run
   double samples_per_second = 0;
+  // Non-finite sample counts (NaN/Inf, first offending pixel and sample) are
+  // added here by the branch that counts them, written as "non_finite" beside
+  // "performance" in run_record_json.
   uint64_t memory_estimate_bytes = 0;  // the pre-flight estimate
   uint64_t peak_memory_bytes = 0;      // getrusage ru_maxrss
   SoftwareVersions versions;

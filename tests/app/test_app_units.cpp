@@ -40,13 +40,12 @@ TEST(PassPlan, FixedSizes) {
 TEST(PassPlan, AdaptiveSizesFitTheTimeLeft) {
   EXPECT_EQ(adaptive_pass_size(0.0, 10.0, 0, 1000), 1);    // first pass: one sample to measure
   EXPECT_EQ(adaptive_pass_size(0.0, 10.0, 4, 1000), 8);    // unmeasured: doubles
-  EXPECT_EQ(adaptive_pass_size(0.1, 6.0, 1, 1000), 30);    // half the time left
-  EXPECT_EQ(adaptive_pass_size(0.1, 10.0, 1, 1000), 40);   // ... but no more than ~4 s
-  EXPECT_EQ(adaptive_pass_size(0.1, 0.3, 50, 1000), 2);    // near the end: a short pass still, at least 0.25 s
-  EXPECT_EQ(adaptive_pass_size(0.1, 0.15, 50, 1000), 1);   // what still fits
-  EXPECT_EQ(adaptive_pass_size(0.1, 0.05, 50, 1000), 0);   // not even one sample per pixel: stop
+  EXPECT_EQ(adaptive_pass_size(0.01, 4.0, 1, 1000), 100);  // a quarter of the time left
+  EXPECT_EQ(adaptive_pass_size(0.1, 40.0, 1, 1000), 40);   // ... but no more than ~4 s
+  EXPECT_EQ(adaptive_pass_size(0.01, 0.2, 50, 1000), 10);  // near the end: at least 0.1 s
+  EXPECT_EQ(adaptive_pass_size(0.01, 0.05, 50, 1000), 4);  // what fits in 90% of the time left
+  EXPECT_EQ(adaptive_pass_size(0.1, 0.1, 50, 1000), 0);    // not even one sample per pixel: stop
   EXPECT_EQ(adaptive_pass_size(0.001, 100.0, 1, 7), 7);    // never past the target
-  EXPECT_EQ(adaptive_pass_size(0.01, 100.0, 1, 100000), 400);  // at most ~4 s a pass
   EXPECT_EQ(adaptive_pass_size(0.1, 10.0, 1, 0), 0);
 }
 

@@ -78,10 +78,14 @@ TEST_F(LongRender, TimeBudgetIsHonoured) {
   ASSERT_TRUE(rec.is_object());
   const double setup = rec["timings"]["parse"].get<double>() + rec["timings"]["scene_build"].get<double>() +
                        rec["timings"]["accel_build"].get<double>() + rec["timings"]["write"].get<double>();
-  // Loose bounds (not a performance test): the budget plus the other phases plus 1 s of slack.
-  EXPECT_LE(rec["timings"]["render"].get<double>(), 2.0 + 1.0);
-  EXPECT_LE(wall, 2.0 + setup + 1.0 + 1.0);  // + 1 s for process start-up on a loaded machine
-  EXPECT_GT(rec["progress"]["spp_reached"].get<int>(), 0);
+  // Loose bounds (not a performance test): the render takes the budget, give
+  // or take 1 s; the process the budget plus the other phases plus slack for
+  // start-up and exit on a loaded machine (the whole suite on 2 cores).
+  const double render = rec["timings"]["render"].get<double>();
+  EXPECT_LE(render, 2.0 + 1.0) << rec.dump();
+  EXPECT_GE(render, 1.0) << rec.dump();  // the budget is used (the scene's 1 spp is not the limit)
+  EXPECT_LE(wall, 2.0 + setup + 3.0) << rec.dump();
+  EXPECT_GT(rec["progress"]["spp_reached"].get<int>(), 1);
   EXPECT_EQ(rec["progress"]["time_budget"].get<double>(), 2.0);
   EXPECT_FALSE(rec["progress"]["partial"].get<bool>());
   int spp = 0, partial = -1;
@@ -226,7 +230,9 @@ TEST_F(LongRender, KillDuringAWriteNeverLeavesATruncatedImage) {
   // the previous complete image or the new complete one.
   write("s.json", path_scene(1600, 1200, 1));
   ASSERT_EQ(run("s.json -o out.exr --spp 1 --max-depth 0 --quiet").status, 0);
-  for (int delay_ms : {150, 300, 450, 600, 800}) {
+  // Measured on the 2-core test machine: rendering ends ~0.7 s after the
+  // start and writing takes 0.2-0.4 s, so these moments straddle the write.
+  for (int delay_ms : {600, 700, 800, 900, 1000, 1100, 1200}) {
     ChildProcess child = spawn({"s.json", "-o", "out.exr", "--spp", "1", "--max-depth", "0", "--quiet"});
     ASSERT_TRUE(child.started());
     child.wait_for_output("\x01", delay_ms / 1000.0);
