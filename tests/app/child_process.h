@@ -18,6 +18,7 @@ class ChildProcess {
   ChildProcess& operator=(const ChildProcess&) = delete;
 
   bool started() const { return pid_ > 0; }
+  pid_t pid() const { return pid_; }
   // Reads stderr until it contains `needle` or `timeout_s` pass; true if found.
   bool wait_for_output(const std::string& needle, double timeout_s);
   void send(int signal_number) const;
