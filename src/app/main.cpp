@@ -1,237 +1,238 @@
-// pathtracer: renders a scene file to one or more images.
+// pathtracer: renders a scene file to one or more images (docs/cli.md).
 //
-//   pathtracer SCENE -o OUT [-o OUT2 ...] [--accel embree|bvh] [--threads N] [--spp N]
-//              [--seed N] [--integrator NAME] [--max-depth N] [--filter box|gaussian|mitchell]
-//              [--sampler random|jittered|sobol]
-//              [--clamp X] [--width W] [--height H] [--strict] [--quiet] [--report FILE]
-//              [--aov LIST] [--crop X0,Y0,X1,Y1 | --crop-px X,Y,W,H] [--replay X,Y,N]
+//   pathtracer SCENE -o OUT [-o OUT2 ...] [--spp N] [--time-budget S] [--set KEY=VALUE ...]
+//              [--checkpoint FILE [--checkpoint-every S]] [--resume FILE] [--report FILE] ...
 //
-// Outputs, AOVs, crops and replays: docs/output.md.
 // Exit status: 0 success; 1 the scene, the render or an output failed (nothing
-// is written for a bad scene); 2 a bad command line (CLI11's message).
+// is written for a bad scene); 2 a bad command line (CLI11's message);
+// 128 + N when signal N (SIGINT: 130, SIGTERM: 143) stopped the render: the
+// outputs then hold what was rendered, marked partial.
+//
+// The recipe: parse -> settings -> pre-flight checks -> build -> render -> write -> record.
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <chrono>
-#include <cmath>
-#include <cstdint>
 #include <iomanip>
 #include <iostream>
-#include <limits>
 #include <memory>
-#include <cstdlib>
 #include <optional>
-#include <set>
 #include <stdexcept>
-#include <sstream>
 #include <string>
-#include <vector>
 
 #include <CLI/CLI.hpp>
-#include <OpenImageIO/imageio.h>
-#include <embree3/rtcore_config.h>
-#include <oneapi/tbb/version.h>
 
 #include "accel/accelerator.h"
+#include "app/checkpoint.h"
+#include "app/film_options.h"
+#include "app/memory_estimate.h"
+#include "app/options.h"
+#include "app/outputs.h"
+#include "app/progress.h"
+#include "app/render_driver.h"
+#include "app/signals.h"
+#include "app/versions.h"
 #include "core/diagnostics.h"
 #include "core/parallel.h"
-#include "io/image_io.h"
+#include "io/image_metadata.h"
 #include "io/run_record.h"
-#include "render/film/aov.h"
 #include "render/film/film.h"
 #include "render/film/filter.h"
 #include "render/integrators/integrator.h"
 #include "render/render_scene.h"
 #include "scene/loader.h"
 
+namespace pt {
 namespace {
 
-struct Options {
-  std::string scene;
-  std::vector<std::string> outputs;
-  std::string accel = "embree";
-  int threads = 0;     // 0: all hardware threads
-  int spp = 0;         // 0: the scene's value
-  uint64_t seed = 0;
-  std::string integrator;  // empty: the scene's value
-  int max_depth = -1;      // < 0: the scene's value
-  std::string filter;      // empty: the scene's value
-  std::string sampler = "random";  // the path integrator's sampler (docs/samplers.md)
-  float clamp = -1.0f;     // < 0: the scene's value; 0 = off
-  int width = 0, height = 0;
-  bool strict = false;
-  bool quiet = false;
-  std::string report;  // run record (JSON); empty: none
-  // Display images (PNG, JPEG, PPM); see src/io/display.h.
-  std::optional<float> exposure;  // stops; unset: the scene's
-  std::string view, display, look;
-  std::string ocio_config;  // unset: $OCIO
-  // docs/output.md
-  std::string aov;                 // --aov list; empty: beauty only
-  std::vector<double> crop;        // fractions x0, y0, x1, y1; empty: the full frame
-  std::vector<int> crop_px;        // pixels x, y, w, h; empty: the full frame
-  std::vector<int> replay;         // x, y, sample; empty: a normal render
-};
+// Pass size when checkpointing a render with a sample target and no
+// --pass-spp: checkpoints are written at pass boundaries only.
+constexpr int kCheckpointPassSpp = 16;
 
-constexpr int kExitFailure = 1;
-constexpr int kExitUsage = 2;
-constexpr int kMaxThreads = 4096;
-constexpr int kMaxSpp = 1 << 20;
-constexpr int kMaxDepth = 1 << 16;
-constexpr int kMaxResolution = 32768;  // as pt::LoadOptions::max_resolution
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-std::string version_text() {
-  const int oiio = OIIO::openimageio_version();
-  std::ostringstream os;
-  os << "pathtracer " << PT_VERSION << '\n'
-     << "  Embree " << RTC_VERSION_STRING << '\n'
-     << "  OpenImageIO " << oiio / 10000 << '.' << oiio / 100 % 100 << '.' << oiio % 100 << '\n'
-     << "  oneTBB " << TBB_runtime_version();
-  return os.str();
-}
-
-std::string join(const std::vector<std::string>& items, const char* sep) {
-  std::string s;
-  for (const std::string& item : items) s += (s.empty() ? "" : sep) + item;
-  return s;
-}
-
-void add_options(CLI::App& app, Options& o) {
-  app.add_option("scene", o.scene, "Scene file (native, Path of Light or CGR JSON)")->required();
-  app.add_option("-o,--output", o.outputs,
-                 "Output image (.exr, .png, .ppm); repeat to write several formats from one render")
-      ->allow_extra_args(false);
-  app.add_option("--accel", o.accel, "Acceleration structure")
-      ->check(CLI::IsMember(pt::accel_kind_names()))
-      ->capture_default_str();
-  app.add_option("--threads", o.threads, "Worker threads (default: all hardware threads)")
-      ->check(CLI::Range(1, kMaxThreads));
-  app.add_option("--spp", o.spp, "Samples per pixel (default: the scene's)")->check(CLI::Range(1, kMaxSpp));
-  app.add_option("--seed", o.seed, "Random seed")->capture_default_str();
-  app.add_option("--integrator", o.integrator,
-                 "Integrator (default: the scene's)")
-      ->check(CLI::IsMember(pt::integrator_names()));
-  app.add_option("--max-depth", o.max_depth, "Bounces (path) or recursion depth (whitted) (default: the scene's)")
-      ->check(CLI::Range(0, kMaxDepth));
-  app.add_option("--filter", o.filter, "Pixel filter of the path integrator (default: the scene's, box)")
-      ->check(CLI::IsMember({"box", "gaussian", "mitchell"}));
-  app.add_option("--sampler", o.sampler, "Sampler of the path integrator (docs/samplers.md)")
-      ->check(CLI::IsMember(pt::sampler_type_names()))
-      ->capture_default_str();
-  app.add_option("--clamp", o.clamp,
-                 "Path integrator: clamp each sample's radiance to this largest channel value (0: off, the default)")
-      ->check(CLI::Range(0.0f, std::numeric_limits<float>::max()));
-  app.add_option("--width", o.width, "Image width (alone: keeps the scene's aspect ratio)")
-      ->check(CLI::Range(1, kMaxResolution));
-  app.add_option("--height", o.height, "Image height (alone: keeps the scene's aspect ratio)")
-      ->check(CLI::Range(1, kMaxResolution));
-  app.add_flag("--strict", o.strict, "Treat warnings (e.g. unknown keys in legacy files) as errors");
-  app.add_flag("--quiet", o.quiet, "Print errors only");
-  app.add_option("--report", o.report, "Write a run record (JSON: settings, backend, time per phase)");
-  app.add_option("--exposure", o.exposure, "Display images: exposure in stops (default: the scene's)");
-  app.add_option("--view", o.view,
-                 "Display images: 'standard' (sRGB) or 'aces' (ACES 1.0 SDR video), or a view of the OCIO config");
-  app.add_option("--display", o.display, "Display images: a display of the OCIO config (default: its default)");
-  app.add_option("--look", o.look, "Display images: look(s) of the OCIO config, e.g. '+grade'");
-  app.add_option("--ocio-config", o.ocio_config, "OpenColorIO config file (default: $OCIO, if set)");
-  app.add_option("--aov", o.aov,
-                 "Extra EXR layers, comma-separated, each optionally ':half' or ':float' (docs/output.md): " +
-                     join(pt::aov_names(), ", "));
-  auto* crop = app.add_option("--crop", o.crop, "Render only this region: X0,Y0,X1,Y1 as fractions of the frame")
-                   ->delimiter(',')
-                   ->expected(4);
-  app.add_option("--crop-px", o.crop_px, "Render only this region: X,Y,W,H in pixels")
-      ->delimiter(',')
-      ->expected(4)
-      ->excludes(crop);
-  app.add_option("--replay", o.replay,
-                 "Render only sample N of pixel (X, Y) (as a full render draws it) and print its radiance: X,Y,N")
-      ->delimiter(',')
-      ->expected(3);
-  app.set_version_flag("--version", version_text());
-}
-
-// The display pipeline for PNG/JPEG/PPM outputs: the scene's transform and
-// exposure, overridden from the command line; $OCIO names a config when
-// --ocio-config does not. The course transforms ignore the OCIO settings.
-pt::DisplaySettings display_settings(const Options& o, const pt::FilmDesc& film) {
-  pt::DisplaySettings d;
-  d.transform = film.display;
-  d.exposure = o.exposure.value_or(film.exposure.value);
-  d.view = o.view;
-  d.display = o.display;
-  d.look = o.look;
-  d.ocio_config = o.ocio_config;
-  if (d.ocio_config.empty()) {
-    if (const char* env = std::getenv("OCIO"); env != nullptr) d.ocio_config = env;
-  }
-  return d;
-}
-
-// Checks every output path before any work is done. Returns false after printing why.
-bool check_outputs(const std::vector<std::string>& outputs) {
-  std::set<std::string> seen;
-  for (const std::string& path : outputs) {
-    if (!pt::is_supported_image_path(path)) {
-      std::cerr << "error: cannot write '" << path << "': unsupported image extension (supported: "
-                << join(pt::supported_image_extensions(), ", ") << ")\n";
-      return false;
-    }
-    if (!seen.insert(path).second) {
-      std::cerr << "error: output '" << path << "' is given more than once\n";
-      return false;
-    }
-  }
-  return true;
-}
-
-void print_diagnostics(const pt::Diagnostics& diag, bool quiet) {
+void print_diagnostics(const Diagnostics& diag, bool quiet) {
   if (diag.all().empty() || (quiet && !diag.has_errors())) return;
   std::cerr << diag.format();
 }
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
+uint64_t peak_rss_bytes() {
+  rusage usage{};
+  if (::getrusage(RUSAGE_SELF, &usage) != 0) return 0;
+  return static_cast<uint64_t>(usage.ru_maxrss) * 1024;  // KiB on Linux
 }
 
-// The region to render, in pixels of a width x height frame; false after printing why.
-bool crop_window(const Options& o, int width, int height, pt::PixelRect& out) {
-  out = {0, 0, width, height};
-  if (!o.replay.empty()) {
-    out = {o.replay[0], o.replay[1], o.replay[0] + 1, o.replay[1] + 1};
-  } else if (!o.crop.empty()) {
-    const std::vector<double>& c = o.crop;
-    if (!(0.0 <= c[0] && c[0] < c[2] && c[2] <= 1.0 && 0.0 <= c[1] && c[1] < c[3] && c[3] <= 1.0)) {
-      std::cerr << "error: --crop: need 0 <= X0 < X1 <= 1 and 0 <= Y0 < Y1 <= 1\n";
-      return false;
-    }
-    out = {static_cast<int>(std::floor(c[0] * width)), static_cast<int>(std::floor(c[1] * height)),
-           static_cast<int>(std::ceil(c[2] * width)), static_cast<int>(std::ceil(c[3] * height))};
-  } else if (!o.crop_px.empty()) {
-    const std::vector<int>& c = o.crop_px;
-    if (c[0] > width || c[1] > height || c[2] > width || c[3] > height) {  // also keeps X + W from overflowing
-      std::cerr << "error: --crop-px: " << c[2] << "x" << c[3] << " at (" << c[0] << ", " << c[1]
-                << ") is not inside the " << width << "x" << height << " frame\n";
-      return false;
-    }
-    out = {c[0], c[1], c[0] + c[2], c[1] + c[3]};
+// Everything decided before the expensive build.
+struct Job {
+  SceneDescription desc;
+  IntegratorSettings settings;
+  std::string integrator;
+  PassPlan plan;
+  DisplaySettings display;
+  int width = 0, height = 0;
+  MemoryEstimate memory;
+  std::vector<AovRequest> aovs;  // --aov (every AOV for --replay)
+  CheckpointInfo identity;  // scene hash and settings, for --checkpoint and --resume
+};
+
+// Returns std::nullopt after printing why, with `status` the exit status.
+std::optional<Job> prepare(const Options& o, double& parse_s, int& status) {
+  status = kExitFailure;
+  const auto t0 = Clock::now();
+  Diagnostics diag;
+  diag.set_warnings_as_errors(o.strict);
+  LoadOptions load_options;
+  load_options.strict = o.strict;
+  load_options.overrides = o.overrides;
+  std::optional<SceneDescription> desc = load_scene(o.scene, load_options, diag);
+  print_diagnostics(diag, o.quiet);
+  if (!desc || diag.has_errors()) return std::nullopt;
+  parse_s = seconds_since(t0);
+
+  Job job;
+  job.desc = std::move(*desc);
+  IntegratorSettings& s = job.settings;
+  s.max_depth = o.max_depth >= 0 ? o.max_depth : job.desc.render.max_depth.value;
+  s.seed = o.seed;
+  s.filter = job.desc.render.filter;
+  if (o.filter == "gaussian") s.filter = PixelFilterType::Gaussian;
+  if (o.filter == "mitchell") s.filter = PixelFilterType::Mitchell;
+  if (o.filter == "box") s.filter = PixelFilterType::Box;
+  s.sampler = parse_sampler_type(o.sampler).value_or(SamplerType::Random);
+  s.clamp = o.clamp >= 0.0f ? o.clamp : job.desc.render.clamp.value;
+  job.integrator = o.integrator.empty() ? job.desc.render.integrator.value : o.integrator;
+  std::string error;
+  if (!make_integrator(job.integrator, s, error)) {
+    Diagnostics d;
+    d.error(o.integrator.empty() ? job.desc.render.integrator.where : SourceLocation{}, error);
+    std::cerr << d.format();
+    return std::nullopt;
   }
-  if (out.x0 < 0 || out.y0 < 0 || out.empty() || out.x1 > width || out.y1 > height) {
-    std::cerr << "error: " << (o.replay.empty() ? "the crop" : "the replayed pixel") << " [" << out.x0 << ", "
-              << out.x1 << ") x [" << out.y0 << ", " << out.y1 << ") is not inside the " << width << "x" << height
-              << " frame\n";
+
+  // Passes: a time budget alone has no sample target (the scene's spp is ignored).
+  PassPlan& plan = job.plan;
+  plan.target_spp = o.spp > 0 ? o.spp : (o.time_budget > 0 ? 0 : job.desc.render.spp.value);
+  plan.time_budget_s = o.time_budget;
+  plan.pass_spp = o.pass_spp;
+  if (plan.pass_spp == 0 && plan.time_budget_s == 0 && !(o.checkpoint.empty() && o.resume.empty()))
+    plan.pass_spp = kCheckpointPassSpp;
+  if (!film_aovs(o, job.aovs)) {
+    status = kExitUsage;
+    return std::nullopt;
+  }
+  if (!o.replay.empty() && (plan.target_spp <= 0 || o.replay[2] < 0 || o.replay[2] >= plan.target_spp)) {
+    std::cerr << "error: --replay: sample " << o.replay[2] << " is not one of the render's " << plan.target_spp
+              << " samples per pixel\n";
+    status = kExitUsage;
+    return std::nullopt;
+  }
+  // Samplers that stratify over the pass's sample count need equal passes.
+  plan.equal_passes = !(job.integrator == "path" && s.sampler != SamplerType::Jittered);
+
+  job.display = display_settings(o, job.desc.film);
+  if (job.display.transform != DisplayTransform::Srgb && !(o.view.empty() && o.display.empty() && o.look.empty()))
+    std::cerr << "warning: --view, --display and --look apply to native scenes; this scene's display images "
+                 "use its course's documented curve (docs/rendering.md)\n";
+  if (!DisplayEncoder::create(job.display, error)) {
+    std::cerr << "error: display images: " << error << '\n';
+    status = kExitUsage;
+    return std::nullopt;
+  }
+
+  // Pre-flight memory estimate.
+  BuildOptions resolution;
+  resolution.width_override = o.width;
+  resolution.height_override = o.height;
+  resolve_resolution(job.desc.film, resolution, job.width, job.height);
+  uint64_t limit = 0;
+  if (!o.max_memory.empty()) {
+    const std::optional<uint64_t> parsed = parse_byte_size(o.max_memory);
+    if (!parsed || *parsed == 0) {
+      std::cerr << "error: --max-memory: '" << o.max_memory << "' is not a size (e.g. 4G, 512M, 65536)\n";
+      status = kExitUsage;
+      return std::nullopt;
+    }
+    limit = *parsed;
+  }
+  job.memory = estimate_memory(job.desc, job.width, job.height, film_bytes_per_pixel(job.aovs), o.resume.empty() ? 1 : 2);
+  // Sizes beyond the builder's limits get its message (naming the limits) instead.
+  const bool within_limits = job.width <= resolution.max_resolution && job.height <= resolution.max_resolution &&
+                             static_cast<long long>(job.width) * job.height <= resolution.max_pixels;
+  if (const std::string why = check_memory(job.memory, limit, physical_memory_bytes());
+      within_limits && !why.empty()) {
+    std::cerr << "error: " << why << '\n';
+    return std::nullopt;
+  }
+
+  // What a checkpoint must match.
+  if (o.checkpoint.empty() && o.resume.empty()) return job;
+  std::string extra;
+  for (const std::string& ov : o.overrides) extra += ov + '\n';
+  job.identity.scene = o.scene;
+  job.identity.scene_hash = scene_content_hash(o.scene, extra, error);
+  if (job.identity.scene_hash.empty()) {
+    std::cerr << "error: checkpoint: " << error << '\n';
+    return std::nullopt;
+  }
+  job.identity.settings = {{"integrator", job.integrator}, {"width", job.width}, {"height", job.height},
+                           {"max_depth", s.max_depth}, {"seed", s.seed}, {"sampler", sampler_type_name(s.sampler)},
+                           {"filter", pixel_filter_name(s.filter)}, {"clamp", s.clamp}};
+  const bool adaptive = plan.time_budget_s > 0 && plan.pass_spp <= 0 && !plan.equal_passes;
+  job.identity.settings["pass_spp"] = adaptive ? nlohmann::ordered_json("adaptive")
+                                               : nlohmann::ordered_json(fixed_pass_size(plan));
+  if (!o.resume.empty()) {
+    CheckpointInfo saved;
+    if (!read_checkpoint_info(o.resume, saved, error)) {
+      std::cerr << "error: --resume: " << error << '\n';
+      return std::nullopt;
+    }
+    if (const std::string why = checkpoint_mismatch(saved, job.identity); !why.empty()) {
+      std::cerr << "error: cannot resume from '" << o.resume << "': " << why << '\n';
+      return std::nullopt;
+    }
+    plan.start_spp = saved.spp_done;
+  }
+  return job;
+}
+
+// Writes a checkpoint at most every `every` seconds (and when asked to force).
+class Checkpointer {
+ public:
+  Checkpointer(const Options& o, const Job& job, const Film& film)
+      : path_(o.checkpoint), every_(o.checkpoint_every), info_(job.identity), film_(film), last_(Clock::now()) {}
+  bool due() const { return !path_.empty() && seconds_since(last_) >= every_; }
+  bool write(int spp_done) {
+    if (path_.empty()) return true;
+    info_.spp_done = spp_done;
+    std::string error;
+    last_ = Clock::now();
+    if (write_checkpoint(path_, info_, film_, error)) return true;
+    std::cerr << "warning: checkpoint: " << error << '\n';
     return false;
   }
-  return true;
-}
 
-// The replayed sample's AOVs, one per line: its first hit and, for the path
-// integrator, its lighting split (docs/output.md).
-void print_replay_aovs(const pt::Film& film, int x, int y) {
-  for (const pt::AovRequest& r : film.aovs()) {
-    if (r.type == pt::AovType::Samples || r.type == pt::AovType::Variance) continue;
-    std::cout << "  " << pt::aov_info(r.type).name << ":";
-    for (float v : film.aov_value(r.type, x, y)) std::cout << ' ' << v;
-    std::cout << '\n';
-  }
+ private:
+  std::string path_;
+  double every_;
+  CheckpointInfo info_;
+  const Film& film_;
+  Clock::time_point last_;
+};
+
+// --replay: renders only that sample of that pixel (the film is cropped to it)
+// and prints its radiance and AOVs.
+RenderOutcome replay_sample(const Options& o, const Job& job, const RenderScene& scene, Film& film, WorkerPool& pool) {
+  IntegratorSettings settings = job.settings;
+  settings.spp = job.plan.target_spp;  // samplers stratify over the full count
+  settings.only_sample = o.replay[2];
+  std::string error;
+  make_integrator(job.integrator, settings, error)->render(scene, film, pool);
+  print_replay(film, o.replay[0], o.replay[1], o.replay[2]);
+  RenderOutcome outcome;
+  outcome.spp_done = 1;
+  outcome.passes = 1;
+  return outcome;
 }
 
 int run(const Options& o) {
@@ -240,180 +241,170 @@ int run(const Options& o) {
     return kExitUsage;
   }
   if (!check_outputs(o.outputs)) return kExitUsage;
-  std::vector<pt::AovRequest> aovs;
-  if (std::string why; !o.aov.empty() && !pt::parse_aov_list(o.aov, aovs, why)) {
-    std::cerr << "error: --aov: " << why << '\n';
-    return kExitUsage;
-  }
-  if (!o.replay.empty()) {  // a replay reports every AOV of its one sample (they draw no random numbers)
-    aovs.clear();
-    for (const pt::AovInfo& info : pt::aov_catalogue()) aovs.push_back({info.type, info.default_type});
-  }
-  pt::AccelKind accel = pt::AccelKind::Embree;
-  pt::parse_accel_kind(o.accel, accel);  // already validated by CLI11
-
-  // Parse.
-  auto t0 = Clock::now();
-  pt::Diagnostics diag;
-  diag.set_warnings_as_errors(o.strict);
-  pt::LoadOptions load_options;
-  load_options.strict = o.strict;
-  const std::optional<pt::SceneDescription> desc = pt::load_scene(o.scene, load_options, diag);
-  print_diagnostics(diag, o.quiet);
-  if (!desc || diag.has_errors()) return kExitFailure;
-  const double parse_s = seconds_since(t0);
-
-  // Integrator (checked before the expensive build).
-  pt::IntegratorSettings settings;
-  settings.max_depth = o.max_depth >= 0 ? o.max_depth : desc->render.max_depth.value;
-  settings.spp = o.spp > 0 ? o.spp : desc->render.spp.value;
-  settings.seed = o.seed;
-  settings.filter = desc->render.filter;
-  if (o.filter == "gaussian") settings.filter = pt::PixelFilterType::Gaussian;
-  if (o.filter == "mitchell") settings.filter = pt::PixelFilterType::Mitchell;
-  if (o.filter == "box") settings.filter = pt::PixelFilterType::Box;
-  settings.sampler = pt::parse_sampler_type(o.sampler).value_or(pt::SamplerType::Random);
-  settings.clamp = o.clamp >= 0.0f ? o.clamp : desc->render.clamp.value;
-  if (!o.replay.empty()) {
-    if (o.replay[2] < 0 || o.replay[2] >= settings.spp) {
-      std::cerr << "error: --replay: sample " << o.replay[2] << " is not one of the render's " << settings.spp
-                << " samples per pixel\n";
-      return kExitUsage;
-    }
-    settings.only_sample = o.replay[2];
-  }
-  const std::string integrator_name = o.integrator.empty() ? desc->render.integrator.value : o.integrator;
-  std::string error;
-  const std::unique_ptr<pt::Integrator> integrator = pt::make_integrator(integrator_name, settings, error);
-  if (!integrator) {
-    pt::Diagnostics d;
-    d.error(o.integrator.empty() ? desc->render.integrator.where : pt::SourceLocation{}, error);
-    std::cerr << d.format();
-    return kExitFailure;
-  }
-
-  // The display pipeline (checked before the expensive build, like the outputs).
-  const pt::DisplaySettings display = display_settings(o, desc->film);
-  if (display.transform != pt::DisplayTransform::Srgb && !(o.view.empty() && o.display.empty() && o.look.empty()))
-    std::cerr << "warning: --view, --display and --look apply to native scenes; this scene's display images "
-                 "use its course's documented curve (docs/rendering.md)\n";
-  if (!pt::DisplayEncoder::create(display, error)) {
-    std::cerr << "error: display images: " << error << '\n';
-    return kExitUsage;
-  }
+  if (o.time_budget > 0 && o.spp == 0 && !o.quiet)
+    std::cerr << "note: --time-budget without --spp renders until the time is up (the scene's spp is ignored)\n";
+  double parse_s = 0;
+  int status = 0;
+  std::optional<Job> job = prepare(o, parse_s, status);
+  if (!job) return status;
 
   // Build.
-  t0 = Clock::now();
-  pt::WorkerPool pool(o.threads);
-  pt::Diagnostics build_diag;
+  auto t0 = Clock::now();
+  AccelKind accel = AccelKind::Embree;
+  parse_accel_kind(o.accel, accel);  // already validated by CLI11
+  WorkerPool pool(o.threads);
+  Diagnostics build_diag;
   build_diag.set_warnings_as_errors(o.strict);
-  pt::BuildOptions build_options;
+  BuildOptions build_options;
   build_options.accel = accel;
   build_options.width_override = o.width;
   build_options.height_override = o.height;
-  const std::unique_ptr<pt::RenderScene> scene = pt::build_render_scene(*desc, build_options, pool, build_diag);
+  const std::unique_ptr<RenderScene> scene = build_render_scene(job->desc, build_options, pool, build_diag);
   print_diagnostics(build_diag, o.quiet);
   if (!scene) return kExitFailure;
-  if (std::string why; !integrator->can_render(*scene, why)) {  // e.g. bvh-cost with --accel=embree
-    std::cerr << "error: " << why << '\n';
+  if (std::string why; !make_integrator(job->integrator, job->settings, why)->can_render(*scene, why)) {
+    std::cerr << "error: " << why << '\n';  // e.g. bvh-cost with --accel=embree
     return kExitFailure;
   }
   const double build_s = seconds_since(t0);
 
-  pt::PixelRect crop;
+  PixelRect crop;
   if (!crop_window(o, scene->width, scene->height, crop)) return kExitUsage;
 
   // Render.
-  t0 = Clock::now();
-  pt::Film film(scene->width, scene->height, crop, aovs);
-  integrator->render(*scene, film, pool);
-  const double render_s = seconds_since(t0);
-  const pt::NonFiniteReport& non_finite = film.non_finite();
-  if (non_finite.total() > 0 && !o.quiet)
-    std::cerr << "warning: " << non_finite.describe() << "; they were added as black (replay one with --replay X,Y,N)\n";
-  if (!o.replay.empty()) {
-    const pt::PixelSum& s = film.sum(crop.x0, crop.y0);
-    const pt::RGB v = non_finite.total() > 0 ? non_finite.value : s.value();
-    std::cout << std::setprecision(9) << "replay pixel (" << crop.x0 << ", " << crop.y0 << ") sample "
-              << settings.only_sample << ": radiance " << v.r << " " << v.g << " " << v.b << '\n';
-    print_replay_aovs(film, crop.x0, crop.y0);
-  }
-
-  // Write.
-  t0 = Clock::now();
-  const pt::LayeredImage image = film.layers();
-  pt::RenderStamp stamp;
-  stamp.render_seconds = render_s;
-  stamp.spp = settings.spp;
-  stamp.seed = settings.seed;
-  stamp.backend = scene->accel->stats().backend;
-  stamp.integrator = integrator_name;
-  stamp.software_version = PT_VERSION;
-  stamp.has_camera = true;
-  stamp.world_to_camera = scene->camera.world_to_camera();
-  stamp.world_to_ndc = scene->camera.world_to_ndc();
-  pt::ImageMetadata metadata;
-  pt::add_render_stamp(metadata, stamp);
-  for (const std::string& path : o.outputs) {
-    if (!pt::write_layered_image(path, image, display, error, metadata)) {
-      std::cerr << "error: " << error << '\n';
+  Film film(scene->width, scene->height, crop, job->aovs);
+  if (!o.resume.empty()) {
+    CheckpointInfo saved;
+    std::string error;
+    if (!read_checkpoint(o.resume, saved, film, error)) {
+      std::cerr << "error: --resume: " << error << '\n';
       return kExitFailure;
     }
   }
+  const SignalCancellation signals;
+  ProgressSettings progress;
+  progress.style = o.quiet || !o.replay.empty() ? ProgressStyle::None : (::isatty(STDERR_FILENO) ? ProgressStyle::Bar : ProgressStyle::Lines);
+  progress.interval_s = o.progress_interval;
+  progress.pixels = static_cast<int64_t>(crop.width()) * crop.height();
+  progress.target_spp = job->plan.target_spp > 0 ? job->plan.target_spp - job->plan.start_spp : 0;
+  progress.time_budget_s = o.time_budget;
+  ProgressMonitor monitor(progress, &signals, std::cerr);
+  IntegratorSettings settings = job->settings;
+  settings.monitor = &monitor;
+  Checkpointer checkpointer(o, *job, film);
+  DriverCallbacks callbacks;
+  callbacks.make_integrator = [&](const IntegratorSettings& s) {
+    std::string error;
+    return make_integrator(job->integrator, s, error);
+  };
+  callbacks.pass_done = [&](int spp_done) {
+    monitor.set_spp_done(spp_done - job->plan.start_spp);
+    if (checkpointer.due()) checkpointer.write(spp_done);
+  };
+  t0 = Clock::now();
+  monitor.start();
+  const RenderOutcome outcome = o.replay.empty() ? render_passes(*scene, film, pool, job->plan, settings, callbacks)
+                                                 : replay_sample(o, *job, *scene, film, pool);
+  monitor.stop();
+  const double render_s = seconds_since(t0);
+  if (!outcome.cancelled && !o.checkpoint.empty()) checkpointer.write(outcome.spp_done);
+  const NonFiniteReport& non_finite = film.non_finite();
+  if (non_finite.total() > 0 && !o.quiet)
+    std::cerr << "warning: " << non_finite.describe() << "; they were added as black (replay one with --replay X,Y,N)\n";
+
+  // Write.
+  t0 = Clock::now();
+  RenderStamp stamp;
+  stamp.render_seconds = render_s;
+  stamp.spp = outcome.spp_done;
+  stamp.seed = settings.seed;
+  stamp.backend = scene->accel->stats().backend;
+  stamp.integrator = job->integrator;
+  stamp.software_version = PT_VERSION;
+  stamp.partial = outcome.cancelled;
+  stamp.has_camera = true;
+  stamp.world_to_camera = scene->camera.world_to_camera();
+  stamp.world_to_ndc = scene->camera.world_to_ndc();
+  ImageMetadata metadata;
+  add_render_stamp(metadata, stamp);
+  if (!write_outputs(o.outputs, film.layers(), job->display, metadata)) return kExitFailure;
   const double write_s = seconds_since(t0);
 
+  const int64_t samples = monitor.samples();
+  const double samples_per_s = render_s > 0 ? static_cast<double>(samples) / render_s : 0.0;
   if (!o.report.empty()) {
-    pt::RunRecord record;
+    RunRecord record;
     record.scene = o.scene;
-    record.integrator = integrator_name;
+    record.overrides = o.overrides;
+    record.integrator = job->integrator;
+    record.sampler = sampler_type_name(settings.sampler);
     record.width = scene->width;
     record.height = scene->height;
-    record.spp = settings.spp;
+    record.spp = outcome.spp_done;
+    record.target_spp = job->plan.target_spp;
+    record.time_budget = o.time_budget;
+    record.passes = outcome.passes;
+    record.resumed_spp = job->plan.start_spp;
+    record.partial = outcome.cancelled;
+    record.signal = signals.received();
     record.max_depth = settings.max_depth;
     record.seed = settings.seed;
-    record.filter = pt::pixel_filter_name(settings.filter);
+    record.filter = pixel_filter_name(settings.filter);
     record.clamp = settings.clamp;
     record.threads = pool.threads();
-    const pt::AccelStats stats = scene->accel->stats();
+    const AccelStats stats = scene->accel->stats();
     record.accel_backend = stats.backend;
     record.accel_memory_bytes = stats.memory_bytes;
     record.primitive_count = stats.primitive_count;
     record.timings = {parse_s, build_s - stats.build_seconds, stats.build_seconds, render_s, write_s,
                       parse_s + build_s + render_s + write_s};
-    record.software_version = PT_VERSION;
-    if (!pt::write_run_record(o.report, record, error)) {
+    record.pixel_samples = samples;
+    record.samples_per_second = samples_per_s;
+    record.memory_estimate_bytes = job->memory.total();
+    record.peak_memory_bytes = peak_rss_bytes();
+    record.versions = software_versions();
+    record.non_finite = {non_finite.nan, non_finite.pos_inf, non_finite.neg_inf, non_finite.has_first,
+                         non_finite.x,   non_finite.y,       non_finite.sample};
+    if (std::string error; !write_run_record(o.report, record, error)) {
       std::cerr << "error: " << error << '\n';
       return kExitFailure;
     }
   }
 
+  if (outcome.cancelled) {
+    std::cerr << "interrupted (signal " << signals.received() << "): wrote partial " << join(o.outputs, ", ")
+              << " with " << outcome.spp_done << " complete spp (some pixels have more)\n";
+    return exit_status_for_signal(signals.received());
+  }
   if (!o.quiet && !o.outputs.empty()) {
-    std::cout << std::fixed << std::setprecision(3) << "wrote " << join(o.outputs, ", ") << " ("
-              << scene->width << "x" << scene->height << ", " << integrator_name << ", " << settings.spp
-              << " spp, " << pool.threads() << " threads"
+    std::cout << std::fixed << std::setprecision(3) << "wrote " << join(o.outputs, ", ") << " (" << scene->width
+              << "x" << scene->height << ", " << job->integrator << ", " << outcome.spp_done << " spp in "
+              << outcome.passes << (outcome.passes == 1 ? " pass, " : " passes, ") << pool.threads() << " threads"
               << (settings.clamp > 0.0f ? ", clamp " + std::to_string(settings.clamp) : std::string())
-              << "): parse " << parse_s << " s, build " << build_s
-              << " s, render " << render_s << " s, write " << write_s << " s\n";
+              << "): parse " << parse_s << " s, build " << build_s << " s, render " << render_s << " s ("
+              << std::setprecision(0) << samples_per_s << " samples/s), write " << std::setprecision(3) << write_s
+              << " s\n";
   }
   return 0;
 }
 
 }  // namespace
+}  // namespace pt
 
 int main(int argc, char** argv) {
   CLI::App app{"pathtracer: renders a scene file (native, Path of Light or CGR JSON) to EXR/PNG/PPM"};
-  Options options;
-  add_options(app, options);
+  pt::Options options;
+  pt::add_options(app, options);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);  // prints help, version or the error
-    return code == 0 ? 0 : kExitUsage;
+    return code == 0 ? 0 : pt::kExitUsage;
   }
   try {
-    return run(options);
+    return pt::run(options);
   } catch (const std::exception& e) {  // e.g. std::bad_alloc for an absurdly large scene
     std::cerr << "error: " << e.what() << '\n';
-    return kExitFailure;
+    return pt::kExitFailure;
   }
 }

@@ -8,17 +8,38 @@ namespace pt {
 
 std::string run_record_json(const RunRecord& r) {
   const PhaseTimings& t = r.timings;
-  const nlohmann::ordered_json j = {
-      {"software", {{"name", "pathtracer"}, {"version", r.software_version}}},
+  const SoftwareVersions& v = r.versions;
+  nlohmann::ordered_json j = {
+      {"software",
+       {{"name", "pathtracer"},
+        {"version", v.pathtracer},
+        {"embree", {{"version", v.embree}, {"tasking_system", v.embree_tasking},
+                    {"native_packets", v.embree_native_packets}}},
+        {"openimageio", v.openimageio},
+        {"openexr", v.openexr},
+        {"opencolorio", v.opencolorio},
+        {"tbb", v.tbb},
+        {"compiler", {{"name", v.compiler}, {"flags", v.compiler_flags}, {"build_type", v.build_type}}}}},
       {"scene", r.scene},
+      {"overrides", r.overrides},
       {"image", {{"width", r.width}, {"height", r.height}, {"spp", r.spp}, {"integrator", r.integrator},
-                 {"max_depth", r.max_depth}, {"seed", r.seed}, {"filter", r.filter}, {"clamp", r.clamp}}},
+                 {"sampler", r.sampler}, {"max_depth", r.max_depth}, {"seed", r.seed}, {"filter", r.filter},
+                 {"clamp", r.clamp}}},
+      {"progress", {{"spp_reached", r.spp}, {"target_spp", r.target_spp}, {"time_budget", r.time_budget},
+                    {"passes", r.passes}, {"resumed_spp", r.resumed_spp}, {"partial", r.partial},
+                    {"signal", r.signal}}},
       {"threads", r.threads},
       {"accel", {{"backend", r.accel_backend}, {"memory_bytes", r.accel_memory_bytes},
                  {"primitive_count", r.primitive_count}, {"build_seconds", t.accel_build}}},
       {"timings", {{"parse", t.parse}, {"scene_build", t.scene_build}, {"accel_build", t.accel_build},
                    {"render", t.render}, {"write", t.write}, {"total", t.total}}},
+      {"performance", {{"pixel_samples", r.pixel_samples}, {"samples_per_second", r.samples_per_second}}},
+      {"memory", {{"estimate_bytes", r.memory_estimate_bytes}, {"peak_rss_bytes", r.peak_memory_bytes}}},
   };
+  const RunRecord::NonFinite& nf = r.non_finite;
+  j["non_finite"] = {{"nan", nf.nan}, {"pos_inf", nf.pos_inf}, {"neg_inf", nf.neg_inf},
+                     {"first", nf.has_first ? nlohmann::ordered_json{{"x", nf.x}, {"y", nf.y}, {"sample", nf.sample}}
+                                            : nlohmann::ordered_json(nullptr)}};
   return j.dump(2) + "\n";
 }
 

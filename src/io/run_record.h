@@ -1,26 +1,54 @@
 // The run record (`pathtracer --report run.json`): what was rendered, with
-// which settings, and how long each phase took. A machine-readable companion
-// to the image, read by the benchmark tools in tools/.
+// which settings and software, how long each phase took, how fast the render
+// went and how far it got. A machine-readable companion to the image, read by
+// the benchmark tools in tools/ (layout in docs/cli.md).
 #pragma once
 
 #include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace pt {
 
 struct PhaseTimings {
-  double parse = 0;        // reading and validating the scene file (meshes included)
-  double scene_build = 0;  // textures, geometry conversion (excludes accel_build)
+  double parse = 0;        // reading and validating the scene file (PLY meshes included)
+  double scene_build = 0;  // texture decoding, geometry conversion (excludes accel_build)
   double accel_build = 0;  // acceleration structure
   double render = 0;
   double write = 0;        // all output images
   double total = 0;        // sum of the above
 };
 
+// Libraries the executable runs with, as they report themselves at run time
+// where they can (compile-time versions otherwise, named so).
+struct SoftwareVersions {
+  std::string pathtracer;
+  std::string embree;                 // rtcGetDeviceProperty(RTC_DEVICE_PROPERTY_VERSION)
+  std::string embree_tasking;         // RTC_DEVICE_PROPERTY_TASKING_SYSTEM: "internal", "TBB" or "PPL"
+  std::string embree_native_packets;  // RTC_DEVICE_PROPERTY_NATIVE_RAY{4,8,16}_SUPPORTED, e.g. "4 8"
+  std::string openimageio;
+  std::string openexr;                // the headers' OPENEXR_VERSION_STRING
+  std::string opencolorio;
+  std::string tbb;
+  std::string compiler;
+  std::string compiler_flags;
+  std::string build_type;
+};
+
 struct RunRecord {
   std::string scene;
+  std::vector<std::string> overrides;  // --set key=value, in order
   std::string integrator;
-  int width = 0, height = 0, spp = 0, max_depth = 0;
+  std::string sampler;
+  int width = 0, height = 0, max_depth = 0;
+  int spp = 0;                 // samples per pixel reached (complete passes)
+  int target_spp = 0;          // 0: no target (time budget only)
+  double time_budget = 0;      // seconds; 0: none
+  int passes = 0;
+  int resumed_spp = 0;         // samples per pixel read from --resume's checkpoint
+  bool partial = false;        // stopped by a signal before the target/budget
+  int signal = 0;              // the signal that stopped it, 0 if none
   uint64_t seed = 0;
   std::string filter = "box";  // pixel filter (path integrator)
   float clamp = 0.0f;          // firefly clamp; 0 = off (recorded either way)
@@ -29,7 +57,18 @@ struct RunRecord {
   std::size_t accel_memory_bytes = 0;
   std::size_t primitive_count = 0;
   PhaseTimings timings;
-  std::string software_version;
+  int64_t pixel_samples = 0;   // camera samples rendered by this run
+  double samples_per_second = 0;
+  // Non-finite samples (counted by the film, added as black; docs/output.md):
+  // per kind, and the first one, which `pathtracer --replay X,Y,N` reproduces.
+  struct NonFinite {
+    uint64_t nan = 0, pos_inf = 0, neg_inf = 0;
+    bool has_first = false;
+    int x = 0, y = 0, sample = 0;
+  } non_finite;
+  uint64_t memory_estimate_bytes = 0;  // the pre-flight estimate
+  uint64_t peak_memory_bytes = 0;      // getrusage ru_maxrss
+  SoftwareVersions versions;
 };
 
 std::string run_record_json(const RunRecord& record);

@@ -17,8 +17,6 @@ bool RenderScene::intersect(const Ray& ray, Intersection& out) const {
   return true;
 }
 
-namespace {
-
 // ---------------------------------------------------------------- resolution
 // An override replaces the description's size; if only one of width/height is
 // overridden, the other follows the description's aspect ratio.
@@ -37,6 +35,8 @@ void resolve_resolution(const FilmDesc& film, const BuildOptions& options, int& 
     width = std::max(1, static_cast<int>(std::lround(height * aspect)));
   }
 }
+
+namespace {
 
 // ---------------------------------------------------------------- shapes
 Shape to_shape(const SphereDesc& d) {

@@ -62,6 +62,10 @@ struct BuildOptions {
   long long max_pixels = 1LL << 28;  // width * height, as LoadOptions
 };
 
+// The image size build_render_scene gives `film` under `options` (an override
+// of one side keeps the description's aspect ratio).
+void resolve_resolution(const FilmDesc& film, const BuildOptions& options, int& width, int& height);
+
 // Builds the render scene, or returns nullptr after reporting to `diag`
 // (texture that fails to decode, accelerator failure, ...).
 std::unique_ptr<RenderScene> build_render_scene(const SceneDescription& desc, const BuildOptions& options,

@@ -8,6 +8,7 @@
 #include "scene/detect.h"
 #include "scene/importers.h"
 #include "scene/json.h"
+#include "scene/overrides.h"
 #include "scene/validate.h"
 
 namespace fs = std::filesystem;
@@ -74,12 +75,10 @@ std::optional<SceneDescription> load_scene(const std::string& path, const LoadOp
   return load_scene_from_string(path, std::move(text), options, diag);
 }
 
-std::optional<SceneDescription> load_scene_from_string(const std::string& path, std::string text,
-                                                       const LoadOptions& options, Diagnostics& diag) {
-  if (text.size() > kMaxSceneFileBytes) {
-    diag.error(file_only(path), too_large_message(text.size()));
-    return std::nullopt;
-  }
+namespace {
+
+std::optional<SceneDescription> load_text(const std::string& path, std::string text, const LoadOptions& options,
+                                          Diagnostics& diag) {
   const int errors_before = diag.error_count();
   auto file = std::make_shared<const SourceFile>(SourceFile{path, std::move(text)});
   const std::optional<JsonDocument> doc = parse_json(file, diag);
@@ -101,6 +100,25 @@ std::optional<SceneDescription> load_scene_from_string(const std::string& path, 
   }
   validate_scene(scene, options, diag);
   if (diag.error_count() > errors_before) return std::nullopt;
+  return scene;
+}
+
+}  // namespace
+
+std::optional<SceneDescription> load_scene_from_string(const std::string& path, std::string text,
+                                                       const LoadOptions& options, Diagnostics& diag) {
+  if (text.size() > kMaxSceneFileBytes) {
+    diag.error(file_only(path), too_large_message(text.size()));
+    return std::nullopt;
+  }
+  if (options.overrides.empty()) return load_text(path, std::move(text), options, diag);
+  std::vector<OverrideLine> lines;
+  if (!apply_scene_overrides(path, text, options.overrides, diag, lines)) return std::nullopt;
+  Diagnostics inner;  // forwarded with a note on each diagnostic about an overridden value
+  std::optional<SceneDescription> scene = load_text(path, std::move(text), options, inner);
+  const int errors_before = diag.error_count();
+  forward_with_override_notes(inner, lines, diag);
+  if (!scene || diag.error_count() > errors_before) return std::nullopt;
   return scene;
 }
 

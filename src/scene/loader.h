@@ -6,6 +6,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/diagnostics.h"
 #include "scene/scene_description.h"
@@ -20,6 +21,9 @@ struct LoadOptions {
   // Largest accepted width x height (16384^2): the film alone then takes 3 GiB;
   // beyond it a scene is refused with a message instead of failing to allocate.
   long long max_pixels = 1LL << 28;
+  // `--set key=value` overrides applied to the file's text before it is
+  // imported (scene/overrides.h), in order.
+  std::vector<std::string> overrides;
 };
 
 // Returns the description, or std::nullopt if any error was reported. All

@@ -1,0 +1,74 @@
+#include "app/film_options.h"
+
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <string>
+
+#include "app/options.h"
+
+namespace pt {
+
+bool film_aovs(const Options& o, std::vector<AovRequest>& out) {
+  out.clear();
+  if (!o.replay.empty()) {  // a replay reports every AOV of its one sample (they draw no random numbers)
+    for (const AovInfo& info : aov_catalogue()) out.push_back({info.type, info.default_type});
+    return true;
+  }
+  if (std::string why; !o.aov.empty() && !parse_aov_list(o.aov, out, why)) {
+    std::cerr << "error: --aov: " << why << '\n';
+    return false;
+  }
+  return true;
+}
+
+bool crop_window(const Options& o, int width, int height, PixelRect& out) {
+  out = {0, 0, width, height};
+  if (!o.replay.empty()) {
+    out = {o.replay[0], o.replay[1], o.replay[0] + 1, o.replay[1] + 1};
+  } else if (!o.crop.empty()) {
+    const std::vector<double>& c = o.crop;
+    if (!(0.0 <= c[0] && c[0] < c[2] && c[2] <= 1.0 && 0.0 <= c[1] && c[1] < c[3] && c[3] <= 1.0)) {
+      std::cerr << "error: --crop: need 0 <= X0 < X1 <= 1 and 0 <= Y0 < Y1 <= 1\n";
+      return false;
+    }
+    out = {static_cast<int>(std::floor(c[0] * width)), static_cast<int>(std::floor(c[1] * height)),
+           static_cast<int>(std::ceil(c[2] * width)), static_cast<int>(std::ceil(c[3] * height))};
+  } else if (!o.crop_px.empty()) {
+    const std::vector<int>& c = o.crop_px;
+    if (c[0] > width || c[1] > height || c[2] > width || c[3] > height) {  // also keeps X + W from overflowing
+      std::cerr << "error: --crop-px: " << c[2] << "x" << c[3] << " at (" << c[0] << ", " << c[1]
+                << ") is not inside the " << width << "x" << height << " frame\n";
+      return false;
+    }
+    out = {c[0], c[1], c[0] + c[2], c[1] + c[3]};
+  }
+  if (out.x0 < 0 || out.y0 < 0 || out.empty() || out.x1 > width || out.y1 > height) {
+    std::cerr << "error: " << (o.replay.empty() ? "the crop" : "the replayed pixel") << " [" << out.x0 << ", "
+              << out.x1 << ") x [" << out.y0 << ", " << out.y1 << ") is not inside the " << width << "x" << height
+              << " frame\n";
+    return false;
+  }
+  return true;
+}
+
+std::size_t film_bytes_per_pixel(const std::vector<AovRequest>& aovs) {
+  std::size_t bytes = sizeof(PixelSum);
+  for (const AovRequest& r : aovs) bytes += sizeof(double) * static_cast<std::size_t>(aov_info(r.type).state_doubles);
+  return bytes;
+}
+
+void print_replay(const Film& film, int x, int y, int sample) {
+  const NonFiniteReport& non_finite = film.non_finite();
+  const RGB v = non_finite.total() > 0 ? non_finite.value : film.sum(x, y).value();
+  std::cout << std::setprecision(9) << "replay pixel (" << x << ", " << y << ") sample " << sample << ": radiance "
+            << v.r << " " << v.g << " " << v.b << '\n';
+  for (const AovRequest& r : film.aovs()) {
+    if (r.type == AovType::Samples || r.type == AovType::Variance) continue;
+    std::cout << "  " << aov_info(r.type).name << ":";
+    for (float c : film.aov_value(r.type, x, y)) std::cout << ' ' << c;
+    std::cout << '\n';
+  }
+}
+
+}  // namespace pt

@@ -1,0 +1,29 @@
+// What the command line asks of the film: the AOV layers (--aov), the region
+// (--crop, --crop-px) and the replay of one sample (--replay); docs/output.md.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "render/film/aov.h"
+#include "render/film/film.h"
+
+namespace pt {
+
+struct Options;
+
+// The requested AOVs; a replay reports every AOV of its one sample. Returns
+// false after printing why (an unknown name: the valid ones are listed).
+bool film_aovs(const Options& o, std::vector<AovRequest>& out);
+
+// The region to render, in pixels of a width x height frame: the crop, the
+// replayed pixel, or the whole frame. Returns false after printing why.
+bool crop_window(const Options& o, int width, int height, PixelRect& out);
+
+// Bytes the film stores per pixel for these AOVs (the memory pre-flight).
+std::size_t film_bytes_per_pixel(const std::vector<AovRequest>& aovs);
+
+// Prints the replayed sample of pixel (x, y): its radiance and its AOVs.
+void print_replay(const Film& film, int x, int y, int sample);
+
+}  // namespace pt

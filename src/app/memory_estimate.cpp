@@ -1,0 +1,100 @@
+#include "app/memory_estimate.h"
+
+#include <unistd.h>
+
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <type_traits>
+#include <variant>
+
+#include "scene/scene_description.h"
+
+namespace pt {
+namespace {
+
+// Per-primitive bytes of geometry plus acceleration structure. Upper-end
+// figures: Embree's BVH over triangles takes ~100-150 bytes per triangle with
+// the vertex and index buffers and our own per-triangle shading data;
+// analytic shapes are user geometry (one BVH leaf reference, a small record).
+constexpr uint64_t kBytesPerTriangle = 192;
+constexpr uint64_t kBytesPerVertex = 48;  // position, normal, uv in the render scene
+constexpr uint64_t kBytesPerShape = 256;
+
+}  // namespace
+
+MemoryEstimate estimate_memory(const SceneDescription& scene, int width, int height,
+                               uint64_t film_bytes_per_pixel, int films) {
+  const uint64_t pixels = static_cast<uint64_t>(width) * static_cast<uint64_t>(height);
+  MemoryEstimate e;
+  e.film = pixels * film_bytes_per_pixel * static_cast<uint64_t>(films);
+  e.images = pixels * (3 * sizeof(float)) * 2;  // the image and one output conversion of it
+  for (const ShapeDesc& shape : scene.shapes) {
+    e.geometry += kBytesPerShape;
+    if (const auto* mesh = std::get_if<MeshDesc>(&shape.geometry))
+      e.geometry += mesh->indices.size() / 3 * kBytesPerTriangle + mesh->positions.size() * kBytesPerVertex;
+  }
+  return e;
+}
+
+std::optional<uint64_t> parse_byte_size(const std::string& text) {
+  std::size_t i = 0;
+  uint64_t value = 0;
+  while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) {
+    if (value > (UINT64_MAX - 9) / 10) return std::nullopt;
+    value = value * 10 + static_cast<uint64_t>(text[i++] - '0');
+  }
+  if (i == 0) return std::nullopt;
+  std::string unit = text.substr(i);
+  for (char& c : unit) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  if (unit == "B" || unit.empty()) return value;
+  int shift = 0;
+  switch (unit[0]) {
+    case 'K': shift = 10; break;
+    case 'M': shift = 20; break;
+    case 'G': shift = 30; break;
+    case 'T': shift = 40; break;
+    default: return std::nullopt;
+  }
+  const std::string rest = unit.substr(1);
+  if (!(rest.empty() || rest == "B" || rest == "IB")) return std::nullopt;
+  if (value > (UINT64_MAX >> shift)) return std::nullopt;
+  return value << shift;
+}
+
+std::string byte_size_text(uint64_t bytes) {
+  const char* units[] = {"bytes", "KiB", "MiB", "GiB", "TiB"};
+  double v = static_cast<double>(bytes);
+  int u = 0;
+  while (v >= 1024.0 && u < 4) {
+    v /= 1024.0;
+    ++u;
+  }
+  char buf[48];
+  if (u == 0)
+    std::snprintf(buf, sizeof buf, "%llu bytes", static_cast<unsigned long long>(bytes));
+  else
+    std::snprintf(buf, sizeof buf, "%.2f %s", v, units[u]);
+  return buf;
+}
+
+uint64_t physical_memory_bytes() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES);
+  const long page = ::sysconf(_SC_PAGE_SIZE);
+  if (pages <= 0 || page <= 0) return 0;
+  return static_cast<uint64_t>(pages) * static_cast<uint64_t>(page);
+}
+
+std::string check_memory(const MemoryEstimate& e, uint64_t limit, uint64_t physical) {
+  const std::string detail = " (film " + byte_size_text(e.film) + ", images " + byte_size_text(e.images) +
+                             ", geometry and acceleration structure " + byte_size_text(e.geometry) + ")";
+  if (limit > 0 && e.total() > limit)
+    return "the render needs an estimated " + byte_size_text(e.total()) + detail + ", more than --max-memory " +
+           byte_size_text(limit) + "; lower the resolution or raise the limit";
+  if (physical > 0 && e.total() > physical)
+    return "the render needs an estimated " + byte_size_text(e.total()) + detail +
+           ", more than this machine's physical memory " + byte_size_text(physical) + "; lower the resolution";
+  return {};
+}
+
+}  // namespace pt

@@ -1,0 +1,117 @@
+#include "app/options.h"
+
+#include <limits>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+
+#include "accel/accelerator.h"
+#include "app/outputs.h"
+#include "app/versions.h"
+#include "render/film/aov.h"
+#include "render/integrators/integrator.h"
+
+namespace pt {
+namespace {
+
+constexpr int kMaxThreads = 4096;
+constexpr int kMaxSpp = 1 << 20;
+constexpr int kMaxDepth = 1 << 16;
+constexpr int kMaxResolution = 32768;  // as pt::LoadOptions::max_resolution
+constexpr double kMaxSeconds = 1e7;
+
+}  // namespace
+
+std::string version_text() {
+  const SoftwareVersions v = software_versions();
+  std::ostringstream os;
+  os << "pathtracer " << v.pathtracer << '\n'
+     << "  Embree " << v.embree << " (tasking: " << v.embree_tasking << ", native packets: "
+     << v.embree_native_packets << ")\n"
+     << "  OpenImageIO " << v.openimageio << '\n'
+     << "  OpenEXR " << v.openexr << '\n'
+     << "  OpenColorIO " << v.opencolorio << '\n'
+     << "  oneTBB " << v.tbb << '\n'
+     << "  " << v.compiler << " (" << v.build_type << ")";
+  return os.str();
+}
+
+void add_options(CLI::App& app, Options& o) {
+  app.add_option("scene", o.scene, "Scene file (native, Path of Light or CGR JSON)")->required();
+  app.add_option("-o,--output", o.outputs,
+                 "Output image (.exr, .png, .jpg, .ppm); repeat to write several formats from one render "
+                 "(required except with --replay)")
+      ->allow_extra_args(false);
+  app.add_option("--accel", o.accel, "Acceleration structure")
+      ->check(CLI::IsMember(accel_kind_names()))
+      ->capture_default_str();
+  app.add_option("--threads", o.threads, "Worker threads (default: all hardware threads)")
+      ->check(CLI::Range(1, kMaxThreads));
+  app.add_option("--spp", o.spp, "Samples per pixel (default: the scene's; with --time-budget: no limit)")
+      ->check(CLI::Range(1, kMaxSpp));
+  app.add_option("--seed", o.seed, "Random seed")->capture_default_str();
+  app.add_option("--integrator", o.integrator, "Integrator (default: the scene's)")
+      ->check(CLI::IsMember(integrator_names()));
+  app.add_option("--max-depth", o.max_depth, "Bounces (path) or recursion depth (whitted) (default: the scene's)")
+      ->check(CLI::Range(0, kMaxDepth));
+  app.add_option("--filter", o.filter, "Pixel filter of the path integrator (default: the scene's, box)")
+      ->check(CLI::IsMember({"box", "gaussian", "mitchell"}));
+  app.add_option("--sampler", o.sampler, "Sampler of the path integrator (docs/samplers.md)")
+      ->check(CLI::IsMember(sampler_type_names()))
+      ->capture_default_str();
+  app.add_option("--clamp", o.clamp,
+                 "Path integrator: clamp each sample's radiance to this largest channel value (0: off, the default)")
+      ->check(CLI::Range(0.0f, std::numeric_limits<float>::max()));
+  app.add_option("--width", o.width, "Image width (alone: keeps the scene's aspect ratio)")
+      ->check(CLI::Range(1, kMaxResolution));
+  app.add_option("--height", o.height, "Image height (alone: keeps the scene's aspect ratio)")
+      ->check(CLI::Range(1, kMaxResolution));
+  app.add_option("--set", o.overrides,
+                 "Override a scene value before validation: KEY=VALUE, KEY a JSON path in the scene file "
+                 "(render.spp=256, camera.fov=30, shapes[3].radius=2), VALUE JSON or a bare word; repeatable")
+      ->allow_extra_args(false);
+  app.add_flag("--strict", o.strict, "Treat warnings (e.g. unknown keys in legacy files) as errors");
+  app.add_flag("--quiet", o.quiet, "Print errors only (no progress)");
+  app.add_option("--report", o.report,
+                 "Write a run record (JSON: settings, versions, time per phase, speed, memory, spp reached)");
+  app.add_option("--exposure", o.exposure, "Display images: exposure in stops (default: the scene's)");
+  app.add_option("--view", o.view,
+                 "Display images: 'standard' (sRGB) or 'aces' (ACES 1.0 SDR video), or a view of the OCIO config");
+  app.add_option("--display", o.display, "Display images: a display of the OCIO config (default: its default)");
+  app.add_option("--look", o.look, "Display images: look(s) of the OCIO config, e.g. '+grade'");
+  app.add_option("--ocio-config", o.ocio_config, "OpenColorIO config file (default: $OCIO, if set)");
+  app.add_option("--time-budget", o.time_budget,
+                 "Render in progressive passes for at most this many seconds (with --spp: whichever comes first)")
+      ->check(CLI::Range(0.001, kMaxSeconds));
+  app.add_option("--pass-spp", o.pass_spp,
+                 "Samples per progressive pass (default: all at once; adapted to the time under --time-budget)")
+      ->check(CLI::Range(1, kMaxSpp));
+  app.add_option("--checkpoint", o.checkpoint, "Write a checkpoint to this file at pass boundaries");
+  app.add_option("--checkpoint-every", o.checkpoint_every, "Seconds between checkpoints")
+      ->check(CLI::Range(0.0, kMaxSeconds))
+      ->capture_default_str();
+  app.add_option("--resume", o.resume, "Continue the render saved in this checkpoint (same scene and settings)");
+  app.add_option("--progress-interval", o.progress_interval,
+                 "Seconds between progress lines when stderr is not a terminal")
+      ->check(CLI::Range(0.05, kMaxSeconds))
+      ->capture_default_str();
+  app.add_option("--max-memory", o.max_memory,
+                 "Refuse renders estimated to need more memory than this (e.g. 4G, 512M)");
+  app.add_option("--aov", o.aov,
+                 "Extra EXR layers, comma-separated, each optionally ':half' or ':float' (docs/output.md): " +
+                     join(aov_names(), ", "));
+  auto* crop = app.add_option("--crop", o.crop, "Render only this region: X0,Y0,X1,Y1 as fractions of the frame")
+                   ->delimiter(',')
+                   ->expected(4);
+  app.add_option("--crop-px", o.crop_px, "Render only this region: X,Y,W,H in pixels")
+      ->delimiter(',')
+      ->expected(4)
+      ->excludes(crop);
+  app.add_option("--replay", o.replay,
+                 "Render only sample N of pixel (X, Y) (as a full render draws it) and print its radiance: X,Y,N")
+      ->delimiter(',')
+      ->expected(3);
+  app.set_version_flag("--version", [] { return version_text(); });
+}
+
+}  // namespace pt

@@ -1,0 +1,58 @@
+// The pathtracer command line: its options and their parsing (CLI11).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace CLI {
+class App;
+}
+
+namespace pt {
+
+struct Options {
+  std::string scene;
+  std::vector<std::string> outputs;
+  std::string accel = "embree";
+  int threads = 0;     // 0: all hardware threads
+  int spp = 0;         // 0: the scene's value (unless a time budget alone is given)
+  uint64_t seed = 0;
+  std::string integrator;  // empty: the scene's value
+  int max_depth = -1;      // < 0: the scene's value
+  std::string filter;      // empty: the scene's value
+  std::string sampler = "random";  // the path integrator's sampler (docs/samplers.md)
+  float clamp = -1.0f;     // < 0: the scene's value; 0 = off
+  int width = 0, height = 0;
+  bool strict = false;
+  bool quiet = false;
+  std::string report;  // run record (JSON); empty: none
+  // Display images (PNG, JPEG, PPM); see src/io/display.h.
+  std::optional<float> exposure;  // stops; unset: the scene's
+  std::string view, display, look;
+  std::string ocio_config;  // unset: $OCIO
+  // Long renders (docs/cli.md).
+  double time_budget = 0;          // seconds of rendering; 0: none
+  int pass_spp = 0;                // samples per progressive pass; 0: automatic
+  std::string checkpoint;          // checkpoint file; empty: none
+  double checkpoint_every = 60;    // seconds between checkpoints
+  std::string resume;              // checkpoint to continue from
+  double progress_interval = 10;   // seconds between progress lines when stderr is not a terminal
+  std::vector<std::string> overrides;  // --set key=value
+  std::string max_memory;          // e.g. "4G"; empty: physical memory only
+  // AOVs, crops and replays (docs/output.md).
+  std::string aov;                 // --aov list; empty: beauty only
+  std::vector<double> crop;        // fractions x0, y0, x1, y1; empty: the full frame
+  std::vector<int> crop_px;        // pixels x, y, w, h; empty: the full frame
+  std::vector<int> replay;         // x, y, sample; empty: a normal render
+};
+
+// Exit statuses (docs/cli.md); a render stopped by a signal exits with 128 + its number.
+constexpr int kExitFailure = 1;
+constexpr int kExitUsage = 2;
+
+void add_options(CLI::App& app, Options& o);
+std::string version_text();
+
+}  // namespace pt

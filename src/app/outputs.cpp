@@ -1,0 +1,62 @@
+#include "app/outputs.h"
+
+#include <cstdlib>
+#include <iostream>
+#include <set>
+
+#include "app/options.h"
+#include "core/image.h"
+#include "io/image_io.h"
+#include "scene/scene_description.h"
+
+namespace pt {
+
+std::string join(const std::vector<std::string>& items, const char* sep) {
+  std::string s;
+  for (const std::string& item : items) s += (s.empty() ? "" : sep) + item;
+  return s;
+}
+
+bool check_outputs(const std::vector<std::string>& outputs) {
+  std::set<std::string> seen;
+  for (const std::string& path : outputs) {
+    if (!is_supported_image_path(path)) {
+      std::cerr << "error: cannot write '" << path << "': unsupported image extension (supported: "
+                << join(supported_image_extensions(), ", ") << ")\n";
+      return false;
+    }
+    if (!seen.insert(path).second) {
+      std::cerr << "error: output '" << path << "' is given more than once\n";
+      return false;
+    }
+  }
+  return true;
+}
+
+DisplaySettings display_settings(const Options& o, const FilmDesc& film) {
+  DisplaySettings d;
+  d.transform = film.display;
+  d.exposure = o.exposure.value_or(film.exposure.value);
+  d.view = o.view;
+  d.display = o.display;
+  d.look = o.look;
+  d.ocio_config = o.ocio_config;
+  if (d.ocio_config.empty()) {
+    if (const char* env = std::getenv("OCIO"); env != nullptr) d.ocio_config = env;
+  }
+  return d;
+}
+
+bool write_outputs(const std::vector<std::string>& outputs, const LayeredImage& image, const DisplaySettings& display,
+                   const ImageMetadata& metadata) {
+  std::string error;
+  for (const std::string& path : outputs) {
+    if (!write_layered_image(path, image, display, error, metadata)) {
+      std::cerr << "error: " << error << '\n';
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace pt

@@ -1,0 +1,93 @@
+// A temporary folder to run the pathtracer in, for the command-line tests.
+#pragma once
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace pt::test {
+
+struct RunResult {
+  int status = -1;
+  std::string out, err;
+};
+
+// A native scene for the path integrator: a diffuse sphere on a floor under an
+// area light; `width` x `height` pixels, `spp` samples.
+inline std::string path_scene(int width, int height, int spp) {
+  return R"({"format": "pathtracer-scene", "version": 1,
+  "camera": {"position": [0, 1, 4], "look_at": [0, 0.5, 0], "fov": 40},
+  "film": {"width": )" + std::to_string(width) + R"(, "height": )" + std::to_string(height) + R"(},
+  "render": {"integrator": "path", "max_depth": 8, "spp": )" + std::to_string(spp) + R"(},
+  "materials": {
+    "white": {"type": "lambert", "diffuse": [0.7, 0.7, 0.7]},
+    "light": {"type": "lambert", "diffuse": [0, 0, 0], "emission": [8, 8, 8]}
+  },
+  "shapes": [
+    {"type": "sphere", "center": [0, 0.5, 0], "radius": 0.5, "material": "white"},
+    {"type": "quad", "vertices": [[-3, 0, -3], [-3, 0, 3], [3, 0, 3], [3, 0, -3]], "material": "white"},
+    {"type": "quad", "vertices": [[-0.5, 2.5, -0.5], [0.5, 2.5, -0.5], [0.5, 2.5, 0.5], [-0.5, 2.5, 0.5]], "material": "light"}
+  ]
+})";
+}
+
+class AppTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("pt_app_test_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  void write(const std::string& name, const std::string& text) const { std::ofstream(path(name)) << text; }
+  static std::string slurp(const std::string& p) {
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  }
+  nlohmann::json read_json(const std::string& name) const {
+    return nlohmann::json::parse(slurp(path(name)), nullptr, false);
+  }
+
+  // Runs the executable in the folder with `args` (a shell word list).
+  RunResult run(const std::string& args) const {
+    const std::string cmd = "cd '" + dir_.string() + "' && '" PT_PATHTRACER_EXE "' " + args +
+                            " > stdout.txt 2> stderr.txt";
+    const int raw = std::system(cmd.c_str());
+    RunResult r;
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    r.out = slurp(path("stdout.txt"));
+    r.err = slurp(path("stderr.txt"));
+    std::filesystem::remove(path("stdout.txt"));
+    std::filesystem::remove(path("stderr.txt"));
+    return r;
+  }
+
+  // Names of the files in the folder.
+  std::vector<std::string> files() const {
+    std::vector<std::string> names;
+    for (const auto& e : std::filesystem::directory_iterator(dir_)) names.push_back(e.path().filename().string());
+    return names;
+  }
+  // True if any file name contains ".tmp" (atomic writes' temporaries).
+  bool has_temporary_files() const {
+    for (const std::string& n : files())
+      if (n.find(".tmp") != std::string::npos) return true;
+    return false;
+  }
+
+  std::filesystem::path dir_;
+};
+
+}  // namespace pt::test

@@ -1,0 +1,232 @@
+// The command line's driver pieces without a process: pass planning,
+// memory estimate and sizes, progress text, the signal flag.
+#include <signal.h>
+
+#include <memory>
+#include <sstream>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "app/memory_estimate.h"
+#include "app/progress.h"
+#include "app/render_driver.h"
+#include "app/signals.h"
+#include "core/parallel.h"
+#include "render/film/film.h"
+#include "render/render_scene.h"
+#include "scene/scene_description.h"
+
+namespace pt {
+namespace {
+
+TEST(PassPlan, FixedSizes) {
+  PassPlan p;
+  p.target_spp = 64;
+  EXPECT_EQ(fixed_pass_size(p), 64);  // a sample target alone: one pass
+  p.pass_spp = 16;
+  EXPECT_EQ(fixed_pass_size(p), 16);
+  p.pass_spp = 10;
+  p.equal_passes = true;
+  EXPECT_EQ(fixed_pass_size(p), 8);  // the largest divisor of 64 not above 10
+  p.target_spp = 13;
+  EXPECT_EQ(fixed_pass_size(p), 1);  // a prime: passes of one sample
+  p = PassPlan{};
+  p.time_budget_s = 5;
+  p.equal_passes = true;
+  EXPECT_EQ(fixed_pass_size(p), 4);  // the default equal pass under a budget
+}
+
+TEST(PassPlan, AdaptiveSizesFitTheTimeLeft) {
+  EXPECT_EQ(adaptive_pass_size(0.0, 10.0, 0, 1000), 1);    // first pass: one sample to measure
+  EXPECT_EQ(adaptive_pass_size(0.0, 10.0, 4, 1000), 8);    // unmeasured: doubles
+  EXPECT_EQ(adaptive_pass_size(0.01, 4.0, 1, 1000), 100);  // a quarter of the time left
+  EXPECT_EQ(adaptive_pass_size(0.1, 40.0, 1, 1000), 40);   // ... but no more than ~4 s
+  EXPECT_EQ(adaptive_pass_size(0.01, 0.2, 50, 1000), 10);  // near the end: at least 0.1 s
+  EXPECT_EQ(adaptive_pass_size(0.01, 0.05, 50, 1000), 4);  // what fits in 90% of the time left
+  EXPECT_EQ(adaptive_pass_size(0.1, 0.1, 50, 1000), 0);    // not even one sample per pixel: stop
+  EXPECT_EQ(adaptive_pass_size(0.001, 100.0, 1, 7), 7);    // never past the target
+  EXPECT_EQ(adaptive_pass_size(0.1, 10.0, 1, 0), 0);
+}
+
+// An integrator that records the sample ranges it was asked for.
+class RecordingIntegrator : public Integrator {
+ public:
+  RecordingIntegrator(const IntegratorSettings& s, std::vector<std::pair<int, int>>& log) : s_(s), log_(log) {}
+  void render(const RenderScene&, Film& film, WorkerPool&) const override {
+    log_.emplace_back(s_.first_sample, s_.spp);
+    PixelSum sum;
+    for (int i = 0; i < s_.spp; ++i) sum.add(RGB(1, 1, 1), 1.0f);
+    film.add(0, 0, sum);
+  }
+
+ private:
+  IntegratorSettings s_;
+  std::vector<std::pair<int, int>>& log_;
+};
+
+TEST(RenderPasses, ConsecutiveRangesUpToTheTarget) {
+  RenderScene scene;
+  Film film(1, 1);
+  WorkerPool pool(1);
+  std::vector<std::pair<int, int>> log;
+  std::vector<int> done;
+  DriverCallbacks cb;
+  cb.make_integrator = [&](const IntegratorSettings& s) { return std::make_unique<RecordingIntegrator>(s, log); };
+  cb.pass_done = [&](int spp) { done.push_back(spp); };
+  PassPlan plan;
+  plan.target_spp = 10;
+  plan.pass_spp = 4;
+  plan.start_spp = 2;  // resumed
+  const RenderOutcome out = render_passes(scene, film, pool, plan, IntegratorSettings{}, cb);
+  EXPECT_EQ(out.spp_done, 10);
+  EXPECT_EQ(out.passes, 2);
+  EXPECT_FALSE(out.cancelled);
+  EXPECT_EQ(log, (std::vector<std::pair<int, int>>{{2, 4}, {6, 4}}));
+  EXPECT_EQ(done, (std::vector<int>{6, 10}));
+  EXPECT_EQ(film.sum(0, 0).samples, 8u);
+}
+
+TEST(RenderPasses, EqualPassesNeverEndWithASmallerOne) {
+  RenderScene scene;
+  Film film(1, 1);
+  WorkerPool pool(1);
+  std::vector<std::pair<int, int>> log;
+  DriverCallbacks cb;
+  cb.make_integrator = [&](const IntegratorSettings& s) { return std::make_unique<RecordingIntegrator>(s, log); };
+  PassPlan plan;
+  plan.target_spp = 12;
+  plan.pass_spp = 5;
+  plan.equal_passes = true;
+  EXPECT_EQ(render_passes(scene, film, pool, plan, IntegratorSettings{}, cb).spp_done, 12);
+  EXPECT_EQ(log, (std::vector<std::pair<int, int>>{{0, 4}, {4, 4}, {8, 4}}));
+}
+
+class CancelledMonitor : public RenderMonitor {
+ public:
+  bool cancelled() const override { return true; }
+};
+
+TEST(RenderPasses, ACancelledPassDoesNotCount) {
+  RenderScene scene;
+  Film film(1, 1);
+  WorkerPool pool(1);
+  std::vector<std::pair<int, int>> log;
+  DriverCallbacks cb;
+  cb.make_integrator = [&](const IntegratorSettings& s) { return std::make_unique<RecordingIntegrator>(s, log); };
+  PassPlan plan;
+  plan.target_spp = 8;
+  plan.pass_spp = 2;
+  CancelledMonitor monitor;
+  IntegratorSettings settings;
+  settings.monitor = &monitor;
+  const RenderOutcome out = render_passes(scene, film, pool, plan, settings, cb);
+  EXPECT_TRUE(out.cancelled);
+  EXPECT_EQ(out.spp_done, 0);
+  EXPECT_EQ(log.size(), 1u);
+}
+
+TEST(MemoryEstimate, ParsesSizes) {
+  EXPECT_EQ(parse_byte_size("4G"), uint64_t{4} << 30);
+  EXPECT_EQ(parse_byte_size("512M"), uint64_t{512} << 20);
+  EXPECT_EQ(parse_byte_size("64k"), uint64_t{64} << 10);
+  EXPECT_EQ(parse_byte_size("2GiB"), uint64_t{2} << 30);
+  EXPECT_EQ(parse_byte_size("1000"), 1000u);
+  EXPECT_EQ(parse_byte_size("1000B"), 1000u);
+  EXPECT_FALSE(parse_byte_size("").has_value());
+  EXPECT_FALSE(parse_byte_size("G").has_value());
+  EXPECT_FALSE(parse_byte_size("4X").has_value());
+  EXPECT_FALSE(parse_byte_size("-4G").has_value());
+  EXPECT_FALSE(parse_byte_size("99999999999999999999").has_value());
+  EXPECT_FALSE(parse_byte_size("99999999999T").has_value());
+}
+
+TEST(MemoryEstimate, ScalesWithPixelsFilmBytesAndTriangles) {
+  SceneDescription scene;
+  const MemoryEstimate small = estimate_memory(scene, 100, 100, 40);
+  EXPECT_EQ(small.film, 100u * 100u * 40u);
+  EXPECT_EQ(estimate_memory(scene, 100, 100, 80).film, 2 * small.film);  // e.g. AOV layers
+  EXPECT_EQ(estimate_memory(scene, 100, 100, 40, 2).film, 2 * small.film);
+  ShapeDesc mesh;
+  MeshDesc m;
+  m.positions.resize(3000);
+  m.indices.resize(3 * 1000);
+  mesh.geometry = m;
+  scene.shapes.push_back(mesh);
+  EXPECT_GT(estimate_memory(scene, 100, 100, 40).geometry, 1000u * 100u);
+  const MemoryEstimate e = estimate_memory(scene, 100, 100, 40);
+  EXPECT_TRUE(check_memory(e, 0, 0).empty());
+  EXPECT_TRUE(check_memory(e, e.total(), 0).empty());
+  const std::string why = check_memory(e, e.total() - 1, 0);
+  EXPECT_NE(why.find("--max-memory"), std::string::npos) << why;
+  EXPECT_NE(check_memory(e, 0, e.total() - 1).find("physical memory"), std::string::npos);
+}
+
+TEST(Progress, SnapshotFractionAndEta) {
+  ProgressSettings st;
+  st.pixels = 100;
+  st.target_spp = 10;
+  ProgressSnapshot s = make_snapshot(st, 2.0, 250, 2);
+  EXPECT_DOUBLE_EQ(s.fraction, 0.25);
+  EXPECT_DOUBLE_EQ(s.samples_per_s, 125.0);
+  EXPECT_DOUBLE_EQ(s.eta_s, 6.0);
+  st.time_budget_s = 4.0;  // the budget ends first
+  s = make_snapshot(st, 2.0, 250, 2);
+  EXPECT_DOUBLE_EQ(s.fraction, 0.5);
+  EXPECT_DOUBLE_EQ(s.eta_s, 2.0);
+  const std::string line = format_progress_line(s);
+  EXPECT_NE(line.find("50.0%"), std::string::npos) << line;
+  EXPECT_NE(line.find("ETA 0:02"), std::string::npos) << line;
+  EXPECT_NE(line.find("125 samples/s"), std::string::npos) << line;
+  const std::string bar = format_progress_bar(s, 10);
+  EXPECT_EQ(bar.substr(0, 12), "[#####.....]") << bar;
+}
+
+TEST(Progress, MonitorCountsTilesAndPrintsLines) {
+  std::ostringstream out;
+  ProgressSettings st;
+  st.style = ProgressStyle::Lines;
+  st.interval_s = 0.05;
+  st.pixels = 10;
+  st.target_spp = 10;
+  ProgressMonitor monitor(st, nullptr, out);
+  monitor.start();
+  monitor.tile_done(30);
+  monitor.tile_done(20);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  monitor.stop();
+  EXPECT_EQ(monitor.samples(), 50);
+  EXPECT_FALSE(monitor.cancelled());
+  EXPECT_NE(out.str().find("progress: 50.0%"), std::string::npos) << out.str();
+}
+
+TEST(Signals, FirstSignalSetsTheFlagAndHandlersAreRestored) {
+  struct sigaction before {};
+  ::sigaction(SIGINT, nullptr, &before);
+  {
+    SignalCancellation signals;
+    EXPECT_FALSE(signals.cancelled());
+    ::raise(SIGTERM);  // handled: the process goes on
+    EXPECT_TRUE(signals.cancelled());
+    EXPECT_EQ(signals.received(), SIGTERM);
+  }
+  struct sigaction after {};
+  ::sigaction(SIGINT, nullptr, &after);
+  EXPECT_EQ(before.sa_handler, after.sa_handler);
+  EXPECT_EQ(exit_status_for_signal(SIGINT), 130);
+  EXPECT_EQ(exit_status_for_signal(SIGTERM), 143);
+}
+
+TEST(Signals, ASecondSignalExitsAtOnce) {
+  EXPECT_EXIT(
+      {
+        SignalCancellation signals;
+        ::raise(SIGINT);
+        ::raise(SIGINT);
+        std::_Exit(0);  // not reached
+      },
+      ::testing::ExitedWithCode(130), "");
+}
+
+}  // namespace
+}  // namespace pt

@@ -1,0 +1,118 @@
+// `--set key=value` scene overrides and the pre-flight memory check (docs/cli.md).
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "app_fixture.h"
+#include "io/image_io.h"
+
+namespace pt::test {
+namespace {
+
+// A CGR-format scene (the course family; JSON like the native one).
+const char* kCgrScene = R"({
+  "nbounces": 3, "rendermode": "phong",
+  "camera": {"type": "pinhole", "width": 32, "height": 24, "position": [0, 0, 0], "lookAt": [0, 0, 1],
+             "upVector": [0, 1, 0], "fov": 45.0, "exposure": 0.1},
+  "scene": {
+    "backgroundcolor": [0.25, 0.25, 0.25],
+    "lightsources": [{"type": "pointlight", "position": [0, 1, 0.5], "intensity": [0.75, 0.75, 0.75]}],
+    "shapes": [{"type": "sphere", "center": [-0.3, 0.1, 1], "radius": 0.2}]
+  }
+})";
+
+class SetOption : public AppTest {};
+
+TEST_F(SetOption, OverridesValuesOfTheNativeFormat) {
+  write("s.json", path_scene(32, 24, 1));
+  RunResult r = run("s.json -o a.exr --set render.spp=3 --set render.integrator=whitted --set film.width=16 "
+                    "--set 'materials.white.diffuse=[0.1,0.2,0.3]' --set 'shapes[0].radius=0.25' --report run.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json rec = read_json("run.json");
+  EXPECT_EQ(rec["image"]["spp"], 3);
+  EXPECT_EQ(rec["image"]["integrator"], "whitted");  // a bare word is a string
+  EXPECT_EQ(rec["image"]["width"], 16);
+  EXPECT_EQ(rec["overrides"].size(), 5u);
+  // A changed camera changes the image; the same --set twice gives the same image.
+  ASSERT_EQ(run("s.json -o wide.exr --spp 1 --set camera.fov=80 --quiet").status, 0);
+  ASSERT_EQ(run("s.json -o wide2.exr --spp 1 --set camera.fov=80 --quiet").status, 0);
+  ASSERT_EQ(run("s.json -o narrow.exr --spp 1 --quiet").status, 0);
+  EXPECT_EQ(slurp(path("wide.exr")).size(), slurp(path("wide2.exr")).size());
+  Image wide, wide2, narrow;
+  std::string error;
+  ASSERT_TRUE(read_image(path("wide.exr"), wide, error));
+  ASSERT_TRUE(read_image(path("wide2.exr"), wide2, error));
+  ASSERT_TRUE(read_image(path("narrow.exr"), narrow, error));
+  EXPECT_TRUE(wide.pixels == wide2.pixels);
+  EXPECT_FALSE(wide.pixels == narrow.pixels);
+}
+
+TEST_F(SetOption, AddsAKeyTheFileDoesNotHave) {
+  write("s.json", path_scene(32, 24, 1));
+  const RunResult r = run("s.json -o a.exr --set render.clamp=4 --report run.json --quiet");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(read_json("run.json")["image"]["clamp"], 4.0);
+}
+
+TEST_F(SetOption, WorksForTheCourseFormats) {
+  write("c.json", kCgrScene);
+  const RunResult r = run("c.json -o a.exr --set camera.width=20 --set 'scene.shapes[0].radius=0.3' --report run.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(read_json("run.json")["image"]["width"], 20);
+}
+
+TEST_F(SetOption, UnknownKeysNameTheAlternatives) {
+  write("s.json", path_scene(32, 24, 1));
+  RunResult r = run("s.json -o a.exr --set rendr.spp=2");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("--set rendr.spp=2"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("did you mean 'render'?"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("'camera'"), std::string::npos) << r.err;  // the keys that exist
+  // A misspelt last key reaches the importer, which names the valid keys; the note says where it came from.
+  r = run("s.json -o a.exr --set render.spq=2");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("'spq'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("did you mean 'spp'?"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("this value comes from --set render.spq=2"), std::string::npos) << r.err;
+  r = run("s.json -o a.exr --set 'shapes[7].radius=1'");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("'shapes' has 3 elements (indices 0 to 2), no [7]"), std::string::npos) << r.err;
+  r = run("s.json -o a.exr --set render.spp.x=1");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("cannot look up 'x' in 'render.spp': it is a number, not an object"), std::string::npos) << r.err;
+  r = run("s.json -o a.exr --set render.spp");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("expected key=value"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(path("a.exr")));
+}
+
+TEST_F(SetOption, BadValuesAreReportedAtTheFileLocationWithANote) {
+  write("s.json", path_scene(32, 24, 1));
+  const RunResult r = run("s.json -o a.exr --set render.spp=many");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("s.json:4:"), std::string::npos) << r.err;  // the line of "render"
+  EXPECT_NE(r.err.find("\"many\""), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("this value comes from --set render.spp=many"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(path("a.exr")));
+}
+
+class MaxMemory : public AppTest {};
+
+TEST_F(MaxMemory, RefusesARenderThatWouldNotFit) {
+  write("s.json", path_scene(32, 24, 1));
+  // 4000 x 3000 pixels: the film alone is 40 bytes a pixel, 458 MiB.
+  RunResult r = run("s.json -o a.exr --width 4000 --max-memory 256M");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("estimated"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("more than --max-memory 256.00 MiB"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(path("a.exr")));
+  // The same render fits a larger limit (checked at 1 spp and small size to keep the test quick).
+  r = run("s.json -o b.exr --width 64 --max-memory 1G --quiet");
+  EXPECT_EQ(r.status, 0) << r.err;
+  r = run("s.json -o c.exr --max-memory lots");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("'lots' is not a size"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace pt::test
