@@ -99,7 +99,7 @@ std::optional<Job> prepare(const Options& o, double& parse_s, int& status) {
   if (o.filter == "gaussian") s.filter = PixelFilterType::Gaussian;
   if (o.filter == "mitchell") s.filter = PixelFilterType::Mitchell;
   if (o.filter == "box") s.filter = PixelFilterType::Box;
-  s.sampler = parse_sampler_type(o.sampler).value_or(SamplerType::Random);
+  s.sampler = parse_sampler_type(o.sampler).value_or(SamplerType::Sobol);
   s.clamp = o.clamp >= 0.0f ? o.clamp : job.desc.render.clamp.value;
   job.integrator = o.integrator.empty() ? job.desc.render.integrator.value : o.integrator;
   std::string error;

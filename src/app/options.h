@@ -22,7 +22,7 @@ struct Options {
   std::string integrator;  // empty: the scene's value
   int max_depth = -1;      // < 0: the scene's value
   std::string filter;      // empty: the scene's value
-  std::string sampler = "random";  // the path integrator's sampler (docs/samplers.md)
+  std::string sampler = "sobol";  // the path integrator's sampler (docs/samplers.md)
   float clamp = -1.0f;     // < 0: the scene's value; 0 = off
   int width = 0, height = 0;
   bool strict = false;

@@ -32,7 +32,7 @@ CORNELL = os.path.join(REPO, "scenes", "cornell-box.json")
 REFERENCE = os.path.join(SHARED, "reference", "cornell-box", "cornell_cycles_8192spp.exr")
 SPONZA = os.path.join(REPO, "tools", "bench_render", "sponza-env.json")
 SPONZA_OBJ = os.path.join(SHARED, "assets", "sponza", "sponza.obj")
-SAMPLER = ["random"]  # set from --sampler in main()
+SAMPLER = ["sobol"]  # set from --sampler in main()
 QUICK = "; QUICK SMOKE RUN, its figures are not measurements"
 
 
@@ -159,7 +159,7 @@ def main():
     ap.add_argument("--cornell-spp", type=int, default=64)
     ap.add_argument("--sponza-spp", type=int, default=16)
     ap.add_argument("--profile-spp", type=int, default=16)
-    ap.add_argument("--sampler", default="random", choices=["random", "jittered", "sobol"],
+    ap.add_argument("--sampler", default="sobol", choices=["random", "jittered", "sobol"],
                     help="the path integrator's sampler (default: the integrator's default)")
     ap.add_argument("--docs", default=os.path.join(REPO, "docs", "bench"))
     ap.add_argument("--quick", action="store_true", help="a short smoke run (1 run, small sample counts)")

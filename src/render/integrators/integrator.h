@@ -49,7 +49,7 @@ struct IntegratorSettings {
   PixelFilterType filter = PixelFilterType::Box;  // the path integrator's pixel filter
   float clamp = 0.0f;   // path: largest channel of one sample's radiance; 0 = no clamp
   LightStrategy light_strategy = LightStrategy::Mis;
-  SamplerType sampler = SamplerType::Random;  // path: where its random numbers come from (docs/samplers.md)
+  SamplerType sampler = SamplerType::Sobol;  // path: where its random numbers come from (docs/samplers.md)
   // Replay: >= 0 renders only this sample index of every pixel of the film's
   // crop (the sampler still sees spp, so the sample is the one a full render draws).
   int only_sample = -1;
