@@ -19,7 +19,7 @@ build="${PT_FUZZ_BUILD_DIR:-$repo/build-fuzz}"
 seconds="${1:-600}"
 shift || true
 harnesses=("$@")
-((${#harnesses[@]})) || harnesses=(scene ply obj)
+((${#harnesses[@]})) || harnesses=(scene ply obj film_state)
 shared="$repo/../shared"
 
 command -v clang++ >/dev/null || { echo "fuzz: clang++ is needed (apt-get install clang)" >&2; exit 2; }
@@ -37,6 +37,7 @@ seed_files() {
            pattern='*.json' ;;
     ply)   dirs=(scenes/assets tests/hostile/files tests/fuzz/seeds/ply); pattern='*.ply' ;;
     obj)   dirs=(tests/hostile/files tests/fuzz/seeds/obj); pattern='*.obj' ;;
+    film_state) dirs=(tests/fuzz/seeds/film_state); pattern='*.bin' ;;
   esac
   for d in "${dirs[@]}"; do [ -d "$repo/$d" ] && find "$repo/$d" -maxdepth 1 -type f -name "$pattern"; done
   case "$1" in  # ../shared beside the checkout, when present

@@ -332,6 +332,7 @@ int run(const Options& o) {
 
   const int64_t samples = monitor.samples();
   const double samples_per_s = render_s > 0 ? static_cast<double>(samples) / render_s : 0.0;
+  const double rays_per_s = render_s > 0 ? static_cast<double>(monitor.rays()) / render_s : 0.0;
   if (!o.report.empty()) {
     RunRecord record;
     record.scene = o.scene;
@@ -360,6 +361,8 @@ int run(const Options& o) {
                       parse_s + build_s + render_s + write_s};
     record.pixel_samples = samples;
     record.samples_per_second = samples_per_s;
+    record.rays = monitor.rays();
+    record.rays_per_second = rays_per_s;
     record.memory_estimate_bytes = job->memory.total();
     record.peak_memory_bytes = peak_rss_bytes();
     record.versions = software_versions();
@@ -382,7 +385,7 @@ int run(const Options& o) {
               << outcome.passes << (outcome.passes == 1 ? " pass, " : " passes, ") << pool.threads() << " threads"
               << (settings.clamp > 0.0f ? ", clamp " + std::to_string(settings.clamp) : std::string())
               << "): parse " << parse_s << " s, build " << build_s << " s, render " << render_s << " s ("
-              << std::setprecision(0) << samples_per_s << " samples/s), write " << std::setprecision(3) << write_s
+              << std::setprecision(0) << samples_per_s << " samples/s, " << rays_per_s << " rays/s), write " << std::setprecision(3) << write_s
               << " s\n";
   }
   return 0;

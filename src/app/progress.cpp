@@ -21,7 +21,7 @@ std::string duration_text(double s) {
   return buf;
 }
 
-std::string rate_text(double per_s) {
+std::string rate_text(double per_s, const char* unit) {
   char buf[32];
   if (per_s >= 1e6)
     std::snprintf(buf, sizeof buf, "%.2f M", per_s / 1e6);
@@ -29,17 +29,26 @@ std::string rate_text(double per_s) {
     std::snprintf(buf, sizeof buf, "%.1f k", per_s / 1e3);
   else
     std::snprintf(buf, sizeof buf, "%.0f ", per_s);
-  return std::string(buf) + "samples/s";
+  return std::string(buf) + unit;
 }
 
 }  // namespace
 
-ProgressSnapshot make_snapshot(const ProgressSettings& st, double elapsed_s, int64_t samples, int spp_done) {
+// "1.73 M samples/s, 8.71 M rays/s" (rays only when counted).
+static std::string rates_text(const ProgressSnapshot& s) {
+  std::string text = rate_text(s.samples_per_s, "samples/s");
+  if (s.rays_per_s > 0) text += ", " + rate_text(s.rays_per_s, "rays/s");
+  return text;
+}
+
+ProgressSnapshot make_snapshot(const ProgressSettings& st, double elapsed_s, int64_t samples, int spp_done,
+                               int64_t rays) {
   ProgressSnapshot s;
   s.elapsed_s = elapsed_s;
   s.samples = samples;
   s.spp_done = spp_done;
   s.samples_per_s = elapsed_s > 0 ? static_cast<double>(samples) / elapsed_s : 0.0;
+  s.rays_per_s = elapsed_s > 0 ? static_cast<double>(rays) / elapsed_s : 0.0;
   double fraction = 0, eta = -1;
   if (st.target_spp > 0 && st.pixels > 0) {
     const double total = static_cast<double>(st.pixels) * st.target_spp;
@@ -65,14 +74,14 @@ std::string format_progress_bar(const ProgressSnapshot& s, int width) {
   std::fill(bar.begin() + 1, bar.begin() + 1 + filled, '#');
   char buf[64];
   std::snprintf(buf, sizeof buf, " %5.1f%%  ETA %s  ", s.fraction * 100.0, duration_text(s.eta_s).c_str());
-  return bar + buf + rate_text(s.samples_per_s) + "  " + std::to_string(s.spp_done) + " spp done";
+  return bar + buf + rates_text(s) + "  " + std::to_string(s.spp_done) + " spp done";
 }
 
 std::string format_progress_line(const ProgressSnapshot& s) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "progress: %.1f%%, elapsed %s, ETA %s, ", s.fraction * 100.0,
                 duration_text(s.elapsed_s).c_str(), duration_text(s.eta_s).c_str());
-  return buf + rate_text(s.samples_per_s) + ", " + std::to_string(s.spp_done) + " spp done";
+  return buf + rates_text(s) + ", " + std::to_string(s.spp_done) + " spp done";
 }
 
 ProgressMonitor::ProgressMonitor(const ProgressSettings& settings, const SignalCancellation* signals,
@@ -103,7 +112,7 @@ void ProgressMonitor::stop() {
 
 ProgressSnapshot ProgressMonitor::snapshot() const {
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  return make_snapshot(settings_, elapsed, samples(), spp_done_.load(std::memory_order_relaxed));
+  return make_snapshot(settings_, elapsed, samples(), spp_done_.load(std::memory_order_relaxed), rays());
 }
 
 void ProgressMonitor::display_loop() {

@@ -39,9 +39,11 @@ struct ProgressSnapshot {
   double fraction = 0;      // [0, 1]
   double eta_s = -1;        // < 0: unknown
   double samples_per_s = 0;
+  double rays_per_s = 0;
 };
 
-ProgressSnapshot make_snapshot(const ProgressSettings& settings, double elapsed_s, int64_t samples, int spp_done);
+ProgressSnapshot make_snapshot(const ProgressSettings& settings, double elapsed_s, int64_t samples, int spp_done,
+                               int64_t rays = 0);
 std::string format_progress_bar(const ProgressSnapshot& s, int width = 30);
 std::string format_progress_line(const ProgressSnapshot& s);
 
@@ -52,7 +54,10 @@ class ProgressMonitor : public RenderMonitor {
   ~ProgressMonitor() override;  // stops the display thread
 
   bool cancelled() const override;
-  void tile_done(int64_t pixel_samples) override { samples_.fetch_add(pixel_samples, std::memory_order_relaxed); }
+  void tile_done(int64_t pixel_samples, int64_t rays) override {
+    samples_.fetch_add(pixel_samples, std::memory_order_relaxed);
+    rays_.fetch_add(rays, std::memory_order_relaxed);
+  }
 
   // Starts the clock and the display thread (if any style is set).
   void start();
@@ -60,6 +65,7 @@ class ProgressMonitor : public RenderMonitor {
   void stop();
   void set_spp_done(int spp) { spp_done_.store(spp, std::memory_order_relaxed); }
   int64_t samples() const { return samples_.load(std::memory_order_relaxed); }
+  int64_t rays() const { return rays_.load(std::memory_order_relaxed); }
 
  private:
   void display_loop();
@@ -69,6 +75,7 @@ class ProgressMonitor : public RenderMonitor {
   const SignalCancellation* signals_;
   std::ostream& out_;
   std::atomic<int64_t> samples_{0};
+  std::atomic<int64_t> rays_{0};
   std::atomic<int> spp_done_{0};
   std::chrono::steady_clock::time_point start_;
   std::mutex mutex_;

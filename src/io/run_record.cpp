@@ -33,7 +33,8 @@ std::string run_record_json(const RunRecord& r) {
                  {"primitive_count", r.primitive_count}, {"build_seconds", t.accel_build}}},
       {"timings", {{"parse", t.parse}, {"scene_build", t.scene_build}, {"accel_build", t.accel_build},
                    {"render", t.render}, {"write", t.write}, {"total", t.total}}},
-      {"performance", {{"pixel_samples", r.pixel_samples}, {"samples_per_second", r.samples_per_second}}},
+      {"performance", {{"pixel_samples", r.pixel_samples}, {"samples_per_second", r.samples_per_second},
+                       {"rays", r.rays}, {"rays_per_second", r.rays_per_second}}},
       {"memory", {{"estimate_bytes", r.memory_estimate_bytes}, {"peak_rss_bytes", r.peak_memory_bytes}}},
   };
   const RunRecord::NonFinite& nf = r.non_finite;

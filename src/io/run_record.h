@@ -59,6 +59,8 @@ struct RunRecord {
   PhaseTimings timings;
   int64_t pixel_samples = 0;   // camera samples rendered by this run
   double samples_per_second = 0;
+  int64_t rays = 0;            // rays traced by this run (camera, bounce, shadow)
+  double rays_per_second = 0;
   // Non-finite samples (counted by the film, added as black; docs/output.md):
   // per kind, and the first one, which `pathtracer --replay X,Y,N` reproduces.
   struct NonFinite {

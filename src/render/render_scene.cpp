@@ -7,6 +7,7 @@
 namespace pt {
 
 bool RenderScene::intersect(const Ray& ray, Intersection& out) const {
+  ++detail::t_rays_traced;
   if (!accel->intersect(ray, out.hit)) return false;
   const Shape& shape = geometry.shapes[out.hit.shape];
   PrimHit prim_hit;

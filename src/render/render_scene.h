@@ -30,6 +30,15 @@ struct Intersection {
   const Material* material = nullptr;
 };
 
+namespace detail {
+// Rays the calling thread has traced through a RenderScene (camera, bounce and
+// shadow rays). Per thread, so counting costs an increment of a thread-local
+// integer and no synchronisation; the render loop reads it before and after
+// each tile to tell its RenderMonitor how many rays the tile traced.
+inline thread_local uint64_t t_rays_traced = 0;
+}  // namespace detail
+inline uint64_t rays_traced_by_this_thread() { return detail::t_rays_traced; }
+
 struct RenderScene {
   int width = 0, height = 0;
   Camera camera;
@@ -47,12 +56,17 @@ struct RenderScene {
   LightSet lights;
   std::unique_ptr<Accelerator> accel;
 
+  // Both count the ray in the calling thread's rays_traced_by_this_thread().
   bool intersect(const Ray& ray, Intersection& out) const;
-  bool occluded(const Ray& ray) const { return accel->occluded(ray); }
+  bool occluded(const Ray& ray) const {
+    ++detail::t_rays_traced;
+    return accel->occluded(ray);
+  }
   // Radiance seen by a ray that leaves the scene in direction `dir`: the
   // environment map, or else the background colour.
   RGB escaped_radiance(Vec3f dir) const { return environment_map ? environment_map->radiance(dir) : background; }
 };
+
 
 struct BuildOptions {
   AccelKind accel = AccelKind::Embree;

@@ -191,11 +191,13 @@ TEST(Progress, MonitorCountsTilesAndPrintsLines) {
   st.target_spp = 10;
   ProgressMonitor monitor(st, nullptr, out);
   monitor.start();
-  monitor.tile_done(30);
-  monitor.tile_done(20);
+  monitor.tile_done(30, 150);
+  monitor.tile_done(20, 100);
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
   monitor.stop();
   EXPECT_EQ(monitor.samples(), 50);
+  EXPECT_EQ(monitor.rays(), 250);
+  EXPECT_NE(out.str().find("rays/s"), std::string::npos) << out.str();
   EXPECT_FALSE(monitor.cancelled());
   EXPECT_NE(out.str().find("progress: 50.0%"), std::string::npos) << out.str();
 }

@@ -1,17 +1,12 @@
 // The command line's AOV, crop and replay options (docs/output.md), run as a
 // process in a temporary folder.
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
 
+#include "app_fixture.h"
 #include "io/image_io.h"
 
 namespace pt {
@@ -38,39 +33,16 @@ const char* kScene = R"({
 }
 )";
 
-struct Result {
-  int status = -1;
-  std::string out, err;
-};
+using Result = test::RunResult;
 
-class CliOutput : public ::testing::Test {
+// Runs every command on the CGR scene above (app_fixture.h's folder and runner).
+class CliOutput : public test::AppTest {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("pt_cli_aov_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-    std::ofstream(path("scene.json")) << kScene;
+    AppTest::SetUp();
+    write("scene.json", kScene);
   }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  static std::string slurp(const std::string& p) {
-    std::ifstream in(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  }
-  Result run(const std::string& args) const {
-    const std::string cmd = "cd '" + dir_.string() + "' && '" PT_PATHTRACER_EXE "' scene.json " + args +
-                            " > stdout.txt 2> stderr.txt";
-    const int raw = std::system(cmd.c_str());
-    Result r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    r.out = slurp(path("stdout.txt"));
-    r.err = slurp(path("stderr.txt"));
-    fs::remove(path("stdout.txt"));
-    fs::remove(path("stderr.txt"));
-    return r;
-  }
-  fs::path dir_;
+  Result run(const std::string& args) const { return AppTest::run("scene.json " + args); }
 };
 
 TEST_F(CliOutput, UnknownAovIsAUsageErrorListingTheValidNames) {

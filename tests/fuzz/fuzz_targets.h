@@ -30,6 +30,11 @@ int ply_one_input(const uint8_t* data, std::size_t size);
 // written to a temporary file first).
 int obj_one_input(const uint8_t* data, std::size_t size);
 
+// A film state (the film part of a --checkpoint file), through Film::read_state
+// into films of the seeds' shapes; an accepted state must be written back
+// byte for byte, a refused one must leave the film unchanged.
+int film_state_one_input(const uint8_t* data, std::size_t size);
+
 struct Harness {
   const char* name;  // also the folder name of its regression cases
   int (*run)(const uint8_t* data, std::size_t size);

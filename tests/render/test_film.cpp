@@ -141,12 +141,17 @@ class CountingMonitor final : public RenderMonitor {
  public:
   explicit CountingMonitor(int64_t cancel_after) : cancel_after_(cancel_after) {}
   bool cancelled() const override { return done_.load() >= cancel_after_; }
-  void tile_done(int64_t pixel_samples) override { done_ += pixel_samples; }
+  void tile_done(int64_t pixel_samples, int64_t rays) override {
+    done_ += pixel_samples;
+    rays_ += rays;
+  }
   int64_t done() const { return done_.load(); }
+  int64_t rays() const { return rays_.load(); }
 
  private:
   int64_t cancel_after_;
   std::atomic<int64_t> done_{0};
+  std::atomic<int64_t> rays_{0};
 };
 
 TEST(RenderMonitor, CountsEveryPixelSampleAndCancelsBetweenTiles) {
@@ -166,6 +171,11 @@ TEST(RenderMonitor, CountsEveryPixelSampleAndCancelsBetweenTiles) {
   Film full(40, 30);
   make_integrator("path", settings, error)->render(*scene, full, pool);
   EXPECT_EQ(all.done(), 40 * 30 * 3);
+  // Every sample traces its camera ray; those that hit the lit sphere also a
+  // shadow ray to the point light and a bounce: more rays than samples, and
+  // at most max_depth + 1 camera/bounce rays plus one shadow ray per vertex.
+  EXPECT_GT(all.rays(), all.done());
+  EXPECT_LE(all.rays(), all.done() * 2 * (settings.max_depth + 1));
 
   CountingMonitor early(1);  // cancels once the first tile is done
   settings.monitor = &early;

@@ -34,7 +34,9 @@ def _machine_lines(info):
 
 
 def _under_load(info):
-    return max(info["loadavg_start"][0], info["loadavg_end"][0]) > 0.5 * max(1, info["cpus"] - info["threads"]) + 0.5
+    # The end's 1-minute load includes the study's own render threads.
+    return max(info["loadavg_start"][0], info["loadavg_end"][0] - info["threads"]) > \
+        0.5 * max(1, info["cpus"] - info["threads"]) + 0.5
 
 
 def convergence_section(out, data, run, summary):

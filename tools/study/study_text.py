@@ -139,13 +139,12 @@ SPEED_VERDICT = {
                     "dimensions of the path, which the padded samplers stratify only pair by pair, so at a few spp "
                     "the three samplers give the same error and the curves coincide; the stratified samplers pull "
                     "ahead only as spp grows (see the equal-spp line: at the end of the budget jittered and sobol "
-                    "have clearly less error than random at equal spp). Their throughput, measured under load, was "
-                    "within about 30% of random's either way (the samples-per-second line), so at equal time the "
-                    "gain is smaller than at equal spp and, at these budgets, of the order of the timing noise. The backends give "
-                    "the same images (equal MSE at equal spp) and differ only in time; on a machine under load "
-                    "their samples-per-second ratio is not trustworthy to better than several tens of percent (two runs "
-                    "of this report under load disagreed by that much) "
-                    "(docs/bench/ has the backend timings measured for that purpose). Part of the MSE at the "
+                    "have clearly less error than random at equal spp). Their cost per sample is within about 30% of "
+                    "random's (the samples-per-second line), so at equal time the gain is smaller than at equal "
+                    "spp; one seed per configuration, so differences of a few tens of percent are within the "
+                    "noise. The backends give the same images (equal MSE at equal spp) and differ only in time "
+                    "(docs/bench/ has the backend timings measured for that purpose, over several runs; two runs "
+                    "of this report on a loaded machine disagreed on them by tens of percent). Part of the MSE at the "
                     "end is the difference between this renderer and Cycles."),
     "soft-shadow": ("**Discussion.** Direct light only, so the stratified samplers' gain is large at every spp "
                     "(see the convergence section) and it survives their cost per sample: at equal time both "
@@ -153,5 +152,6 @@ SPEED_VERDICT = {
                     "than random here (up to about 2x the time in these runs, see the samples-per-second line: its "
                     "hashing and scrambling are a larger share of a sample when a sample is only three short "
                     "rays), which is why at equal time it is not consistently better than jittered although at "
-                    "equal spp it is. The 32x32 image makes the times short and, under load, noisy."),
+                    "equal spp it is. The 32x32 image makes the times short and noisy (per-render overhead "
+                    "weighs more; the backends' order here is not the one on larger images)."),
 }

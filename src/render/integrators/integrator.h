@@ -34,8 +34,12 @@ class RenderMonitor {
   // then holds fewer samples in some pixels; each pixel's value is still the
   // mean of its own samples (PixelSum counts them).
   virtual bool cancelled() const { return false; }
-  // After each finished tile, with the number of pixel samples it rendered.
-  virtual void tile_done(int64_t pixel_samples) { (void)pixel_samples; }
+  // After each finished tile, with the number of pixel samples it rendered and
+  // the rays it traced (RenderScene::intersect and occluded calls).
+  virtual void tile_done(int64_t pixel_samples, int64_t rays) {
+    (void)pixel_samples;
+    (void)rays;
+  }
 };
 
 struct IntegratorSettings {

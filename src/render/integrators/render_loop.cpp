@@ -106,9 +106,12 @@ void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, cons
           if (monitor != nullptr && monitor->cancelled()) break;
           const int x0 = crop.x0 + tx * tile, y0 = crop.y0 + ty * tile;
           const int x1 = std::min(crop.x1, x0 + tile), y1 = std::min(crop.y1, y0 + tile);
+          const uint64_t rays_before = rays_traced_by_this_thread();
           for (int y = y0; y < y1; ++y)
             for (int x = x0; x < x1; ++x) render_pixel(sampler, scratch, bad, x, y);
-          if (monitor != nullptr) monitor->tile_done(static_cast<int64_t>(x1 - x0) * (y1 - y0) * (end - first));
+          if (monitor != nullptr)
+            monitor->tile_done(static_cast<int64_t>(x1 - x0) * (y1 - y0) * (end - first),
+                               static_cast<int64_t>(rays_traced_by_this_thread() - rays_before));
         }
       }
       if (bad.total() > 0) {
