@@ -141,7 +141,11 @@ bool Film::read_state(std::istream& in, std::string& error) {
     error = "truncated film state header";
     return false;
   }
-  nf.has_first = has_first != 0;
+  if (has_first > 1) {  // written as 0 or 1: anything else is corruption (found by fuzz_film_state)
+    error = "corrupt film state (non-finite report flag " + std::to_string(has_first) + ")";
+    return false;
+  }
+  nf.has_first = has_first == 1;
   nf.x = fx;
   nf.y = fy;
   nf.sample = fs;
