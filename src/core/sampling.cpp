@@ -1,7 +1,9 @@
 #include "core/sampling.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 namespace pt {
 
@@ -18,18 +20,28 @@ Vec2f cos_sin_quarter(float t) {
   return {c, s};
 }
 
+// All ones if `c`, else zero; and a select by such a mask with bit operations,
+// which compilers keep as they are (a `c ? a : b` on floats becomes a branch).
+uint32_t mask_if(bool c) { return 0u - static_cast<uint32_t>(c); }
+float select(uint32_t mask, float a, float b) {
+  return std::bit_cast<float>((std::bit_cast<uint32_t>(a) & mask) | (std::bit_cast<uint32_t>(b) & ~mask));
+}
+
 }  // namespace
 
 Vec2f sample_uniform_disk_concentric(Vec2f u) {
   const float a = 2.0f * u.x - 1.0f, b = 2.0f * u.y - 1.0f;
-  if (a == 0.0f && b == 0.0f) return {0, 0};
-  if (std::fabs(a) > std::fabs(b)) {
-    const Vec2f cs = cos_sin_quarter(0.25f * kPi * (b / a));  // phi = pi/4 b/a
-    return {a * cs.x, a * cs.y};
-  }
-  // phi = pi/2 - t with t = pi/4 a/b: cos phi = sin t, sin phi = cos t.
-  const Vec2f cs = cos_sin_quarter(0.25f * kPi * (a / b));
-  return {b * cs.y, b * cs.x};
+  // Written without branches (selects only): which wedge a sample falls in is
+  // a coin toss, and a mispredicted branch cost more than the whole map.
+  // |a| > |b|: r = a, phi = pi/4 b/a. Otherwise r = b, phi = pi/2 - t with
+  // t = pi/4 a/b, so cos phi = sin t and sin phi = cos t. a = b = 0 gives r = 0
+  // and the centre.
+  const uint32_t wide = mask_if(std::fabs(a) > std::fabs(b));
+  const float r = select(wide, a, b);
+  const float q = select(wide, b, a);
+  const float ratio = select(mask_if(r != 0.0f), q / r, 0.0f);
+  const Vec2f cs = cos_sin_quarter(0.25f * kPi * ratio);
+  return {r * select(wide, cs.x, cs.y), r * select(wide, cs.y, cs.x)};
 }
 
 bool make_spherical_rectangle(Vec3f p, Vec3f c, Vec3f ex, Vec3f ey, SphericalRectangle& r) {

@@ -133,7 +133,9 @@ class PathTracer {
   // `wi_out`, when not null, receives the sampled light direction (for the AOV split).
   RGB direct_light(const Intersection& isect, const Bsdf& bsdf, Vec3f wo, Sampler& sampler,
                    Vec3f* wi_out = nullptr) const {
-    const float u_light = sampler.get_1d();
+    // Where there is nothing to choose (one light that can be picked), no
+    // sample dimension is spent on the choice.
+    const float u_light = lights_.needs_choice() ? sampler.get_1d() : 0.0f;
     const Vec2f u = sampler.get_2d();
     float pmf = 0.0f;
     const int index = lights_.choose(u_light, pmf);

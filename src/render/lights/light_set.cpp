@@ -36,12 +36,24 @@ LightSet::LightSet(std::vector<Light> lights, std::size_t shape_count, float sce
     }
   }
   selection_ = Distribution1D(power);
+  int positive = 0;
+  for (std::size_t i = 0; i < power.size(); ++i) {
+    if (power[i] > 0.0f) {
+      ++positive;
+      only_ = static_cast<int>(i);
+    }
+  }
+  if (positive != 1) only_ = -1;
 }
 
 int LightSet::choose(float u, float& pmf) const {
   if (lights_.size() <= 1) {  // the common case of one light: no search
     pmf = lights_.empty() ? 0.0f : 1.0f;
     return lights_.empty() ? -1 : 0;
+  }
+  if (only_ >= 0) {  // the others can never be picked
+    pmf = 1.0f;
+    return only_;
   }
   return static_cast<int>(selection_.sample_discrete(u, &pmf));
 }

@@ -34,8 +34,14 @@ class LightSet {
 
   // Picks a light with probability proportional to its power; -1 if there is none.
   int choose(float u, float& pmf) const;
+  // False when choose() does not depend on u: one light, or one light with
+  // positive power among lights that can never be picked. The integrator then
+  // spends no sample dimension on the choice (so adding a powerless light to
+  // a scene leaves its image bit for bit as it was).
+  bool needs_choice() const { return lights_.size() > 1 && only_ < 0; }
   float pmf(int light) const {
     if (light < 0) return 0.0f;
+    if (only_ >= 0) return light == only_ ? 1.0f : 0.0f;
     return lights_.size() == 1 ? 1.0f : selection_.pmf(static_cast<std::size_t>(light));
   }
 
@@ -51,6 +57,7 @@ class LightSet {
   Distribution1D selection_;
   std::vector<int> shape_light_;  // empty when no shape emits
   int environment_ = -1;
+  int only_ = -1;  // the one light with positive power when exactly one has it, else -1
 };
 
 }  // namespace pt
