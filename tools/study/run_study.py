@@ -38,7 +38,7 @@ ACCELS = ["embree", "bvh"]
 SCENES = [
     ("aa-edges", "aa-edges.json", "0,0,32,32", "antialiasing alone: edges of emitters, no lighting (max_depth 0)"),
     ("soft-shadow", "soft-shadow.json", "0,4,32,24",
-     "soft shadow of a sphere from an area light, direct light only (max_depth 1)"),
+     "soft shadow of a sphere from an area light, direct light only (max_depth 1: light -> surface -> camera)"),
     ("thin-lens", "thin-lens.json", "0,0,32,32", "thin-lens depth of field: defocused emitters (max_depth 0)"),
 ]
 
