@@ -2,7 +2,7 @@
 """The sampler convergence study and the speed-versus-error comparison, in one
 command; writes docs/report/ from scratch (README.md, PNG/SVG plots, CSV/JSON).
 
-    python3 tools/study/run_study.py                  # the real run, ~10 min on 2 idle cores
+    python3 tools/study/run_study.py                  # the real run, ~6 min on 2 idle cores
     python3 tools/study/run_study.py --quick --out /tmp/report   # smoke run, < 1 min
 
 Needs the build (build/pathtracer, build/tools/study/pt-converge,
@@ -38,7 +38,7 @@ ACCELS = ["embree", "bvh"]
 SCENES = [
     ("aa-edges", "aa-edges.json", "0,0,32,32", "antialiasing alone: edges of emitters, no lighting (max_depth 0)"),
     ("soft-shadow", "soft-shadow.json", "0,4,32,24",
-     "soft shadow of a sphere from an area light, direct light only (max_depth 1)"),
+     "soft shadow of a sphere from an area light, direct light only (max_depth 1: light -> surface -> camera)"),
     ("thin-lens", "thin-lens.json", "0,0,32,32", "thin-lens depth of field: defocused emitters (max_depth 0)"),
 ]
 
@@ -168,7 +168,8 @@ def main():
     parser.add_argument("--threads", type=int, default=2, help="render threads (default 2)")
     parser.add_argument("--quick", action="store_true", help="smoke run (< 1 min): few spp, 2 seeds, short budgets")
     parser.add_argument("--report-only", action="store_true",
-                        help="rewrite README.md and the plots from data/ of an earlier run (no rendering)")
+                        help="rewrite README.md, the plots and data/summary.json from the CSVs and run.json of an "
+                             "earlier run in data/ (no rendering, no build needed)")
     args = parser.parse_args()
     args.build, args.out = os.path.abspath(args.build), os.path.abspath(args.out)  # commands run from the root
     if not need_matplotlib():
@@ -176,15 +177,15 @@ def main():
     tools = {"pathtracer": os.path.join(args.build, "pathtracer"),
              "converge": os.path.join(args.build, "tools", "study", "pt-converge"),
              "imgerr": os.path.join(args.build, "tools", "imgerr", "pt-imgerr")}
-    for exe in tools.values():
-        if not os.access(exe, os.X_OK):
-            sys.exit("error: %s not found: build first (cmake --build %s)" % (exe, args.build))
     import study_report  # after the matplotlib check: it imports matplotlib
 
-    if args.report_only:  # the markdown and plots again, from data/ of an earlier run
+    if args.report_only:  # the markdown, plots and summary again, from data/ of an earlier run: no build needed
         study_report.write_report(args.out)
         print("wrote %s" % os.path.join(args.out, "README.md"))
         return 0
+    for exe in tools.values():
+        if not os.access(exe, os.X_OK):
+            sys.exit("error: %s not found: build first (cmake --build %s)" % (exe, args.build))
     cfg = settings(args.quick)
     data = os.path.join(args.out, "data")
     os.makedirs(data, exist_ok=True)

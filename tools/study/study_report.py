@@ -6,7 +6,9 @@ import os
 
 import study_plots
 from study_fit import mean_curve, mse_at_time, read_rows, slope_summary, time_to_mse, time_trace
-from study_text import discussion, LITERATURE, SPEED_NOTES, SPEED_VERDICT, METHOD
+from study_speed_text import speed_discussion
+from study_text import LITERATURE, METHOD, SPEED_NOTES
+from study_verdict import discussion, literature_measured, nlogn_slope
 
 # Fits start at this spp: below it the curves are pre-asymptotic (jittered at
 # 10 spp is a 2x5 grid; Sobol' at 10 spp is not a net).
@@ -77,64 +79,86 @@ def convergence_section(out, data, run, summary):
                    FIT_MIN_SPP, len(run["cfg"]["seeds"]), ref["spp"], _g(ref["pair_mse"]), _g(ref["noise_mse"]),
                    "%.1f%%" % (100 * ratio) if ratio is not None else "—",
                    "" if ratio is not None and ratio < 0.1 else " — **too large: the reference limits this study**"),
-               "", discussion(name, summary["convergence"][name]), ""]
+               "", discussion(name, summary["convergence"][name], split), ""]
+    return md
+
+
+def speed_facts(out, data, run, case):
+    """The numbers of one speed case (study_speed_text.py lists them); draws its plot."""
+    by_config = {(a, s): read_rows(os.path.join(data, run["speed"]["%s/%s/%s" % (case, a, s)]))
+                 for a in run["accels"] for s in run["samplers"]}
+    study_plots.speed_plot(out, case, by_config)
+    traces = {k: time_trace(v) for k, v in by_config.items()}
+    # Times every configuration covers: from the latest first checkpoint to the earliest last one.
+    t_lo = max(t[0][0] for t in traces.values())
+    t_hi = min(t[-1][0] for t in traces.values())
+    times = sorted({min(t_hi, float("%.2g" % max(t_lo, t_hi * f))) for f in (0.1, 0.3, 1.0)})
+    times = [t for t in times if t_lo <= t <= t_hi] or [t_hi]
+    rate = {}
+    for k, rows in by_config.items():
+        last = max(rows, key=lambda r: r["spp"])
+        rate[k] = last["spp"] / last["seconds"]
+    equal_time = {k: [mse_at_time(trace, t) for t in times] for k, trace in traces.items()}
+    common = set.intersection(*[{r["spp"] for r in rows} for rows in by_config.values()])
+    equal_spp = None
+    if common:
+        n = max(common)
+        equal_spp = (n, {k: next(r["mse"] for r in rows if r["spp"] == n) for k, rows in by_config.items()})
+    return {"case": case, "accels": run["accels"], "samplers": run["samplers"], "times": times, "rows": by_config,
+            "traces": traces, "rate": rate, "equal_time": equal_time, "equal_spp": equal_spp,
+            "budget": run["budgets"][case]}
+
+
+def equal_time_table(f, case_summary):
+    md = ["**Equal time**: MSE reached after T seconds of rendering (log-log interpolation between "
+          "checkpoints; in brackets, relative to embree/random).", "",
+          "| accel | sampler | " + " | ".join("T = %.3g s" % t for t in f["times"]) + " |",
+          "|---|---|" + "---|" * len(f["times"])]
+    base = f["equal_time"][("embree", "random")]
+    for (accel, sampler), values in f["equal_time"].items():
+        cells = ["%s (%s)" % (_g(e), "%.2fx" % (e / b) if e and b else "—") for e, b in zip(values, base)]
+        for t, e in zip(f["times"], values):
+            case_summary["equal_time"]["%s/%s/%g" % (accel, sampler, t)] = e
+        md.append("| %s | %s | %s |" % (accel, sampler, " | ".join(cells)))
+    return md
+
+
+def equal_error_table(f, case_summary):
+    base = f["traces"][("embree", "random")]
+    targets = [x for x in f["equal_time"][("embree", "random")] if x]
+    md = ["**Equal error**: seconds each configuration needs to reach the MSE that embree/random reaches "
+          "at %s s (in brackets, speed-up over embree/random; — : not reached within the budget)." %
+          ", ".join("%.3g" % t for t in f["times"][:len(targets)]), "",
+          "| accel | sampler | " + " | ".join("MSE %s" % _g(x) for x in targets) + " |",
+          "|---|---|" + "---|" * len(targets)]
+    for (accel, sampler), trace in f["traces"].items():
+        cells = []
+        for x in targets:
+            t, b = time_to_mse(trace, x), time_to_mse(base, x)
+            cells.append("%s (%s)" % (_g(t), "%.2fx" % (b / t) if t and b else "—"))
+            case_summary["equal_error"]["%s/%s/%.3g" % (accel, sampler, x)] = t
+        md.append("| %s | %s | %s |" % (accel, sampler, " | ".join(cells)))
     return md
 
 
 def speed_section(out, data, run, summary):
     md = ["## Speed against error", "", SPEED_NOTES, ""]
-    for case in run["speed_cases"]:
-        by_config = {(a, s): read_rows(os.path.join(data, run["speed"]["%s/%s/%s" % (case, a, s)]))
-                     for a in run["accels"] for s in run["samplers"]}
-        study_plots.speed_plot(out, case, by_config)
-        traces = {k: time_trace(v) for k, v in by_config.items()}
-        # Times every configuration covers: from the latest first checkpoint to the earliest last one.
-        t_lo = max(t[0][0] for t in traces.values())
-        t_hi = min(t[-1][0] for t in traces.values())
-        times = sorted({min(t_hi, float("%.2g" % max(t_lo, t_hi * f))) for f in (0.1, 0.3, 1.0)})
-        times = [t for t in times if t_lo <= t <= t_hi] or [t_hi]
-        base = traces[("embree", "random")]
-        rate = []
-        for (accel, sampler), rows in by_config.items():
-            last = max(rows, key=lambda r: r["spp"])
-            rate.append("%s/%s %.3g" % (accel, sampler, last["spp"] / last["seconds"]))
+    facts = [speed_facts(out, data, run, case) for case in run["speed_cases"]]
+    for f in facts:
+        case = f["case"]
+        rate = ", ".join("%s/%s %.3g" % (a, s, r) for (a, s), r in f["rate"].items())
         md += ["### %s" % case, "", "![%s](speed-%s.png) ([SVG](speed-%s.svg))" % (case, case, case), "",
                "Budget %g s of rendering per configuration. Samples per pixel per second at the last checkpoint "
-               "(the cost of a sample; for jittered, of its last render): %s." % (run["budgets"][case],
-                                                                                 ", ".join(rate)), "",
-               "**Equal time**: MSE reached after T seconds of rendering (log-log interpolation between "
-               "checkpoints; in brackets, relative to embree/random).", "",
-               "| accel | sampler | " + " | ".join("T = %.3g s" % t for t in times) + " |",
-               "|---|---|" + "---|" * len(times)]
+               "(the cost of a sample; for jittered, of its last render): %s." % (f["budget"], rate), ""]
         case_summary = {"equal_time": {}, "equal_error": {}}
-        for (accel, sampler), trace in traces.items():
-            cells = []
-            for t in times:
-                e, b = mse_at_time(trace, t), mse_at_time(base, t)
-                cells.append("%s (%s)" % (_g(e), "%.2fx" % (e / b) if e and b else "—"))
-                case_summary["equal_time"]["%s/%s/%g" % (accel, sampler, t)] = e
-            md.append("| %s | %s | %s |" % (accel, sampler, " | ".join(cells)))
-        targets = [x for x in (mse_at_time(base, t) for t in times) if x]
-        md += ["", "**Equal error**: seconds each configuration needs to reach the MSE that embree/random reaches "
-               "at %s s (in brackets, speed-up over embree/random; — : not reached within the budget)." %
-               ", ".join("%.3g" % t for t in times[:len(targets)]), "",
-               "| accel | sampler | " + " | ".join("MSE %s" % _g(x) for x in targets) + " |",
-               "|---|---|" + "---|" * len(targets)]
-        for (accel, sampler), trace in traces.items():
-            cells = []
-            for x in targets:
-                t, b = time_to_mse(trace, x), time_to_mse(base, x)
-                cells.append("%s (%s)" % (_g(t), "%.2fx" % (b / t) if t and b else "—"))
-                case_summary["equal_error"]["%s/%s/%.3g" % (accel, sampler, x)] = t
-            md.append("| %s | %s | %s |" % (accel, sampler, " | ".join(cells)))
-        common = set.intersection(*[{r["spp"] for r in rows} for rows in by_config.values()])
-        if common:
-            n = max(common)
-            at_n = {k: next(r["mse"] for r in rows if r["spp"] == n) for k, rows in by_config.items()}
+        md += equal_time_table(f, case_summary) + [""] + equal_error_table(f, case_summary)
+        if f["equal_spp"]:
+            n, at_n = f["equal_spp"]
             case_summary["equal_spp"] = {"spp": n, "mse": {"%s/%s" % k: v for k, v in at_n.items()}}
             md += ["", "**Equal spp**: MSE at %d spp, the last checkpoint every configuration reached: %s." % (
                 n, ", ".join("%s/%s %s" % (a, sm, _g(v)) for (a, sm), v in at_n.items()))]
-        md += ["", SPEED_VERDICT.get(case, ""), ""]
+        others = [o for o in facts if o is not f]
+        md += ["", speed_discussion(f, others, summary["convergence"].get(case)), ""]
         summary["speed"][case] = case_summary
     return md
 
@@ -160,7 +184,8 @@ def write_report(out):
                "rerun the command above on an idle machine to replace them." if load else
                "The machine was idle enough for the timings to stand."), "", METHOD, ""]
     md += convergence_section(out, data, run, summary)
-    md += ["## Comparison with the literature", "", LITERATURE, ""]
+    md += ["## Comparison with the literature", "", LITERATURE.replace("{nlogn}", "%.2f" % nlogn_slope()), "",
+           literature_measured(summary["convergence"]), ""]
     md += speed_section(out, data, run, summary)
     md += ["## Data", "", "`data/`: `run.json` (settings, references, machine), `summary.json` (every fitted slope "
            "and per-seed value, the mean curves, the tables), `converge-SCENE-SAMPLER.csv` and "
