@@ -4,6 +4,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+# Fixed ids in the SVGs, so that regenerating unchanged data rewrites identical files.
+matplotlib.rcParams["svg.hashsalt"] = "pathtracer-study"
+
 from study_fit import is_power_of_two, mean_curve, time_trace  # noqa: E402
 
 COLORS = {"random": "tab:red", "jittered": "tab:blue", "sobol": "tab:green"}

@@ -81,7 +81,8 @@ would render once at the chosen spp). Each run stops at the first checkpoint pas
 with each case); the equal-time columns are times every configuration reached. One seed per
 configuration, so differences of a few tens of percent between configurations may be within the
 noise of the error and, under load, of the timing. Errors are this report's MSE (sum over channels, see
-above): the issue-4 target, per-channel RMSE 0.005, is MSE 7.5e-5. The Cornell box is
+above): the issue-4 target, per-channel RMSE 0.005, is MSE 7.5e-5 where nothing is clamped (the
+Cornell box's light is: its pixels' errors are mostly clamped away here). The Cornell box is
 `scenes/cornell-box.json` at 256x256 (64 bounces) against the Cycles render at 8192 spp in
 `../shared/reference/cornell-box/`; that reference comes from another renderer, so part of the MSE
 at high spp is the difference between the renderers, which no sampler removes: the curves would
