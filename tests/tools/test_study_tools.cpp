@@ -3,9 +3,6 @@
 // without --rect, and its exit codes and messages; pt-converge's checkpoints
 // (a progressive prefix is the render at that spp; jittered restarts), its
 // region handling and its refusal of bad input without leaving a CSV.
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -20,49 +17,23 @@
 
 #include "io/display.h"
 #include "io/image_io.h"
+#include "tool_test.h"
 
 namespace pt {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int status = -1;
-  std::string out, err;
-};
+using Result = test::ToolResult;
 
-class StudyTools : public ::testing::Test {
+class StudyTools : public test::ToolTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("pt_study_tools_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  static std::string slurp(const std::string& p) {
-    std::ifstream in(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  }
   void write_exr(const std::string& name, const Image& image) const {
     std::string error;
     ASSERT_TRUE(write_image(path(name), image, DisplaySettings{}, error)) << error;
   }
-  // Runs `exe args` in the temporary folder.
-  Result run(const std::string& exe, const std::string& args) const {
-    const std::string cmd = "cd '" + dir_.string() + "' && '" + exe + "' " + args + " > stdout.txt 2> stderr.txt";
-    const int raw = std::system(cmd.c_str());
-    Result r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    r.out = slurp(path("stdout.txt"));
-    r.err = slurp(path("stderr.txt"));
-    return r;
-  }
   Result imgerr(const std::string& args) const { return run(PT_IMGERR_EXE, args); }
   Result converge(const std::string& args) const { return run(PT_CONVERGE_EXE, args); }
-
-  fs::path dir_;
 };
 
 // Reference: every channel 0.5. Test: (0,0) red +0.25, (1,0) green -0.25,
