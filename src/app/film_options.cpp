@@ -9,13 +9,14 @@
 
 namespace pt {
 
-bool film_aovs(const Options& o, std::vector<AovRequest>& out) {
+bool film_aovs(const Options& o, std::vector<AovRequest>& out, ChannelType& beauty) {
   out.clear();
+  beauty = ChannelType::Float;
   if (!o.replay.empty()) {  // a replay reports every AOV of its one sample (they draw no random numbers)
     for (const AovInfo& info : aov_catalogue()) out.push_back({info.type, info.default_type});
     return true;
   }
-  if (std::string why; !o.aov.empty() && !parse_aov_list(o.aov, out, why)) {
+  if (std::string why; !o.aov.empty() && !parse_aov_list(o.aov, out, beauty, why)) {
     std::cerr << "error: --aov: " << why << '\n';
     return false;
   }

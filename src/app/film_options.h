@@ -12,9 +12,10 @@ namespace pt {
 
 struct Options;
 
-// The requested AOVs; a replay reports every AOV of its one sample. Returns
-// false after printing why (an unknown name: the valid ones are listed).
-bool film_aovs(const Options& o, std::vector<AovRequest>& out);
+// The requested AOVs and the beauty's pixel type ("--aov beauty:half"); a
+// replay reports every AOV of its one sample. Returns false after printing why
+// (an unknown name: the valid ones are listed).
+bool film_aovs(const Options& o, std::vector<AovRequest>& out, ChannelType& beauty);
 
 // The region to render, in pixels of a width x height frame: the crop, the
 // replayed pixel, or the whole frame. Returns false after printing why.

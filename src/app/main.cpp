@@ -73,6 +73,7 @@ struct Job {
   int width = 0, height = 0;
   MemoryEstimate memory;
   std::vector<AovRequest> aovs;  // --aov (every AOV for --replay)
+  ChannelType beauty_type = ChannelType::Float;  // --aov beauty:half
   CheckpointInfo identity;  // scene hash and settings, for --checkpoint and --resume
 };
 
@@ -117,7 +118,7 @@ std::optional<Job> prepare(const Options& o, double& parse_s, int& status) {
   plan.pass_spp = o.pass_spp;
   if (plan.pass_spp == 0 && plan.time_budget_s == 0 && !(o.checkpoint.empty() && o.resume.empty()))
     plan.pass_spp = kCheckpointPassSpp;
-  if (!film_aovs(o, job.aovs)) {
+  if (!film_aovs(o, job.aovs, job.beauty_type)) {
     status = kExitUsage;
     return std::nullopt;
   }
@@ -327,7 +328,7 @@ int run(const Options& o) {
   stamp.world_to_ndc = scene->camera.world_to_ndc();
   ImageMetadata metadata;
   add_render_stamp(metadata, stamp);
-  if (!write_outputs(o.outputs, film.layers(), job->display, metadata)) return kExitFailure;
+  if (!write_outputs(o.outputs, film.layers(job->beauty_type), job->display, metadata)) return kExitFailure;
   const double write_s = seconds_since(t0);
 
   const int64_t samples = monitor.samples();
