@@ -30,6 +30,7 @@
 #include "app/outputs.h"
 #include "app/progress.h"
 #include "app/render_driver.h"
+#include "app/run_report.h"
 #include "app/signals.h"
 #include "app/versions.h"
 #include "core/diagnostics.h"
@@ -358,8 +359,7 @@ int run(const Options& o) {
     record.accel_backend = stats.backend;
     record.accel_memory_bytes = stats.memory_bytes;
     record.primitive_count = stats.primitive_count;
-    record.timings = {parse_s, build_s - stats.build_seconds, stats.build_seconds, render_s, write_s,
-                      parse_s + build_s + render_s + write_s};
+    record.timings = phase_timings(parse_s, build_s, render_s, write_s, job->desc, *scene);
     record.pixel_samples = samples;
     record.samples_per_second = samples_per_s;
     record.rays = monitor.rays();
@@ -369,6 +369,7 @@ int run(const Options& o) {
     record.versions = software_versions();
     record.non_finite = {non_finite.nan, non_finite.pos_inf, non_finite.neg_inf, non_finite.has_first,
                          non_finite.x,   non_finite.y,       non_finite.sample};
+    record_request(o, film, job->beauty_type, job->plan, job->display, record);
     if (std::string error; !write_run_record(o.report, record, error)) {
       std::cerr << "error: " << error << '\n';
       return kExitFailure;
