@@ -157,7 +157,10 @@ std::optional<Job> prepare(const Options& o, double& parse_s, int& status) {
     }
     limit = *parsed;
   }
-  job.memory = estimate_memory(job.desc, job.width, job.height, film_bytes_per_pixel(job.aovs), o.resume.empty() ? 1 : 2);
+  if (!estimate_render_memory(o, job.desc, job.width, job.height, job.aovs, job.memory)) {  // a bad crop
+    status = kExitUsage;
+    return std::nullopt;
+  }
   // Sizes beyond the builder's limits get its message (naming the limits) instead.
   const bool within_limits = job.width <= resolution.max_resolution && job.height <= resolution.max_resolution &&
                              static_cast<long long>(job.width) * job.height <= resolution.max_pixels;
