@@ -1,6 +1,9 @@
 #include "app/film_options.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <iomanip>
 #include <iostream>
 #include <string>
@@ -9,13 +12,14 @@
 
 namespace pt {
 
-bool film_aovs(const Options& o, std::vector<AovRequest>& out) {
+bool film_aovs(const Options& o, std::vector<AovRequest>& out, ChannelType& beauty) {
   out.clear();
+  beauty = ChannelType::Float;
   if (!o.replay.empty()) {  // a replay reports every AOV of its one sample (they draw no random numbers)
     for (const AovInfo& info : aov_catalogue()) out.push_back({info.type, info.default_type});
     return true;
   }
-  if (std::string why; !o.aov.empty() && !parse_aov_list(o.aov, out, why)) {
+  if (std::string why; !o.aov.empty() && !parse_aov_list(o.aov, out, beauty, why)) {
     std::cerr << "error: --aov: " << why << '\n';
     return false;
   }
@@ -56,6 +60,31 @@ std::size_t film_bytes_per_pixel(const std::vector<AovRequest>& aovs) {
   std::size_t bytes = sizeof(PixelSum);
   for (const AovRequest& r : aovs) bytes += sizeof(double) * static_cast<std::size_t>(aov_info(r.type).state_doubles);
   return bytes;
+}
+
+std::size_t output_bytes_per_pixel(const std::vector<AovRequest>& aovs, const std::vector<std::string>& outputs) {
+  std::size_t channels = 4;  // R, G, B, A
+  for (const AovRequest& r : aovs) channels += static_cast<std::size_t>(aov_info(r.type).channels);
+  const std::size_t layers = channels * sizeof(float);
+  std::size_t largest = 0;
+  for (const std::string& path : outputs) {
+    std::string ext = path.substr(std::min(path.size(), path.find_last_of('.')));
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const std::size_t own = ext == ".exr" ? channels * sizeof(float)                  // the interleaved buffer
+                                          : 3 * sizeof(float) + 3 * sizeof(uint8_t);  // RGB image, 8-bit codes
+    largest = std::max(largest, own);
+  }
+  return layers + largest;
+}
+
+bool estimate_render_memory(const Options& o, const SceneDescription& scene, int width, int height,
+                            const std::vector<AovRequest>& aovs, MemoryEstimate& out) {
+  PixelRect crop;
+  if (!crop_window(o, width, height, crop)) return false;
+  const uint64_t pixels = static_cast<uint64_t>(crop.width()) * static_cast<uint64_t>(crop.height());
+  out = estimate_memory(scene, pixels, {film_bytes_per_pixel(aovs), output_bytes_per_pixel(aovs, o.outputs)},
+                        o.resume.empty() ? 1 : 2);
+  return true;
 }
 
 void print_replay(const Film& film, int x, int y, int sample) {

@@ -3,18 +3,22 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
+#include "app/memory_estimate.h"
 #include "render/film/aov.h"
 #include "render/film/film.h"
 
 namespace pt {
 
 struct Options;
+struct SceneDescription;
 
-// The requested AOVs; a replay reports every AOV of its one sample. Returns
-// false after printing why (an unknown name: the valid ones are listed).
-bool film_aovs(const Options& o, std::vector<AovRequest>& out);
+// The requested AOVs and the beauty's pixel type ("--aov beauty:half"); a
+// replay reports every AOV of its one sample. Returns false after printing why
+// (an unknown name: the valid ones are listed).
+bool film_aovs(const Options& o, std::vector<AovRequest>& out, ChannelType& beauty);
 
 // The region to render, in pixels of a width x height frame: the crop, the
 // replayed pixel, or the whole frame. Returns false after printing why.
@@ -22,6 +26,21 @@ bool crop_window(const Options& o, int width, int height, PixelRect& out);
 
 // Bytes the film stores per pixel for these AOVs (the memory pre-flight).
 std::size_t film_bytes_per_pixel(const std::vector<AovRequest>& aovs);
+
+// Bytes per pixel of the buffers that writing `outputs` takes at once (the
+// memory pre-flight): Film::layers() (a float per channel: R, G, B, A and every
+// AOV channel) and the largest output's own buffer, the interleaved float
+// buffer of every channel for EXR, the float RGB image and its 8-bit codes for
+// PNG, JPEG and PPM. (OpenImageIO's conversion and compression work in bounded
+// chunks and are not counted.)
+std::size_t output_bytes_per_pixel(const std::vector<AovRequest>& aovs, const std::vector<std::string>& outputs);
+
+// The pre-flight memory estimate of the render `o` asks for in a width x
+// height frame: the film and output buffers of its crop window (crop_window()),
+// a second film while --resume reads a checkpoint, the textures and the
+// geometry of `scene`. Returns false after printing why (a bad crop).
+bool estimate_render_memory(const Options& o, const SceneDescription& scene, int width, int height,
+                            const std::vector<AovRequest>& aovs, MemoryEstimate& out);
 
 // Prints the replayed sample of pixel (x, y): its radiance and its AOVs.
 void print_replay(const Film& film, int x, int y, int sample);

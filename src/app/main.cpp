@@ -30,6 +30,7 @@
 #include "app/outputs.h"
 #include "app/progress.h"
 #include "app/render_driver.h"
+#include "app/run_report.h"
 #include "app/signals.h"
 #include "app/versions.h"
 #include "core/diagnostics.h"
@@ -73,6 +74,7 @@ struct Job {
   int width = 0, height = 0;
   MemoryEstimate memory;
   std::vector<AovRequest> aovs;  // --aov (every AOV for --replay)
+  ChannelType beauty_type = ChannelType::Float;  // --aov beauty:half
   CheckpointInfo identity;  // scene hash and settings, for --checkpoint and --resume
 };
 
@@ -117,7 +119,7 @@ std::optional<Job> prepare(const Options& o, double& parse_s, int& status) {
   plan.pass_spp = o.pass_spp;
   if (plan.pass_spp == 0 && plan.time_budget_s == 0 && !(o.checkpoint.empty() && o.resume.empty()))
     plan.pass_spp = kCheckpointPassSpp;
-  if (!film_aovs(o, job.aovs)) {
+  if (!film_aovs(o, job.aovs, job.beauty_type)) {
     status = kExitUsage;
     return std::nullopt;
   }
@@ -155,7 +157,10 @@ std::optional<Job> prepare(const Options& o, double& parse_s, int& status) {
     }
     limit = *parsed;
   }
-  job.memory = estimate_memory(job.desc, job.width, job.height, film_bytes_per_pixel(job.aovs), o.resume.empty() ? 1 : 2);
+  if (!estimate_render_memory(o, job.desc, job.width, job.height, job.aovs, job.memory)) {  // a bad crop
+    status = kExitUsage;
+    return std::nullopt;
+  }
   // Sizes beyond the builder's limits get its message (naming the limits) instead.
   const bool within_limits = job.width <= resolution.max_resolution && job.height <= resolution.max_resolution &&
                              static_cast<long long>(job.width) * job.height <= resolution.max_pixels;
@@ -327,7 +332,7 @@ int run(const Options& o) {
   stamp.world_to_ndc = scene->camera.world_to_ndc();
   ImageMetadata metadata;
   add_render_stamp(metadata, stamp);
-  if (!write_outputs(o.outputs, film.layers(), job->display, metadata)) return kExitFailure;
+  if (!write_outputs(o.outputs, film.layers(job->beauty_type), job->display, metadata)) return kExitFailure;
   const double write_s = seconds_since(t0);
 
   const int64_t samples = monitor.samples();
@@ -357,8 +362,7 @@ int run(const Options& o) {
     record.accel_backend = stats.backend;
     record.accel_memory_bytes = stats.memory_bytes;
     record.primitive_count = stats.primitive_count;
-    record.timings = {parse_s, build_s - stats.build_seconds, stats.build_seconds, render_s, write_s,
-                      parse_s + build_s + render_s + write_s};
+    record.timings = phase_timings(parse_s, build_s, render_s, write_s, job->desc, *scene);
     record.pixel_samples = samples;
     record.samples_per_second = samples_per_s;
     record.rays = monitor.rays();
@@ -368,6 +372,7 @@ int run(const Options& o) {
     record.versions = software_versions();
     record.non_finite = {non_finite.nan, non_finite.pos_inf, non_finite.neg_inf, non_finite.has_first,
                          non_finite.x,   non_finite.y,       non_finite.sample};
+    record_request(o, film, job->beauty_type, job->plan, job->display, record);
     if (std::string error; !write_run_record(o.report, record, error)) {
       std::cerr << "error: " << error << '\n';
       return kExitFailure;

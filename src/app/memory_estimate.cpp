@@ -2,11 +2,16 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <type_traits>
 #include <variant>
+#include <vector>
+
+#include <OpenImageIO/imageio.h>
 
 #include "scene/scene_description.h"
 
@@ -20,15 +25,57 @@ namespace {
 constexpr uint64_t kBytesPerTriangle = 192;
 constexpr uint64_t kBytesPerVertex = 48;  // position, normal, uv in the render scene
 constexpr uint64_t kBytesPerShape = 256;
+// A decoded texel (render/textures/texture.h: float RGB), and what the
+// environment map's sampling distribution adds per texel (a Distribution1D per
+// row: the function and its CDF, 8 bytes; the luminance table it is built from, 4).
+constexpr uint64_t kTextureBytesPerTexel = 3 * sizeof(float);
+constexpr uint64_t kDistributionBytesPerTexel = 3 * sizeof(float);
+
+// A file header may claim any size: the sums stop at the largest value.
+uint64_t saturating_mul(uint64_t a, uint64_t b) {
+  uint64_t r = 0;
+  return __builtin_mul_overflow(a, b, &r) ? UINT64_MAX : r;
+}
+uint64_t saturating_add(uint64_t a, uint64_t b) { return a > UINT64_MAX - b ? UINT64_MAX : a + b; }
 
 }  // namespace
 
-MemoryEstimate estimate_memory(const SceneDescription& scene, int width, int height,
-                               uint64_t film_bytes_per_pixel, int films) {
-  const uint64_t pixels = static_cast<uint64_t>(width) * static_cast<uint64_t>(height);
+uint64_t MemoryEstimate::total() const {
+  return saturating_add(saturating_add(film, images), saturating_add(textures, geometry));
+}
+
+uint64_t texture_bytes(const SceneDescription& scene) {
+  uint64_t total = 0, largest_decode = 0;
+  const auto add = [&](const std::string& path, uint64_t bytes_per_texel) {
+    const std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);  // the header only
+    if (!in) {
+      (void)OIIO::geterror();  // the build reports the file
+      return;
+    }
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) return;
+    const uint64_t texels = saturating_mul(static_cast<uint64_t>(spec.width) * static_cast<uint64_t>(spec.height),
+                                           static_cast<uint64_t>(std::max(1, spec.depth)));
+    total = saturating_add(total, saturating_mul(texels, bytes_per_texel));
+    largest_decode = std::max(largest_decode,
+                              saturating_mul(texels, sizeof(float) * static_cast<uint64_t>(spec.nchannels)));
+  };
+  std::vector<bool> used(scene.textures.size(), false);
+  for (const MaterialDesc& m : scene.materials)
+    if (m.texture && *m.texture >= 0 && static_cast<std::size_t>(*m.texture) < used.size())
+      used[static_cast<std::size_t>(*m.texture)] = true;
+  for (std::size_t i = 0; i < scene.textures.size(); ++i)
+    if (used[i]) add(scene.textures[i].resolved, kTextureBytesPerTexel);
+  if (scene.environment) add(scene.environment->resolved, kTextureBytesPerTexel + kDistributionBytesPerTexel);
+  return saturating_add(total, largest_decode);
+}
+
+MemoryEstimate estimate_memory(const SceneDescription& scene, uint64_t pixels, const PixelBytes& per_pixel,
+                               int films) {
   MemoryEstimate e;
-  e.film = pixels * film_bytes_per_pixel * static_cast<uint64_t>(films);
-  e.images = pixels * (3 * sizeof(float)) * 2;  // the image and one output conversion of it
+  e.film = pixels * per_pixel.film * static_cast<uint64_t>(films);
+  e.images = pixels * per_pixel.images;
+  e.textures = texture_bytes(scene);
   for (const ShapeDesc& shape : scene.shapes) {
     e.geometry += kBytesPerShape;
     if (const auto* mesh = std::get_if<MeshDesc>(&shape.geometry))
@@ -87,13 +134,15 @@ uint64_t physical_memory_bytes() {
 
 std::string check_memory(const MemoryEstimate& e, uint64_t limit, uint64_t physical) {
   const std::string detail = " (film " + byte_size_text(e.film) + ", images " + byte_size_text(e.images) +
-                             ", geometry and acceleration structure " + byte_size_text(e.geometry) + ")";
+                             ", textures " + byte_size_text(e.textures) + ", geometry and acceleration structure " +
+                             byte_size_text(e.geometry) + ")";
   if (limit > 0 && e.total() > limit)
     return "the render needs an estimated " + byte_size_text(e.total()) + detail + ", more than --max-memory " +
-           byte_size_text(limit) + "; lower the resolution or raise the limit";
+           byte_size_text(limit) + "; lower the resolution, crop, request fewer AOVs or raise the limit";
   if (physical > 0 && e.total() > physical)
     return "the render needs an estimated " + byte_size_text(e.total()) + detail +
-           ", more than this machine's physical memory " + byte_size_text(physical) + "; lower the resolution";
+           ", more than this machine's physical memory " + byte_size_text(physical) +
+           "; lower the resolution, crop or request fewer AOVs";
   return {};
 }
 

@@ -12,16 +12,31 @@ namespace pt {
 struct SceneDescription;
 
 struct MemoryEstimate {
-  uint64_t film = 0;      // film_bytes_per_pixel per pixel (+ a second film when resuming)
-  uint64_t images = 0;    // the float RGB image and the largest output buffer
+  uint64_t film = 0;      // the film's sums over the crop window (+ a second film while --resume reads one)
+  uint64_t images = 0;    // the output buffers over the crop window: Film::layers() and the largest writer's
+  uint64_t textures = 0;  // textures materials use and the environment map, decoded, from their file headers
   uint64_t geometry = 0;  // scene geometry and acceleration structure, from primitive counts
-  uint64_t total() const { return film + images + geometry; }
+  uint64_t total() const;  // saturating (a file header may claim any size)
 };
 
-// `film_bytes_per_pixel`: sizeof(PixelSum) for the beauty film; with AOV layers
-// the caller adds theirs. `films`: how many films exist at once.
-MemoryEstimate estimate_memory(const SceneDescription& scene, int width, int height,
-                               uint64_t film_bytes_per_pixel, int films = 1);
+// What the render allocates per pixel of its crop window.
+struct PixelBytes {
+  uint64_t film = 0;    // film_bytes_per_pixel(): sizeof(PixelSum) and the AOVs' doubles
+  uint64_t images = 0;  // output_bytes_per_pixel(): the layers and the largest output conversion
+};
+
+// `pixels`: the pixels of the crop window (the frame without a crop);
+// `films`: how many films exist at once.
+MemoryEstimate estimate_memory(const SceneDescription& scene, uint64_t pixels, const PixelBytes& per_pixel,
+                               int films = 1);
+
+// The decoded size of the textures some material uses and of the environment
+// map, from their files' headers (OpenImageIO, nothing is decoded): 12 bytes a
+// texel (float RGB), 12 more for the environment map's sampling distribution,
+// and the largest file's float decode buffer (4 bytes per channel per texel),
+// which exists while that file is read. A file that cannot be opened counts 0
+// (the build reports it).
+uint64_t texture_bytes(const SceneDescription& scene);
 
 // "4G", "512M", "64k", "1000" (bytes; K/M/G/T are powers of 1024, an optional
 // trailing "B"/"iB" is accepted). std::nullopt for anything else.

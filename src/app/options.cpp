@@ -99,7 +99,7 @@ void add_options(CLI::App& app, Options& o) {
                  "Refuse renders estimated to need more memory than this (e.g. 4G, 512M)");
   app.add_option("--aov", o.aov,
                  "Extra EXR layers, comma-separated, each optionally ':half' or ':float' (docs/output.md): " +
-                     join(aov_names(), ", "));
+                     join(aov_names(), ", ") + "; 'beauty:half' writes the beauty (R, G, B, A; float by default) as half");
   auto* crop = app.add_option("--crop", o.crop, "Render only this region: X0,Y0,X1,Y1 as fractions of the frame")
                    ->delimiter(',')
                    ->expected(4);

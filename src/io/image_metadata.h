@@ -37,7 +37,10 @@ struct RenderStamp {
   std::string backend;     // the accelerator's description
   std::string integrator;
   std::string software_version;
-  bool partial = false;    // the render stopped early (signal, time budget): some pixels have fewer samples
+  // A signal (SIGINT, SIGTERM) stopped the render: some pixels have fewer
+  // samples than others. Not set when a time budget runs out: that is the
+  // requested end, and every pixel has the complete passes.
+  bool partial = false;
   bool has_camera = false;
   ImageMetadata::Matrix world_to_camera{}, world_to_ndc{};
 };

@@ -26,17 +26,35 @@ std::string run_record_json(const RunRecord& r) {
                  {"sampler", r.sampler}, {"max_depth", r.max_depth}, {"seed", r.seed}, {"filter", r.filter},
                  {"clamp", r.clamp}}},
       {"progress", {{"spp_reached", r.spp}, {"target_spp", r.target_spp}, {"time_budget", r.time_budget},
-                    {"passes", r.passes}, {"resumed_spp", r.resumed_spp}, {"partial", r.partial},
-                    {"signal", r.signal}}},
+                    {"passes", r.passes},
+                    {"pass_spp", r.pass_spp > 0 ? nlohmann::ordered_json(r.pass_spp) : nlohmann::ordered_json("adaptive")},
+                    {"resumed_spp", r.resumed_spp}, {"partial", r.partial}, {"signal", r.signal}}},
       {"threads", r.threads},
       {"accel", {{"backend", r.accel_backend}, {"memory_bytes", r.accel_memory_bytes},
                  {"primitive_count", r.primitive_count}, {"build_seconds", t.accel_build}}},
-      {"timings", {{"parse", t.parse}, {"scene_build", t.scene_build}, {"accel_build", t.accel_build},
-                   {"render", t.render}, {"write", t.write}, {"total", t.total}}},
+      {"timings", {{"parse", t.parse}, {"mesh_load", t.mesh_load}, {"texture_load", t.texture_load},
+                   {"scene_build", t.scene_build}, {"accel_build", t.accel_build}, {"render", t.render},
+                   {"write", t.write}, {"total", t.total}}},
       {"performance", {{"pixel_samples", r.pixel_samples}, {"samples_per_second", r.samples_per_second},
                        {"rays", r.rays}, {"rays_per_second", r.rays_per_second}}},
       {"memory", {{"estimate_bytes", r.memory_estimate_bytes}, {"peak_rss_bytes", r.peak_memory_bytes}}},
   };
+  nlohmann::ordered_json aovs = nlohmann::ordered_json::array();
+  for (const auto& [name, type] : r.aovs) aovs.push_back({{"name", name}, {"type", type}});
+  j["output"] = {{"files", r.outputs},
+                 {"crop", {{"x", r.crop.x}, {"y", r.crop.y}, {"width", r.crop.width}, {"height", r.crop.height}}},
+                 {"beauty_type", r.beauty_type},
+                 {"aovs", aovs}};
+  const auto path_or_null = [](const std::string& p) {
+    return p.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(p);
+  };
+  j["checkpoint"] = {{"file", path_or_null(r.checkpoint)},
+                     {"every_seconds", r.checkpoint_every},
+                     {"resumed_from", path_or_null(r.resumed_from)}};
+  const RunRecord::Display& d = r.display;
+  j["display"] = {{"transform", d.transform}, {"exposure", d.exposure}, {"view", d.view},
+                  {"display", d.display},     {"look", d.look},         {"ocio_config", path_or_null(d.ocio_config)},
+                  {"pipeline", d.pipeline}};
   const RunRecord::NonFinite& nf = r.non_finite;
   j["non_finite"] = {{"nan", nf.nan}, {"pos_inf", nf.pos_inf}, {"neg_inf", nf.neg_inf},
                      {"first", nf.has_first ? nlohmann::ordered_json{{"x", nf.x}, {"y", nf.y}, {"sample", nf.sample}}

@@ -12,9 +12,11 @@
 namespace pt {
 
 struct PhaseTimings {
-  double parse = 0;        // reading and validating the scene file (PLY meshes included)
-  double scene_build = 0;  // texture decoding, geometry conversion (excludes accel_build)
-  double accel_build = 0;  // acceleration structure
+  double parse = 0;         // reading and validating the scene file (excludes mesh_load)
+  double mesh_load = 0;     // reading the mesh files it names (PLY, OBJ)
+  double texture_load = 0;  // decoding the textures materials use and the environment map
+  double scene_build = 0;   // geometry conversion, lights (excludes texture_load and accel_build)
+  double accel_build = 0;   // acceleration structure
   double render = 0;
   double write = 0;        // all output images
   double total = 0;        // sum of the above
@@ -46,6 +48,7 @@ struct RunRecord {
   int target_spp = 0;          // 0: no target (time budget only)
   double time_budget = 0;      // seconds; 0: none
   int passes = 0;
+  int pass_spp = 0;            // samples per pass when the passes have a fixed size; 0: adaptive (time budget)
   int resumed_spp = 0;         // samples per pixel read from --resume's checkpoint
   bool partial = false;        // stopped by a signal before the target/budget
   int signal = 0;              // the signal that stopped it, 0 if none
@@ -68,6 +71,26 @@ struct RunRecord {
     bool has_first = false;
     int x = 0, y = 0, sample = 0;
   } non_finite;
+  // Outputs (docs/output.md): the files, the window rendered (the EXR's data
+  // window; the whole frame without a crop), the beauty's and each AOV's type.
+  std::vector<std::string> outputs;
+  struct Window {
+    int x = 0, y = 0, width = 0, height = 0;
+  } crop;
+  std::string beauty_type = "float";
+  std::vector<std::pair<std::string, std::string>> aovs;  // (name, "half" or "float"), in file order
+  // Checkpoints: --checkpoint and --checkpoint-every, --resume (empty: none).
+  std::string checkpoint;
+  double checkpoint_every = 0;
+  std::string resumed_from;
+  // Display images (PNG, JPEG, PPM): the scene's transform ("srgb", "linear",
+  // "cgr"), the exposure in stops, the OCIO names asked for (empty: defaults)
+  // and the pipeline as built (DisplayEncoder::description).
+  struct Display {
+    std::string transform = "srgb";
+    float exposure = 0;
+    std::string view, display, look, ocio_config, pipeline;
+  } display;
   uint64_t memory_estimate_bytes = 0;  // the pre-flight estimate
   uint64_t peak_memory_bytes = 0;      // getrusage ru_maxrss
   SoftwareVersions versions;

@@ -1,5 +1,6 @@
 #include "render/render_scene.h"
 
+#include <chrono>
 #include <cmath>
 #include <type_traits>
 #include <utility>
@@ -38,6 +39,10 @@ void resolve_resolution(const FilmDesc& film, const BuildOptions& options, int& 
 }
 
 namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 // ---------------------------------------------------------------- shapes
 Shape to_shape(const SphereDesc& d) {
@@ -133,7 +138,10 @@ bool load_textures(const SceneDescription& desc, RenderScene& scene, Diagnostics
     const TextureDesc& t = desc.textures[i];
     auto tex = std::make_unique<Texture>();
     std::string error;
-    if (!Texture::load(t.resolved, *tex, error)) {
+    const auto start = std::chrono::steady_clock::now();
+    const bool loaded = Texture::load(t.resolved, *tex, error);
+    scene.texture_load_seconds += seconds_since(start);
+    if (!loaded) {
       diag.error(t.where, "cannot read texture '" + t.written + "': " + error);
       ok = false;
       continue;
@@ -273,8 +281,10 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDescription& desc, co
   for (const LightDesc& l : desc.lights) std::visit([&](const auto& light) { add_light(*scene, light); }, l);
 
   if (desc.environment) {
+    const auto environment_start = std::chrono::steady_clock::now();
     std::string error;
     scene->environment_map = EnvironmentMap::load(*desc.environment, error);
+    scene->texture_load_seconds += seconds_since(environment_start);
     if (!scene->environment_map) {
       diag.error(desc.environment->file.where,
                  "cannot read environment map '" + desc.environment->file.value + "': " + error);

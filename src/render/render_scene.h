@@ -55,6 +55,7 @@ struct RenderScene {
   // infinite lights' power estimates need the scene bounds).
   LightSet lights;
   std::unique_ptr<Accelerator> accel;
+  double texture_load_seconds = 0;  // decoding the textures and the environment map; 0 if there are none
 
   // Both count the ray in the calling thread's rays_traced_by_this_thread().
   bool intersect(const Ray& ray, Intersection& out) const;

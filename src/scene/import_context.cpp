@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <filesystem>
 #include <system_error>
 
@@ -59,16 +60,18 @@ bool load_mesh_file(ImportContext& ctx, const Sourced<std::string>& written, Mes
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   MeshData ply;
+  const auto start = std::chrono::steady_clock::now();
+  std::string error;
+  bool loaded = false;
   if (extension == ".obj") {
-    std::string error;
-    if (!load_obj(*resolved, ply, error)) {
-      ctx.diag().error(written.where, "cannot read mesh '" + written.value + "': " + error);
-      return false;
-    }
-  } else if (PlyError error; !load_ply(*resolved, ply, error)) {
-    std::string message = "cannot read mesh '" + written.value + "': " + error.message;
-    if (error.line > 0) message += " (header line " + std::to_string(error.line) + ")";
-    ctx.diag().error(written.where, std::move(message));
+    loaded = load_obj(*resolved, ply, error);
+  } else if (PlyError ply_error; !(loaded = load_ply(*resolved, ply, ply_error))) {
+    error = ply_error.message;
+    if (ply_error.line > 0) error += " (header line " + std::to_string(ply_error.line) + ")";
+  }
+  ctx.scene.mesh_load_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!loaded) {
+    ctx.diag().error(written.where, "cannot read mesh '" + written.value + "': " + error);
     return false;
   }
   mesh.positions = std::move(ply.positions);

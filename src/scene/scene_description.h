@@ -215,6 +215,7 @@ struct SceneDescription {
   std::vector<LightDesc> lights;
   std::vector<ShapeDesc> shapes;
   std::optional<EnvironmentDesc> environment;  // replaces render.background for rays that leave
+  double mesh_load_seconds = 0;  // time the loader spent reading mesh files (PLY, OBJ), for run records
 };
 
 }  // namespace pt

@@ -60,9 +60,10 @@ class AppTest : public ::testing::Test {
     return nlohmann::json::parse(slurp(path(name)), nullptr, false);
   }
 
-  // Runs the executable in the folder with `args` (a shell word list).
-  RunResult run(const std::string& args) const {
-    const std::string cmd = "cd '" + dir_.string() + "' && '" PT_PATHTRACER_EXE "' " + args +
+  // Runs the executable in the folder with `args` (a shell word list) and
+  // `env` (shell assignments, e.g. "OCIO=config.ocio") in its environment.
+  RunResult run(const std::string& args, const std::string& env = "") const {
+    const std::string cmd = "cd '" + dir_.string() + "' && " + env + " '" PT_PATHTRACER_EXE "' " + args +
                             " > stdout.txt 2> stderr.txt";
     const int raw = std::system(cmd.c_str());
     RunResult r;

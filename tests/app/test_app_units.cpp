@@ -2,12 +2,18 @@
 // memory estimate and sizes, progress text, the signal flag.
 #include <signal.h>
 
+#include <unistd.h>
+
+#include <filesystem>
 #include <memory>
 #include <sstream>
+#include <string>
 #include <vector>
 
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include "app/film_options.h"
 #include "app/memory_estimate.h"
 #include "app/progress.h"
 #include "app/render_driver.h"
@@ -143,23 +149,81 @@ TEST(MemoryEstimate, ParsesSizes) {
 
 TEST(MemoryEstimate, ScalesWithPixelsFilmBytesAndTriangles) {
   SceneDescription scene;
-  const MemoryEstimate small = estimate_memory(scene, 100, 100, 40);
+  const MemoryEstimate small = estimate_memory(scene, 100 * 100, {40, 32});
   EXPECT_EQ(small.film, 100u * 100u * 40u);
-  EXPECT_EQ(estimate_memory(scene, 100, 100, 80).film, 2 * small.film);  // e.g. AOV layers
-  EXPECT_EQ(estimate_memory(scene, 100, 100, 40, 2).film, 2 * small.film);
+  EXPECT_EQ(small.images, 100u * 100u * 32u);
+  EXPECT_EQ(small.textures, 0u);
+  EXPECT_EQ(estimate_memory(scene, 100 * 100, {80, 32}).film, 2 * small.film);  // e.g. AOV layers
+  EXPECT_EQ(estimate_memory(scene, 100 * 100, {40, 32}, 2).film, 2 * small.film);
+  EXPECT_EQ(estimate_memory(scene, 50 * 100, {40, 32}).images, small.images / 2);  // a crop of half the frame
   ShapeDesc mesh;
   MeshDesc m;
   m.positions.resize(3000);
   m.indices.resize(3 * 1000);
   mesh.geometry = m;
   scene.shapes.push_back(mesh);
-  EXPECT_GT(estimate_memory(scene, 100, 100, 40).geometry, 1000u * 100u);
-  const MemoryEstimate e = estimate_memory(scene, 100, 100, 40);
+  EXPECT_GT(estimate_memory(scene, 100 * 100, {40, 32}).geometry, 1000u * 100u);
+  const MemoryEstimate e = estimate_memory(scene, 100 * 100, {40, 32});
+  EXPECT_EQ(e.total(), e.film + e.images + e.textures + e.geometry);
   EXPECT_TRUE(check_memory(e, 0, 0).empty());
   EXPECT_TRUE(check_memory(e, e.total(), 0).empty());
   const std::string why = check_memory(e, e.total() - 1, 0);
   EXPECT_NE(why.find("--max-memory"), std::string::npos) << why;
+  EXPECT_NE(why.find(", textures 0 bytes, "), std::string::npos) << why;  // every part is named
   EXPECT_NE(check_memory(e, 0, e.total() - 1).find("physical memory"), std::string::npos);
+}
+
+// The bytes per pixel the writers take: 4 per channel of Film::layers(), plus
+// the largest output's buffer.
+TEST(MemoryEstimate, OutputBuffersCountEveryAovChannel) {
+  EXPECT_EQ(output_bytes_per_pixel({}, {}), 16u);                   // R, G, B, A (a replay writes nothing)
+  EXPECT_EQ(output_bytes_per_pixel({}, {"a.exr"}), 16u + 16u);      // and the interleaved EXR buffer
+  EXPECT_EQ(output_bytes_per_pixel({}, {"a.PNG", "b.ppm"}), 16u + 15u);  // float RGB image and 8-bit codes
+  std::vector<AovRequest> all;
+  std::size_t channels = 4;
+  for (const AovInfo& info : aov_catalogue()) {
+    all.push_back({info.type, info.default_type});
+    channels += static_cast<std::size_t>(info.channels);
+  }
+  EXPECT_EQ(channels, 36u);
+  EXPECT_EQ(output_bytes_per_pixel(all, {"a.png", "a.exr"}), 2 * 36u * 4u);  // 288 bytes a pixel
+  // The film: PixelSum, then each AOV's doubles.
+  EXPECT_EQ(film_bytes_per_pixel({}), sizeof(PixelSum));
+  EXPECT_EQ(film_bytes_per_pixel({{AovType::Position, ChannelType::Float}}), sizeof(PixelSum) + 4 * sizeof(double));
+}
+
+// Textures are estimated from their files' headers: only those a material
+// uses, and the environment map with its sampling distribution.
+TEST(MemoryEstimate, TexturesFromTheirFileHeaders) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("pt_memory_test_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto write_image = [&](const std::string& name, int w, int h, int channels) {
+    const std::string file = (dir / name).string();
+    auto out = OIIO::ImageOutput::create(file);
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open(file, OIIO::ImageSpec(w, h, channels, OIIO::TypeDesc::HALF)));
+    std::vector<float> pixels(static_cast<std::size_t>(w * h * channels), 0.5f);
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+    ASSERT_TRUE(out->close());
+  };
+  write_image("used.exr", 64, 32, 3);
+  write_image("unused.exr", 100, 100, 3);
+  write_image("env.exr", 16, 8, 4);
+  SceneDescription scene;
+  scene.textures.push_back({{}, "unused.exr", (dir / "unused.exr").string()});
+  scene.textures.push_back({{}, "used.exr", (dir / "used.exr").string()});
+  MaterialDesc material;
+  material.texture = 1;
+  scene.materials.push_back(material);
+  EXPECT_EQ(texture_bytes(scene), 64u * 32u * 12u + 64u * 32u * 3u * 4u);  // RGB float, and its decode buffer
+  scene.environment = EnvironmentDesc{};
+  scene.environment->resolved = (dir / "env.exr").string();
+  EXPECT_EQ(texture_bytes(scene), 64u * 32u * 12u + 16u * 8u * 24u + 64u * 32u * 3u * 4u);
+  EXPECT_EQ(estimate_memory(scene, 1, {40, 32}).textures, texture_bytes(scene));
+  scene.environment->resolved = (dir / "missing.exr").string();  // the build reports it
+  EXPECT_EQ(texture_bytes(scene), 64u * 32u * 12u + 64u * 32u * 3u * 4u);
+  std::filesystem::remove_all(dir);
 }
 
 TEST(Progress, SnapshotFractionAndEta) {

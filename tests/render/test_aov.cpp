@@ -16,8 +16,10 @@ namespace {
 
 TEST(AovList, ParsesNamesTypesAndDefaults) {
   std::vector<AovRequest> aovs;
+  ChannelType beauty = ChannelType::Half;
   std::string error;
-  ASSERT_TRUE(parse_aov_list("Z:half, albedo,N:float,IndexOB", aovs, error)) << error;
+  ASSERT_TRUE(parse_aov_list("Z:half, albedo,N:float,IndexOB", aovs, beauty, error)) << error;
+  EXPECT_EQ(beauty, ChannelType::Float);  // not named: float
   ASSERT_EQ(aovs.size(), 4u);  // catalogue order
   EXPECT_EQ(aovs[0].type, AovType::Albedo);
   EXPECT_EQ(aovs[0].channel_type, ChannelType::Half);  // default
@@ -31,21 +33,49 @@ TEST(AovList, ParsesNamesTypesAndDefaults) {
 
 TEST(AovList, RejectsUnknownNamesTypesAndDuplicates) {
   std::vector<AovRequest> aovs;
+  ChannelType beauty = ChannelType::Float;
   std::string error;
-  EXPECT_FALSE(parse_aov_list("albedo,normals", aovs, error));
+  EXPECT_FALSE(parse_aov_list("albedo,normals", aovs, beauty, error));
   EXPECT_NE(error.find("unknown AOV 'normals'"), std::string::npos) << error;
   for (const std::string& name : aov_names()) EXPECT_NE(error.find(" " + name), std::string::npos) << name;
-  EXPECT_FALSE(parse_aov_list("albedo:double", aovs, error));
+  EXPECT_FALSE(parse_aov_list("albedo:double", aovs, beauty, error));
   EXPECT_NE(error.find("double"), std::string::npos) << error;
-  EXPECT_FALSE(parse_aov_list("N,N:half", aovs, error));
+  EXPECT_FALSE(parse_aov_list("N,N:half", aovs, beauty, error));
   EXPECT_NE(error.find("more than once"), std::string::npos) << error;
-  EXPECT_FALSE(parse_aov_list("", aovs, error));
+  EXPECT_FALSE(parse_aov_list("", aovs, beauty, error));
+  EXPECT_FALSE(parse_aov_list("beauty:half,beauty", aovs, beauty, error));
+  EXPECT_NE(error.find("'beauty' is requested more than once"), std::string::npos) << error;
+  EXPECT_FALSE(parse_aov_list("beauty:double", aovs, beauty, error));
+  EXPECT_NE(error.find("unknown pixel type 'double'"), std::string::npos) << error;
+}
+
+TEST(AovList, BeautyNamesOnlyTheBeautysType) {
+  std::vector<AovRequest> aovs;
+  ChannelType beauty = ChannelType::Float;
+  std::string error;
+  ASSERT_TRUE(parse_aov_list("beauty:half", aovs, beauty, error)) << error;
+  EXPECT_TRUE(aovs.empty());  // not a layer of its own
+  EXPECT_EQ(beauty, ChannelType::Half);
+  ASSERT_TRUE(parse_aov_list("N, beauty:float,", aovs, beauty, error)) << error;
+  EXPECT_EQ(beauty, ChannelType::Float);
+  ASSERT_EQ(aovs.size(), 1u);
+  EXPECT_EQ(aovs[0].type, AovType::Normal);
+  ASSERT_TRUE(parse_aov_list("beauty", aovs, beauty, error)) << error;
+  EXPECT_EQ(beauty, ChannelType::Float);  // the default
+  // Film::layers writes the beauty's R, G, B, A with that type; the values stay the same floats.
+  Film film(4, 2);
+  film.add(1, 1, PixelSum{0.5, 0.25, 2.0, 1.0, 1});
+  const LayeredImage as_float = film.layers(), as_half = film.layers(ChannelType::Half);
+  EXPECT_EQ(as_float.layers[0].type, ChannelType::Float);
+  EXPECT_EQ(as_half.layers[0].type, ChannelType::Half);
+  EXPECT_EQ(as_half.layers[0].values, as_float.layers[0].values);
 }
 
 std::vector<AovRequest> aovs(const std::string& list) {
   std::vector<AovRequest> out;
+  ChannelType beauty = ChannelType::Float;
   std::string error;
-  EXPECT_TRUE(parse_aov_list(list, out, error)) << error;
+  EXPECT_TRUE(parse_aov_list(list, out, beauty, error)) << error;
   return out;
 }
 

@@ -39,9 +39,10 @@ Rendered render(WorkerPool& pool) {
   Rendered r;
   r.scene = test::build(d, pool);
   std::vector<AovRequest> aovs;
+  ChannelType beauty = ChannelType::Float;
   std::string error;
   EXPECT_TRUE(parse_aov_list("albedo,N,P,Z,IndexOB,IndexMA,diffuse_direct:half,variance,samples,nonfinite", aovs,
-                             error));
+                             beauty, error));
   r.film = std::make_unique<Film>(kW, kH, kCrop, aovs);
   IntegratorSettings settings;
   settings.spp = 4;

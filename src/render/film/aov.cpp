@@ -46,15 +46,17 @@ std::vector<std::string> aov_names() {
   return names;
 }
 
-bool parse_aov_list(const std::string& list, std::vector<AovRequest>& out, std::string& error) {
+bool parse_aov_list(const std::string& list, std::vector<AovRequest>& out, ChannelType& beauty, std::string& error) {
   std::vector<AovRequest> result;
+  ChannelType beauty_type = ChannelType::Float;
+  bool beauty_named = false;
   std::size_t start = 0;
   while (start <= list.size()) {
     const std::size_t comma = std::min(list.find(',', start), list.size());
     const std::string item = trim(list.substr(start, comma - start));
     start = comma + 1;
     if (item.empty()) {
-      if (comma == list.size() && !result.empty()) break;
+      if (comma == list.size() && (!result.empty() || beauty_named)) break;  // a trailing comma
       error = "empty AOV name in '" + list + "'";
       return false;
     }
@@ -63,23 +65,34 @@ bool parse_aov_list(const std::string& list, std::vector<AovRequest>& out, std::
     const AovInfo* info = nullptr;
     for (const AovInfo& i : kCatalogue)
       if (name == i.name) info = &i;
-    if (info == nullptr) {
+    if (info == nullptr && name != kBeautyName) {
       error = "unknown AOV '" + name + "'; valid names are:";
       for (const AovInfo& i : kCatalogue) error += std::string(" ") + i.name;
+      error += std::string(" (and ") + kBeautyName + ", to choose its type: " + kBeautyName + ":half)";
       return false;
     }
-    AovRequest request{info->type, info->default_type};
+    ChannelType type = info != nullptr ? info->default_type : ChannelType::Float;
     if (colon != std::string::npos) {
-      const std::string type = trim(item.substr(colon + 1));
-      if (type == "half") {
-        request.channel_type = ChannelType::Half;
-      } else if (type == "float") {
-        request.channel_type = ChannelType::Float;
+      const std::string type_name = trim(item.substr(colon + 1));
+      if (type_name == "half") {
+        type = ChannelType::Half;
+      } else if (type_name == "float") {
+        type = ChannelType::Float;
       } else {
-        error = "AOV '" + name + "': unknown pixel type '" + type + "' (half or float)";
+        error = "AOV '" + name + "': unknown pixel type '" + type_name + "' (half or float)";
         return false;
       }
     }
+    if (info == nullptr) {  // the beauty: only its type
+      if (beauty_named) {
+        error = std::string("AOV '") + kBeautyName + "' is requested more than once";
+        return false;
+      }
+      beauty_named = true;
+      beauty_type = type;
+      continue;
+    }
+    const AovRequest request{info->type, type};
     for (const AovRequest& r : result)
       if (r.type == request.type) {
         error = "AOV '" + name + "' is requested more than once";
@@ -90,6 +103,7 @@ bool parse_aov_list(const std::string& list, std::vector<AovRequest>& out, std::
   std::sort(result.begin(), result.end(),
             [](const AovRequest& a, const AovRequest& b) { return a.type < b.type; });
   out = std::move(result);
+  beauty = beauty_type;
   return true;
 }
 

@@ -61,11 +61,16 @@ struct AovRequest {
   ChannelType channel_type;
 };
 
+// The name that sets the beauty's (R, G, B, A) pixel type in an AOV list
+// ("beauty:half"); the beauty is always written, as float unless asked.
+constexpr const char* kBeautyName = "beauty";
+
 // Parses "--aov" lists: comma-separated names, each optionally followed by
-// ":half" or ":float" (e.g. "albedo:half,N,Z:float"). Duplicates are an error.
-// The result is sorted in catalogue order. Returns false with `error` listing
-// the valid names for an unknown name.
-bool parse_aov_list(const std::string& list, std::vector<AovRequest>& out, std::string& error);
+// ":half" or ":float" (e.g. "albedo:half,N,Z:float,beauty:half"). Duplicates are
+// an error. The result is sorted in catalogue order; `beauty` gets the type
+// given to "beauty" (Float if it is not named). Returns false with `error`
+// listing the valid names for an unknown name.
+bool parse_aov_list(const std::string& list, std::vector<AovRequest>& out, ChannelType& beauty, std::string& error);
 
 // What one camera sample contributes to the AOVs besides its radiance. The
 // render loop fills the geometric part (only when a geometric AOV is

@@ -212,7 +212,7 @@ std::vector<float> Film::aov_value(AovType type, int x, int y) const {
   return {};
 }
 
-LayeredImage Film::layers() const {
+LayeredImage Film::layers(ChannelType beauty_type) const {
   LayeredImage out;
   out.full_width = width_;
   out.full_height = height_;
@@ -221,7 +221,7 @@ LayeredImage Film::layers() const {
   out.width = crop_.width();
   out.height = crop_.height();
   const std::size_t n = out.pixel_count();
-  ImageLayer beauty{"", {"R", "G", "B", "A"}, ChannelType::Float, std::vector<float>(n * 4)};
+  ImageLayer beauty{"", {"R", "G", "B", "A"}, beauty_type, std::vector<float>(n * 4)};
   for (std::size_t i = 0; i < n; ++i) {
     const RGB v = pixels_[i].value();
     float* p = &beauty.values[i * 4];

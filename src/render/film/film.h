@@ -115,9 +115,10 @@ class Film {
   const NonFiniteReport& non_finite() const { return non_finite_; }
   void add_non_finite(const NonFiniteReport& r) { non_finite_.merge(r); }
 
-  // The beauty (R, G, B, A; A = 1 where the pixel has samples) and every
+  // The beauty (R, G, B, A; A = 1 where the pixel has samples), stored as
+  // `beauty` (float by default, half with "--aov beauty:half"), and every
   // requested AOV over the crop window, for the image writers.
-  LayeredImage layers() const;
+  LayeredImage layers(ChannelType beauty = ChannelType::Float) const;
 
   // The film's complete state (every pixel's sums and counts, the AOV sums,
   // the non-finite report), for checkpoints: written and read back bit for

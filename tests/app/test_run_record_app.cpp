@@ -1,0 +1,172 @@
+// The run record as the application fills it (docs/cli.md): the non-finite
+// report (and that its first offender replays), mesh and texture loading as
+// phases of their own, and the request: outputs, crop, AOV types, pass size,
+// checkpoint and resume files, display settings.
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include "app_fixture.h"
+
+namespace pt::test {
+namespace {
+
+// A sphere under a sky so bright (3e38, finite) that paths which see it
+// through a bounce overflow float to +Inf.
+const char* kOverflowScene = R"({"format": "pathtracer-scene", "version": 1,
+  "camera": {"position": [0, 1, 4], "look_at": [0, 0.5, 0], "fov": 40},
+  "film": {"width": 16, "height": 12},
+  "render": {"integrator": "path", "max_depth": 8, "spp": 4, "background": [3e38, 3e38, 3e38]},
+  "materials": {"white": {"type": "lambert", "diffuse": [0.9, 0.9, 0.9]}},
+  "shapes": [{"type": "sphere", "center": [0, 0.5, 0], "radius": 0.5, "material": "white"}]
+})";
+
+class RunRecordApp : public AppTest {
+ protected:
+  // Writes a w x h RGB image file of `value`.
+  void write_image(const std::string& name, int w, int h, float value) const {
+    auto out = OIIO::ImageOutput::create(path(name));
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open(path(name), OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::FLOAT)));
+    const std::vector<float> pixels(static_cast<std::size_t>(w) * h * 3, value);
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+    ASSERT_TRUE(out->close());
+  }
+};
+
+TEST_F(RunRecordApp, NonFiniteCountsAndTheFirstOffenderWhichReplays) {
+  write("nf.json", kOverflowScene);
+  const RunResult r = run("nf.json -o nf.exr --aov nonfinite --report run.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json nf = read_json("run.json")["non_finite"];
+  ASSERT_TRUE(nf.is_object());
+  const uint64_t total = nf["nan"].get<uint64_t>() + nf["pos_inf"].get<uint64_t>() + nf["neg_inf"].get<uint64_t>();
+  ASSERT_GT(total, 0u) << nf;
+  EXPECT_GT(nf["pos_inf"].get<uint64_t>(), 0u) << nf;
+  ASSERT_TRUE(nf["first"].is_object()) << nf;
+  const int x = nf["first"]["x"], y = nf["first"]["y"], sample = nf["first"]["sample"];
+  // The warning says the same ...
+  const std::string said = "warning: " + std::to_string(total) + " non-finite samples (" +
+                           std::to_string(nf["nan"].get<uint64_t>()) + " NaN, " +
+                           std::to_string(nf["pos_inf"].get<uint64_t>()) + " +Inf, " +
+                           std::to_string(nf["neg_inf"].get<uint64_t>()) + " -Inf); first at pixel (" +
+                           std::to_string(x) + ", " + std::to_string(y) + ") sample " + std::to_string(sample);
+  EXPECT_NE(r.err.find(said), std::string::npos) << said << "\n" << r.err;
+  // ... the mask marks that pixel ...
+  auto in = OIIO::ImageInput::open(path("nf.exr"));
+  ASSERT_TRUE(in);
+  const int c = in->spec().channelindex("nonfinite");
+  ASSERT_GE(c, 0);
+  std::vector<float> masks(16 * 12);
+  ASSERT_TRUE(in->read_image(0, 0, c, c + 1, OIIO::TypeFloat, masks.data())) << in->geterror();
+  EXPECT_EQ(masks[static_cast<std::size_t>(y) * 16 + x], 1.0f);
+  // ... and replaying it gives the non-finite value again.
+  const RunResult replay = run("nf.json --replay " + std::to_string(x) + "," + std::to_string(y) + "," +
+                               std::to_string(sample));
+  ASSERT_EQ(replay.status, 0) << replay.err;
+  EXPECT_NE(replay.out.find("radiance inf"), std::string::npos) << replay.out;
+
+  // A render without any: zero counts and no first offender.
+  write("s.json", path_scene(16, 12, 2));
+  ASSERT_EQ(run("s.json -o s.exr --report clean.json --quiet").status, 0);
+  const nlohmann::json clean = read_json("clean.json")["non_finite"];
+  EXPECT_EQ(clean, nlohmann::json::parse(R"({"nan": 0, "pos_inf": 0, "neg_inf": 0, "first": null})"));
+}
+
+TEST_F(RunRecordApp, MeshAndTextureLoadingArePhasesOfTheirOwn) {
+  // A textured OBJ quad and a textured sphere: a mesh file and a 512 x 256 texture to read.
+  write("quad.obj", "v -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 4/4 3/3 2/2\n");
+  write_image("wood.exr", 512, 256, 0.5f);
+  const std::string scene = R"({"format": "pathtracer-scene", "version": 1,
+    "camera": {"position": [0, 1, 4], "look_at": [0, 0.5, 0], "fov": 40},
+    "film": {"width": 16, "height": 12},
+    "render": {"integrator": "path", "max_depth": 4, "spp": 1, "background": [1, 1, 1]},
+    "materials": {"wood": {"type": "lambert", "texture": "wood.exr"}, "white": {"type": "lambert"}},
+    "shapes": [{"type": "mesh", "file": "quad.obj", "material": "MESH"},
+               {"type": "sphere", "center": [0, 0.5, 0], "radius": 0.5, "material": "SPHERE"}]})";
+  const auto with = [&](const char* mesh, const char* sphere) {
+    std::string s = scene;
+    s.replace(s.find("MESH"), 4, mesh);
+    s.replace(s.find("SPHERE"), 6, sphere);
+    return s;
+  };
+  write("textured.json", with("wood", "wood"));
+  write("plain.json", with("white", "white"));  // the texture is never decoded
+  write("bare.json", path_scene(16, 12, 1));    // no files at all
+  for (const char* name : {"textured", "plain", "bare"})
+    ASSERT_EQ(run(std::string(name) + ".json -o " + name + ".exr --report " + name + ".run.json --quiet").status, 0)
+        << name;
+  const nlohmann::json textured = read_json("textured.run.json"), plain = read_json("plain.run.json"),
+                       bare = read_json("bare.run.json");
+  for (const nlohmann::json* rec : {&textured, &plain, &bare}) {
+    const nlohmann::json& t = (*rec)["timings"];
+    double sum = 0;
+    for (const char* phase : {"parse", "mesh_load", "texture_load", "scene_build", "accel_build", "render", "write"}) {
+      EXPECT_GE(t[phase].get<double>(), 0.0) << phase;
+      sum += t[phase].get<double>();
+    }
+    EXPECT_NEAR(t["total"].get<double>(), sum, 1e-9) << t;  // the phases do not overlap
+  }
+  EXPECT_GT(textured["timings"]["mesh_load"].get<double>(), 0.0) << textured["timings"];
+  EXPECT_GT(textured["timings"]["texture_load"].get<double>(), 0.0) << textured["timings"];
+  EXPECT_GT(plain["timings"]["mesh_load"].get<double>(), 0.0) << plain["timings"];
+  EXPECT_EQ(plain["timings"]["texture_load"].get<double>(), 0.0) << plain["timings"];
+  EXPECT_EQ(bare["timings"]["mesh_load"].get<double>(), 0.0) << bare["timings"];
+  EXPECT_EQ(bare["timings"]["texture_load"].get<double>(), 0.0) << bare["timings"];
+  // The pre-flight estimate counts the texture a material uses (512 x 256 float RGB, and its decode buffer).
+  const double texture = 512.0 * 256.0 * (12 + 12);
+  EXPECT_EQ(textured["memory"]["estimate_bytes"].get<double>() - plain["memory"]["estimate_bytes"].get<double>(),
+            texture);
+}
+
+TEST_F(RunRecordApp, RecordsOutputsCropAovsPassesCheckpointsAndDisplay) {
+  write("s.json", path_scene(32, 24, 1));
+  RunResult r = run("s.json -o a.exr -o a.png --spp 4 --pass-spp 2 --crop 0.25,0.5,0.75,1 --aov Z,albedo:float "
+                    "--checkpoint a.ckpt --checkpoint-every 0 --exposure 1.5 --view aces --report run.json --quiet");
+  ASSERT_EQ(r.status, 0) << r.err;
+  nlohmann::json rec = read_json("run.json");
+  EXPECT_EQ(rec["output"]["files"], (nlohmann::json{"a.exr", "a.png"}));
+  // [floor(0.25 * 32), ceil(0.75 * 32)) x [floor(0.5 * 24), 24)
+  EXPECT_EQ(rec["output"]["crop"], (nlohmann::json{{"x", 8}, {"y", 12}, {"width", 16}, {"height", 12}}));
+  EXPECT_EQ(rec["output"]["beauty_type"], "float");
+  EXPECT_EQ(rec["output"]["aovs"], nlohmann::json::parse(R"([{"name": "albedo", "type": "float"},
+                                                              {"name": "Z", "type": "float"}])"));
+  EXPECT_EQ(rec["progress"]["pass_spp"], 2);
+  EXPECT_EQ(rec["progress"]["passes"], 2);
+  EXPECT_EQ(rec["checkpoint"]["file"], "a.ckpt");
+  EXPECT_EQ(rec["checkpoint"]["every_seconds"], 0.0);
+  EXPECT_TRUE(rec["checkpoint"]["resumed_from"].is_null());
+  EXPECT_EQ(rec["display"]["transform"], "srgb");
+  EXPECT_EQ(rec["display"]["exposure"], 1.5);
+  EXPECT_EQ(rec["display"]["view"], "aces");
+  EXPECT_EQ(rec["display"]["display"], "");
+  EXPECT_EQ(rec["display"]["look"], "");
+  EXPECT_TRUE(rec["display"]["ocio_config"].is_null());
+  const std::string pipeline = rec["display"]["pipeline"];
+  EXPECT_NE(pipeline.find("'aces'"), std::string::npos) << pipeline;
+  EXPECT_NE(pipeline.find("exposure 1.5 stops"), std::string::npos) << pipeline;
+
+  // Resumed to 6 spp: the checkpoint it came from; a crop given in pixels.
+  r = run("s.json -o b.exr --spp 6 --pass-spp 2 --crop-px 8,12,16,12 --aov albedo:float,Z --resume a.ckpt "
+          "--report resumed.json --quiet");
+  ASSERT_EQ(r.status, 0) << r.err;
+  rec = read_json("resumed.json");
+  EXPECT_EQ(rec["checkpoint"]["resumed_from"], "a.ckpt");
+  EXPECT_TRUE(rec["checkpoint"]["file"].is_null());
+  EXPECT_EQ(rec["progress"]["resumed_spp"], 4);
+  EXPECT_EQ(rec["output"]["crop"], (nlohmann::json{{"x", 8}, {"y", 12}, {"width", 16}, {"height", 12}}));
+
+  // Without a crop, the whole frame; under a time budget alone the passes adapt.
+  ASSERT_EQ(run("s.json -o c.exr --time-budget 0.2 --report budget.json --quiet").status, 0);
+  rec = read_json("budget.json");
+  EXPECT_EQ(rec["output"]["crop"], (nlohmann::json{{"x", 0}, {"y", 0}, {"width", 32}, {"height", 24}}));
+  EXPECT_EQ(rec["output"]["aovs"], nlohmann::json::array());
+  EXPECT_EQ(rec["progress"]["pass_spp"], "adaptive");
+  EXPECT_EQ(rec["display"]["view"], "");
+}
+
+}  // namespace
+}  // namespace pt::test
