@@ -106,7 +106,9 @@ TEST_F(ExrReadBack, EveryAovChannelTypeTheCropWindowAndEveryMetadataKey) {
   const auto attribute = [&](const char* name, OIIO::TypeDesc type) {
     const OIIO::ParamValue* p = spec.find_attribute(name);
     EXPECT_TRUE(p) << name;
-    if (p) EXPECT_EQ(p->type(), type) << name;
+    if (p) {
+      EXPECT_EQ(p->type(), type) << name;
+    }
     return p;
   };
   const std::string version = rec["software"]["version"];
