@@ -24,8 +24,14 @@ std::string describe_search(const std::string& scene_path, const std::string& wr
   const fs::path in_scene = fs::absolute(dir, ec) / w;
   const fs::path in_cwd = fs::current_path(ec) / w;
   for (const fs::path& candidate : {in_scene, in_cwd})
-    if (fs::is_directory(candidate, ec))
-      return "'" + candidate.lexically_normal().string() + "' is a directory, not a file";
+    if (fs::is_directory(candidate, ec)) {
+      // Appended rather than "'" + ... : GCC 12 warns (-Wrestrict) on that
+      // temporary's concatenation, wrongly.
+      std::string message = "'";
+      message += candidate.lexically_normal().string();
+      message += "' is a directory, not a file";
+      return message;
+    }
   return "looked in the scene's directory ('" + in_scene.lexically_normal().string() +
          "') and the working directory ('" + in_cwd.lexically_normal().string() + "')";
 }
