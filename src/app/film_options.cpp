@@ -63,6 +63,8 @@ void print_replay(const Film& film, int x, int y, int sample) {
   const RGB v = non_finite.total() > 0 ? non_finite.value : film.sum(x, y).value();
   std::cout << std::setprecision(9) << "replay pixel (" << x << ", " << y << ") sample " << sample << ": radiance "
             << v.r << " " << v.g << " " << v.b << '\n';
+  // The pixel is the mean of its samples weighted by this (1 for the box filter).
+  std::cout << "  filter weight: " << film.sum(x, y).weight << '\n';
   for (const AovRequest& r : film.aovs()) {
     if (r.type == AovType::Samples || r.type == AovType::Variance) continue;
     std::cout << "  " << aov_info(r.type).name << ":";

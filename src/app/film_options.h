@@ -23,7 +23,7 @@ bool crop_window(const Options& o, int width, int height, PixelRect& out);
 // Bytes the film stores per pixel for these AOVs (the memory pre-flight).
 std::size_t film_bytes_per_pixel(const std::vector<AovRequest>& aovs);
 
-// Prints the replayed sample of pixel (x, y): its radiance and its AOVs.
+// Prints the replayed sample of pixel (x, y): its radiance, filter weight and AOVs.
 void print_replay(const Film& film, int x, int y, int sample);
 
 }  // namespace pt
