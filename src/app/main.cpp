@@ -72,7 +72,7 @@ struct Job {
   DisplaySettings display;
   int width = 0, height = 0;
   MemoryEstimate memory;
-  std::vector<AovRequest> aovs;  // --aov (every AOV for --replay)
+  std::vector<AovRequest> aovs;  // --aov (every AOV for a replay)
   CheckpointInfo identity;  // scene hash and settings, for --checkpoint and --resume
 };
 
@@ -123,8 +123,8 @@ std::optional<Job> prepare(const Options& o, double& parse_s, int& status) {
   }
   // A replay needs the render's pass plan (below), not its length: under a
   // time budget without a sample target any sample index is accepted.
-  if (!o.replay.empty() && (o.replay[2] < 0 || (plan.target_spp > 0 && o.replay[2] >= plan.target_spp))) {
-    std::cerr << "error: --replay: sample " << o.replay[2];
+  if (o.replaying() && (o.replay[2] < 0 || (plan.target_spp > 0 && o.replay[2] >= plan.target_spp))) {
+    std::cerr << "error: " << o.sample_option() << ": sample " << o.replay[2];
     if (o.replay[2] < 0)
       std::cerr << " is negative\n";
     else
@@ -225,7 +225,7 @@ class Checkpointer {
   Clock::time_point last_;
 };
 
-// --replay: renders only that sample of that pixel (the film is cropped to it)
+// --pixel X,Y --sample N (or --replay X,Y,N): renders only that sample of that pixel (the film is cropped to it)
 // and prints its radiance and AOVs. The options are the render's, so the plan
 // is too: the sampler is made for the size of the pass that drew the sample
 // (the jittered sampler and the pixel grid stratify per pass).
@@ -243,12 +243,12 @@ RenderOutcome replay_sample(const Options& o, const Job& job, const RenderScene&
 }
 
 int run(const Options& o) {
-  if (o.outputs.empty() && o.replay.empty()) {
-    std::cerr << "error: --output is required (except with --replay)\n";
+  if (o.outputs.empty() && !o.replaying()) {
+    std::cerr << "error: --output is required (except for a replay, --pixel or --replay)\n";
     return kExitUsage;
   }
   if (!check_outputs(o.outputs)) return kExitUsage;
-  const bool replay = !o.replay.empty();
+  const bool replay = o.replaying();
   if (o.time_budget > 0 && o.spp == 0 && !o.quiet && !replay)
     std::cerr << "note: --time-budget without --spp renders until the time is up (the scene's spp is ignored)\n";
   if (replay && !o.quiet && !(o.outputs.empty() && o.checkpoint.empty() && o.report.empty()))
@@ -321,7 +321,7 @@ int run(const Options& o) {
   if (!outcome.cancelled && !o.checkpoint.empty()) checkpointer.write(outcome.spp_done);
   const NonFiniteReport& non_finite = film.non_finite();
   if (non_finite.total() > 0 && !o.quiet)
-    std::cerr << "warning: " << non_finite.describe() << "; they were added as black (replay one with --replay X,Y,N)\n";
+    std::cerr << "warning: " << non_finite.describe() << "; they were added as black" << replay_hint(non_finite) << '\n';
 
   // Write.
   t0 = Clock::now();

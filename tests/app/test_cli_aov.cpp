@@ -185,6 +185,79 @@ TEST_F(CliOutput, ATimeBudgetRenderReplaysWithoutSpp) {
   EXPECT_NEAR(sum / 2, two.at(12, 10).r, 1e-6);
 }
 
+// The documented interface is --pixel X,Y with --sample N (0 by default);
+// --replay X,Y,N is a shorthand for the same thing: one code path, the same
+// output.
+TEST_F(CliOutput, PixelAndSampleReplayExactlyAsTheReplayShorthand) {
+  const Result a = run("--integrator path --spp 4 --pixel 12,10 --sample 3");
+  const Result b = run("--integrator path --spp 4 --replay 12,10,3");
+  ASSERT_EQ(a.status, 0) << a.err;
+  ASSERT_EQ(b.status, 0) << b.err;
+  EXPECT_NE(a.out.find("replay pixel (12, 10) sample 3: radiance "), std::string::npos) << a.out;
+  EXPECT_EQ(a.out, b.out);
+  const Result zero = run("--integrator path --spp 4 --pixel 12,10");
+  ASSERT_EQ(zero.status, 0) << zero.err;
+  EXPECT_EQ(zero.out, run("--integrator path --spp 4 --replay 12,10,0").out);
+  EXPECT_NE(zero.out.find("replay pixel (12, 10) sample 0: "), std::string::npos) << zero.out;
+}
+
+// Bad replays are usage errors (exit 2) that name the option as it was
+// spelt; the two spellings exclude each other, and --sample needs --pixel.
+TEST_F(CliOutput, BadReplaysNameTheirOption) {
+  struct Case {
+    const char* args;
+    const char* message;  // on stderr
+  };
+  const Case cases[] = {
+      {"--pixel 40,3", "error: --pixel: pixel (40, 3) is not inside the 32x24 frame"},
+      {"--replay 40,3,0", "error: --replay: pixel (40, 3) is not inside the 32x24 frame"},
+      {"--pixel -1,3", "error: --pixel: pixel (-1, 3) is not inside the 32x24 frame"},
+      {"--pixel 2147483647,0", "error: --pixel: pixel (2147483647, 0) is not inside the 32x24 frame"},
+      {"--pixel 3,3 --sample 1", "error: --sample: sample 1 is not one of the render's 1 samples per pixel"},
+      {"--replay 3,3,1", "error: --replay: sample 1 is not one of the render's 1 samples per pixel"},
+      {"--pixel 3,3 --sample -1", "error: --sample: sample -1 is negative"},
+      {"--replay 3,3,-2", "error: --replay: sample -2 is negative"},
+      {"--sample 0", "--sample requires --pixel"},
+      {"--pixel 3,3 --replay 3,3,0", "excludes"},
+      {"--pixel 3,3 --sample 0 --replay 3,3,0", "excludes"},
+      {"--pixel 3", "--pixel"},
+      {"--pixel 3,x", "--pixel"},
+      {"--replay 3,3", "--replay"},
+  };
+  for (const Case& c : cases) {
+    const Result r = run(c.args);
+    EXPECT_EQ(r.status, 2) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << "\n" << r.err;
+    EXPECT_EQ(r.out.find("replay pixel"), std::string::npos) << c.args;
+  }
+}
+
+// A point light of intensity 1e36 a hundredth above a floor: the floor under it
+// receives more than a float holds, so some samples are +Inf. The warning names
+// the first and the flags that replay it; those flags, added to the same
+// command, print that very sample.
+TEST_F(CliOutput, TheNonFiniteWarningGivesTheFlagsThatReplayTheFirstOffender) {
+  std::string scene = test::path_scene(32, 24, 4);
+  scene.replace(scene.find("\"materials\""), 0,
+                R"("lights": [{"type": "point", "position": [1.5, 0.01, 1], "intensity": [1e36, 1e36, 1e36]}], )");
+  write("hot.json", scene);
+  const Result r = AppTest::run("hot.json -o hot.exr --spp 4 --seed 3");
+  ASSERT_EQ(r.status, 0) << r.err;
+  int x = -1, y = -1, sample = -1;
+  const std::size_t first = r.err.find("first at pixel (");
+  ASSERT_NE(first, std::string::npos) << r.err;
+  ASSERT_EQ(std::sscanf(r.err.c_str() + first, "first at pixel (%d, %d) sample %d", &x, &y, &sample), 3) << r.err;
+  const std::string flags =
+      "--pixel " + std::to_string(x) + "," + std::to_string(y) + " --sample " + std::to_string(sample);
+  EXPECT_NE(r.err.find("; to replay the first, run this command again with " + flags + "\n"), std::string::npos)
+      << r.err;
+  const Result replay = AppTest::run("hot.json -o hot.exr --spp 4 --seed 3 " + flags);
+  ASSERT_EQ(replay.status, 0) << replay.err;
+  const std::string expected = "replay pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") sample " +
+                               std::to_string(sample) + ": radiance inf inf inf\n";
+  EXPECT_NE(replay.out.find(expected), std::string::npos) << replay.out;
+}
+
 // A replay writes nothing: not the outputs, checkpoint or run record of the
 // command it was added to (they would hold one pixel).
 TEST_F(CliOutput, AReplayWritesNoFiles) {
