@@ -15,7 +15,7 @@ namespace pt {
 bool film_aovs(const Options& o, std::vector<AovRequest>& out, ChannelType& beauty) {
   out.clear();
   beauty = ChannelType::Float;
-  if (!o.replay.empty()) {  // a replay reports every AOV of its one sample (they draw no random numbers)
+  if (o.replaying()) {  // a replay reports every AOV of its one sample (they draw no random numbers)
     for (const AovInfo& info : aov_catalogue()) out.push_back({info.type, info.default_type});
     return true;
   }
@@ -28,8 +28,14 @@ bool film_aovs(const Options& o, std::vector<AovRequest>& out, ChannelType& beau
 
 bool crop_window(const Options& o, int width, int height, PixelRect& out) {
   out = {0, 0, width, height};
-  if (!o.replay.empty()) {
-    out = {o.replay[0], o.replay[1], o.replay[0] + 1, o.replay[1] + 1};
+  if (o.replaying()) {
+    const int x = o.replay[0], y = o.replay[1];
+    if (x < 0 || y < 0 || x >= width || y >= height) {
+      std::cerr << "error: " << o.replay_option << ": pixel (" << x << ", " << y << ") is not inside the " << width
+                << "x" << height << " frame\n";
+      return false;
+    }
+    out = {x, y, x + 1, y + 1};
   } else if (!o.crop.empty()) {
     const std::vector<double>& c = o.crop;
     if (!(0.0 <= c[0] && c[0] < c[2] && c[2] <= 1.0 && 0.0 <= c[1] && c[1] < c[3] && c[3] <= 1.0)) {
@@ -48,7 +54,7 @@ bool crop_window(const Options& o, int width, int height, PixelRect& out) {
     out = {c[0], c[1], c[0] + c[2], c[1] + c[3]};
   }
   if (out.x0 < 0 || out.y0 < 0 || out.empty() || out.x1 > width || out.y1 > height) {
-    std::cerr << "error: " << (o.replay.empty() ? "the crop" : "the replayed pixel") << " [" << out.x0 << ", "
+    std::cerr << "error: the crop [" << out.x0 << ", "
               << out.x1 << ") x [" << out.y0 << ", " << out.y1 << ") is not inside the " << width << "x" << height
               << " frame\n";
     return false;
@@ -87,11 +93,19 @@ bool estimate_render_memory(const Options& o, const SceneDescription& scene, int
   return true;
 }
 
+std::string replay_hint(const NonFiniteReport& report) {
+  if (!report.has_first) return {};
+  return "; to replay the first, run this command again with --pixel " + std::to_string(report.x) + "," +
+         std::to_string(report.y) + " --sample " + std::to_string(report.sample);
+}
+
 void print_replay(const Film& film, int x, int y, int sample) {
   const NonFiniteReport& non_finite = film.non_finite();
   const RGB v = non_finite.total() > 0 ? non_finite.value : film.sum(x, y).value();
   std::cout << std::setprecision(9) << "replay pixel (" << x << ", " << y << ") sample " << sample << ": radiance "
             << v.r << " " << v.g << " " << v.b << '\n';
+  // The pixel is the mean of its samples weighted by this (1 for the box filter).
+  std::cout << "  filter weight: " << film.sum(x, y).weight << '\n';
   for (const AovRequest& r : film.aovs()) {
     if (r.type == AovType::Samples || r.type == AovType::Variance) continue;
     std::cout << "  " << aov_info(r.type).name << ":";

@@ -1,5 +1,6 @@
 // What the command line asks of the film: the AOV layers (--aov), the region
-// (--crop, --crop-px) and the replay of one sample (--replay); docs/output.md.
+// (--crop, --crop-px) and the replay of one sample (--pixel/--sample or
+// --replay); docs/output.md.
 #pragma once
 
 #include <cstddef>
@@ -42,7 +43,12 @@ std::size_t output_bytes_per_pixel(const std::vector<AovRequest>& aovs, const st
 bool estimate_render_memory(const Options& o, const SceneDescription& scene, int width, int height,
                             const std::vector<AovRequest>& aovs, MemoryEstimate& out);
 
-// Prints the replayed sample of pixel (x, y): its radiance and its AOVs.
+// How to replay the report's first offender: "; to replay the first, run this
+// command again with --pixel X,Y --sample N" (the same options give the same
+// pass plan, so the same sample); empty without an offender.
+std::string replay_hint(const NonFiniteReport& report);
+
+// Prints the replayed sample of pixel (x, y): its radiance, filter weight and AOVs.
 void print_replay(const Film& film, int x, int y, int sample);
 
 }  // namespace pt

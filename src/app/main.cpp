@@ -73,7 +73,7 @@ struct Job {
   DisplaySettings display;
   int width = 0, height = 0;
   MemoryEstimate memory;
-  std::vector<AovRequest> aovs;  // --aov (every AOV for --replay)
+  std::vector<AovRequest> aovs;  // --aov (every AOV for a replay)
   ChannelType beauty_type = ChannelType::Float;  // --aov beauty:half
   CheckpointInfo identity;  // scene hash and settings, for --checkpoint and --resume
 };
@@ -123,9 +123,14 @@ std::optional<Job> prepare(const Options& o, double& parse_s, int& status) {
     status = kExitUsage;
     return std::nullopt;
   }
-  if (!o.replay.empty() && (plan.target_spp <= 0 || o.replay[2] < 0 || o.replay[2] >= plan.target_spp)) {
-    std::cerr << "error: --replay: sample " << o.replay[2] << " is not one of the render's " << plan.target_spp
-              << " samples per pixel\n";
+  // A replay needs the render's pass plan (below), not its length: under a
+  // time budget without a sample target any sample index is accepted.
+  if (o.replaying() && (o.replay[2] < 0 || (plan.target_spp > 0 && o.replay[2] >= plan.target_spp))) {
+    std::cerr << "error: " << o.sample_option() << ": sample " << o.replay[2];
+    if (o.replay[2] < 0)
+      std::cerr << " is negative\n";
+    else
+      std::cerr << " is not one of the render's " << plan.target_spp << " samples per pixel\n";
     status = kExitUsage;
     return std::nullopt;
   }
@@ -225,11 +230,13 @@ class Checkpointer {
   Clock::time_point last_;
 };
 
-// --replay: renders only that sample of that pixel (the film is cropped to it)
-// and prints its radiance and AOVs.
+// --pixel X,Y --sample N (or --replay X,Y,N): renders only that sample of that pixel (the film is cropped to it)
+// and prints its radiance and AOVs. The options are the render's, so the plan
+// is too: the sampler is made for the size of the pass that drew the sample
+// (the jittered sampler and the pixel grid stratify per pass).
 RenderOutcome replay_sample(const Options& o, const Job& job, const RenderScene& scene, Film& film, WorkerPool& pool) {
   IntegratorSettings settings = job.settings;
-  settings.spp = job.plan.target_spp;  // samplers stratify over the full count
+  settings.spp = replay_sampler_spp(job.plan);
   settings.only_sample = o.replay[2];
   std::string error;
   make_integrator(job.integrator, settings, error)->render(scene, film, pool);
@@ -241,13 +248,16 @@ RenderOutcome replay_sample(const Options& o, const Job& job, const RenderScene&
 }
 
 int run(const Options& o) {
-  if (o.outputs.empty() && o.replay.empty()) {
-    std::cerr << "error: --output is required (except with --replay)\n";
+  if (o.outputs.empty() && !o.replaying()) {
+    std::cerr << "error: --output is required (except for a replay, --pixel or --replay)\n";
     return kExitUsage;
   }
   if (!check_outputs(o.outputs)) return kExitUsage;
-  if (o.time_budget > 0 && o.spp == 0 && !o.quiet)
+  const bool replay = o.replaying();
+  if (o.time_budget > 0 && o.spp == 0 && !o.quiet && !replay)
     std::cerr << "note: --time-budget without --spp renders until the time is up (the scene's spp is ignored)\n";
+  if (replay && !o.quiet && !(o.outputs.empty() && o.checkpoint.empty() && o.report.empty()))
+    std::cerr << "note: a replay writes no files (-o, --checkpoint and --report are ignored)\n";
   double parse_s = 0;
   int status = 0;
   std::optional<Job> job = prepare(o, parse_s, status);
@@ -278,7 +288,7 @@ int run(const Options& o) {
 
   // Render.
   Film film(scene->width, scene->height, crop, job->aovs);
-  if (!o.resume.empty()) {
+  if (!o.resume.empty() && !replay) {
     CheckpointInfo saved;
     std::string error;
     if (!read_checkpoint(o.resume, saved, film, error)) {
@@ -288,7 +298,7 @@ int run(const Options& o) {
   }
   const SignalCancellation signals;
   ProgressSettings progress;
-  progress.style = o.quiet || !o.replay.empty() ? ProgressStyle::None : (::isatty(STDERR_FILENO) ? ProgressStyle::Bar : ProgressStyle::Lines);
+  progress.style = o.quiet || replay ? ProgressStyle::None : (::isatty(STDERR_FILENO) ? ProgressStyle::Bar : ProgressStyle::Lines);
   progress.interval_s = o.progress_interval;
   progress.pixels = static_cast<int64_t>(crop.width()) * crop.height();
   progress.target_spp = job->plan.target_spp > 0 ? job->plan.target_spp - job->plan.start_spp : 0;
@@ -308,14 +318,15 @@ int run(const Options& o) {
   };
   t0 = Clock::now();
   monitor.start();
-  const RenderOutcome outcome = o.replay.empty() ? render_passes(*scene, film, pool, job->plan, settings, callbacks)
-                                                 : replay_sample(o, *job, *scene, film, pool);
+  const RenderOutcome outcome = replay ? replay_sample(o, *job, *scene, film, pool)
+                                      : render_passes(*scene, film, pool, job->plan, settings, callbacks);
   monitor.stop();
+  if (replay) return 0;  // printed; its one-pixel film is no image, checkpoint or record of the render
   const double render_s = seconds_since(t0);
   if (!outcome.cancelled && !o.checkpoint.empty()) checkpointer.write(outcome.spp_done);
   const NonFiniteReport& non_finite = film.non_finite();
   if (non_finite.total() > 0 && !o.quiet)
-    std::cerr << "warning: " << non_finite.describe() << "; they were added as black (replay one with --replay X,Y,N)\n";
+    std::cerr << "warning: " << non_finite.describe() << "; they were added as black" << replay_hint(non_finite) << '\n';
 
   // Write.
   t0 = Clock::now();

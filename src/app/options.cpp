@@ -40,7 +40,7 @@ void add_options(CLI::App& app, Options& o) {
   app.add_option("scene", o.scene, "Scene file (native, Path of Light or CGR JSON)")->required();
   app.add_option("-o,--output", o.outputs,
                  "Output image (.exr, .png, .jpg, .ppm); repeat to write several formats from one render "
-                 "(required except with --replay)")
+                 "(required except for a replay, --pixel or --replay)")
       ->allow_extra_args(false);
   app.add_option("--accel", o.accel, "Acceleration structure")
       ->check(CLI::IsMember(accel_kind_names()))
@@ -107,10 +107,27 @@ void add_options(CLI::App& app, Options& o) {
       ->delimiter(',')
       ->expected(4)
       ->excludes(crop);
-  app.add_option("--replay", o.replay,
-                 "Render only sample N of pixel (X, Y) (as a full render draws it) and print its radiance: X,Y,N")
+  auto* pixel = app.add_option("--pixel", o.pixel,
+                               "Replay: render only one sample of pixel X,Y, as the render with these options "
+                               "draws it, and print its radiance and AOVs (writes no files)")
+                    ->delimiter(',')
+                    ->expected(2);
+  auto* sample = app.add_option("--sample", o.sample, "Replay: the sample index N for --pixel (default 0)")
+                     ->needs(pixel);
+  app.add_option("--replay", o.replay, "Replay: X,Y,N, shorthand for --pixel X,Y --sample N")
       ->delimiter(',')
-      ->expected(3);
+      ->expected(3)
+      ->excludes(pixel)
+      ->excludes(sample);
+  // One code path for both spellings.
+  app.final_callback([&o] {
+    if (!o.pixel.empty()) {
+      o.replay = {o.pixel[0], o.pixel[1], o.sample};
+      o.replay_option = "--pixel";
+    } else if (!o.replay.empty()) {
+      o.replay_option = "--replay";
+    }
+  });
   app.set_version_flag("--version", [] { return version_text(); });
 }
 

@@ -45,7 +45,17 @@ struct Options {
   std::string aov;                 // --aov list; empty: beauty only
   std::vector<double> crop;        // fractions x0, y0, x1, y1; empty: the full frame
   std::vector<int> crop_px;        // pixels x, y, w, h; empty: the full frame
+  // The replay of one sample: --pixel X,Y [--sample N], or the shorthand
+  // --replay X,Y,N. Parsing folds both into `replay` (x, y, sample), which the
+  // rest of the program reads; `replay_option` is the spelling used.
+  std::vector<int> pixel;          // --pixel X,Y as given
+  int sample = 0;                  // --sample N (with --pixel)
   std::vector<int> replay;         // x, y, sample; empty: a normal render
+  std::string replay_option;       // "--pixel" or "--replay"; empty: a normal render
+
+  bool replaying() const { return !replay.empty(); }
+  // The option that gave the replayed sample's index (for messages).
+  const char* sample_option() const { return replay_option == "--pixel" ? "--sample" : "--replay"; }
 };
 
 // Exit statuses (docs/cli.md); a render stopped by a signal exits with 128 + its number.

@@ -42,6 +42,10 @@ int fixed_pass_size(const PassPlan& plan) {
   return std::max(1, size);
 }
 
+int replay_sampler_spp(const PassPlan& plan) {
+  return plan.equal_passes ? fixed_pass_size(plan) : std::max(1, plan.target_spp);
+}
+
 int adaptive_pass_size(double seconds_per_spp, double seconds_left, int previous, int spp_left) {
   if (seconds_left <= 0 || spp_left <= 0) return 0;
   if (!(seconds_per_spp > 0)) return std::min(spp_left, std::max(1, previous * 2));

@@ -32,6 +32,12 @@ struct PassPlan {
 
 // Fixed pass sizes (the size the plan gives every pass when not adaptive).
 int fixed_pass_size(const PassPlan& plan);
+// The sample count the samplers of the pass that rendered a sample of `plan`
+// were made with, so that a replay (--pixel, --replay) draws it exactly as the
+// render did: with equal passes (the jittered sampler and the classic pixel
+// grid stratify per pass) every pass has fixed_pass_size(plan) samples; the
+// other samplers (random, Sobol') do not depend on it (the target, or 1, then).
+int replay_sampler_spp(const PassPlan& plan);
 // Adaptive pass under a time budget: the next pass's size from the measured
 // seconds per sample-per-pixel and the time left. 0 means stop.
 int adaptive_pass_size(double seconds_per_spp, double seconds_left, int previous, int spp_left);

@@ -43,6 +43,28 @@ TEST(PassPlan, FixedSizes) {
   EXPECT_EQ(fixed_pass_size(p), 4);  // the default equal pass under a budget
 }
 
+// A replay's sampler is made for the size of the pass that drew the sample.
+TEST(PassPlan, ReplaySamplerSppIsThePassSize) {
+  PassPlan p;
+  p.target_spp = 2;
+  p.pass_spp = 1;
+  p.equal_passes = true;
+  EXPECT_EQ(replay_sampler_spp(p), 1);  // jittered, 2 spp in passes of 1
+  p.target_spp = 64;
+  p.pass_spp = 0;
+  EXPECT_EQ(replay_sampler_spp(p), 64);  // one pass
+  p.pass_spp = 10;
+  EXPECT_EQ(replay_sampler_spp(p), 8);
+  p = PassPlan{};
+  p.time_budget_s = 5;
+  p.equal_passes = true;
+  EXPECT_EQ(replay_sampler_spp(p), 4);  // a budget without a target: passes of 4
+  p.pass_spp = 2;
+  EXPECT_EQ(replay_sampler_spp(p), 2);
+  p.equal_passes = false;
+  EXPECT_EQ(replay_sampler_spp(p), 1);  // random, Sobol': any size draws the same samples
+}
+
 TEST(PassPlan, AdaptiveSizesFitTheTimeLeft) {
   EXPECT_EQ(adaptive_pass_size(0.0, 10.0, 0, 1000), 1);    // first pass: one sample to measure
   EXPECT_EQ(adaptive_pass_size(0.0, 10.0, 4, 1000), 8);    // unmeasured: doubles

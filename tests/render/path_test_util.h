@@ -23,9 +23,17 @@ inline IntegratorSettings path_settings(int spp, int max_depth = 64, uint64_t se
   return s;
 }
 
+// A render's image and its film's report of non-finite samples. The render
+// loop adds a NaN or infinite sample as black, so the image alone cannot show
+// one: a test that promises "no NaN" checks `non_finite.total() == 0`.
+struct Rendered {
+  Image image;
+  NonFiniteReport non_finite;
+};
+
 // Renders `d` with the named integrator; an empty image (and a test failure) on error.
-inline Image render_with(const SceneDescription& d, const std::string& integrator, const IntegratorSettings& settings,
-                         int threads = 2, const BuildOptions& options = {}) {
+inline Rendered render_film(const SceneDescription& d, const std::string& integrator,
+                            const IntegratorSettings& settings, int threads = 2, const BuildOptions& options = {}) {
   WorkerPool pool(threads);
   auto scene = build(d, pool, options);
   if (!scene) return {};
@@ -35,7 +43,12 @@ inline Image render_with(const SceneDescription& d, const std::string& integrato
   if (!in) return {};
   Film film(scene->width, scene->height);
   in->render(*scene, film, pool);
-  return film.image();
+  return {film.image(), film.non_finite()};
+}
+
+inline Image render_with(const SceneDescription& d, const std::string& integrator, const IntegratorSettings& settings,
+                         int threads = 2, const BuildOptions& options = {}) {
+  return render_film(d, integrator, settings, threads, options).image;
 }
 
 inline Image render_path(const SceneDescription& d, const IntegratorSettings& settings, int threads = 2) {

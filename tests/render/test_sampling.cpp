@@ -28,6 +28,27 @@ TEST(Sampling, SquareCountsAreStratified) {
   EXPECT_EQ(cells.size(), 16u);  // one sample in every cell
 }
 
+// Progressive passes of n = 4 samples (docs/cli.md): sample i is sample
+// i mod n of pass i / n, and every pass is stratified on its own, inside the
+// pixel (samples 4..7 used to land in the rows below it: cell i / 2 >= 2).
+TEST(Sampling, EveryPassIsStratifiedInsideThePixel) {
+  const int n = 4, k = 2;
+  for (int pass = 0; pass < 3; ++pass) {
+    std::set<std::pair<int, int>> cells;
+    for (int s = pass * n; s < (pass + 1) * n; ++s) {
+      const Vec2f p = sample_position(10, 20, s, n, 7, 12345);
+      ASSERT_GE(p.x, 10.0f) << s;
+      ASSERT_LT(p.x, 11.0f) << s;
+      ASSERT_GE(p.y, 20.0f) << s;
+      ASSERT_LT(p.y, 21.0f) << s;
+      cells.insert({static_cast<int>((p.x - 10.0f) * k), static_cast<int>((p.y - 20.0f) * k)});
+    }
+    EXPECT_EQ(cells.size(), 4u) << "pass " << pass;
+  }
+  // Later passes jitter differently from the first.
+  EXPECT_FALSE(sample_position(10, 20, 0, n, 7, 12345) == sample_position(10, 20, n, n, 7, 12345));
+}
+
 TEST(Sampling, OtherCountsStayInThePixelAndDiffer) {
   std::set<std::pair<float, float>> seen;
   for (int s = 0; s < 5; ++s) {

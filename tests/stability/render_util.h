@@ -59,11 +59,16 @@ inline MeshDesc sphere_mesh(Vec3f centre, float radius, int rings, int segments)
   return m;
 }
 
-// Renders `d` with the path integrator and the backend named by the test parameter.
-inline Image render_on(AccelKind kind, const SceneDescription& d, const IntegratorSettings& settings) {
+// Renders `d` with the path integrator and the backend named by the test
+// parameter: the image and the film's non-finite report.
+inline Rendered render_film_on(AccelKind kind, const SceneDescription& d, const IntegratorSettings& settings) {
   BuildOptions options;
   options.accel = kind;
-  return render_with(d, "path", settings, 2, options);
+  return render_film(d, "path", settings, 2, options);
+}
+
+inline Image render_on(AccelKind kind, const SceneDescription& d, const IntegratorSettings& settings) {
+  return render_film_on(kind, d, settings).image;
 }
 
 inline bool all_finite(const Image& img) {

@@ -57,7 +57,9 @@ TEST_P(Dielectrics, NestedAndTouchingGlassInAWhiteFurnaceIsExactlyOne) {
     SceneDescription d = test::empty_scene(40, 40, {0.3f, 0.2f, 4}, {0, 0, 0}, {0, 1, 0}, 35);
     d.render.background = RGB(1.0f);
     c.add(d, add_material(d, glass_material(1.5f)));
-    const Image img = test::render_on(kind(), d, test::path_settings(16, 512));
+    const test::Rendered r = test::render_film_on(kind(), d, test::path_settings(16, 512));
+    EXPECT_EQ(r.non_finite.total(), 0u) << r.non_finite.describe();
+    const Image& img = r.image;
     ASSERT_EQ(img.pixels.size(), 1600u);
     float lowest = 1.0f, highest = 1.0f;
     for (const RGB& p : img.pixels) {
@@ -84,8 +86,10 @@ TEST_P(Dielectrics, CoincidentGlassFacesNeverCreateEnergy) {
   const int g = add_material(d, glass_material(1.5f));
   add_shape(d, test::box_mesh({-0.8f, -0.5f, -0.5f}, {0, 0.5f, 0.5f}), g);
   add_shape(d, test::box_mesh({0, -0.5f, -0.5f}, {0.8f, 0.5f, 0.5f}), g);  // coincident faces at x = 0
-  const Image img = test::render_on(kind(), d, test::path_settings(16, 512));
+  const test::Rendered r = test::render_film_on(kind(), d, test::path_settings(16, 512));
+  const Image& img = r.image;
   ASSERT_TRUE(test::all_finite(img));
+  ASSERT_EQ(r.non_finite.total(), 0u) << r.non_finite.describe();  // NaN would be added as black
   for (const RGB& p : img.pixels) ASSERT_LT(p.max_component(), 1.0f + 1e-4f);
 }
 

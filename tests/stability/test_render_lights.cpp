@@ -47,8 +47,10 @@ SceneDescription lit_floor() {
 TEST_P(DifficultLights, ZeroAreaAndZeroPowerLightsChangeNothing) {
   const SceneDescription base = lit_floor();
   const IntegratorSettings settings = test::path_settings(8, 5);
-  const Image expected = test::render_on(kind(), base, settings);
+  const test::Rendered without = test::render_film_on(kind(), base, settings);
+  const Image& expected = without.image;
   ASSERT_TRUE(test::all_finite(expected));
+  ASSERT_EQ(without.non_finite.total(), 0u) << without.non_finite.describe();
 
   SceneDescription d = base;
   const int bright = add_material(d, test::emitter_material(RGB(1e4f)));
@@ -63,7 +65,9 @@ TEST_P(DifficultLights, ZeroAreaAndZeroPowerLightsChangeNothing) {
   MaterialDesc dark = test::emitter_material(RGB(0.0f));
   dark.two_sided = true;
   add_shape(d, quad({-50, 50, 50}, {-49, 50, 50}, {-49, 51, 50}, {-50, 51, 50}), add_material(d, dark));
-  const Image img = test::render_on(kind(), d, settings);
+  const test::Rendered with = test::render_film_on(kind(), d, settings);
+  EXPECT_EQ(with.non_finite.total(), 0u) << with.non_finite.describe();
+  const Image& img = with.image;
   ASSERT_EQ(img.pixels.size(), expected.pixels.size());
   EXPECT_EQ(std::memcmp(img.pixels.data(), expected.pixels.data(), img.pixels.size() * sizeof(RGB)), 0);
 }
@@ -127,8 +131,10 @@ TEST_P(DifficultLights, TinyBrightSphereLightIsExactAndFireflyFree) {
     const float dist = length(to);
     return rho * le * (radius / dist) * (radius / dist) * (to.y / dist);
   };
-  const Image direct = test::render_on(kind(), d, test::path_settings(16, 1));
+  const test::Rendered direct_render = test::render_film_on(kind(), d, test::path_settings(16, 1));
+  const Image& direct = direct_render.image;
   ASSERT_TRUE(test::all_finite(direct));
+  ASSERT_EQ(direct_render.non_finite.total(), 0u) << direct_render.non_finite.describe();
   int light_pixels = 0;
   for (int y = 0; y < 64; ++y)
     for (int x = 0; x < 64; ++x) {
@@ -150,8 +156,10 @@ TEST_P(DifficultLights, TinyBrightSphereLightIsExactAndFireflyFree) {
 
   add_shape(d, quad({1.2f, 0, -3}, {1.2f, 3, -3}, {1.2f, 3, 3}, {1.2f, 0, 3}),  // a wall at x = 1.2 facing -x
             add_material(d, test::lambert_material(RGB(0.9f))));
-  const Image bounced = test::render_on(kind(), d, test::path_settings(16, 5));
+  const test::Rendered bounced_render = test::render_film_on(kind(), d, test::path_settings(16, 5));
+  const Image& bounced = bounced_render.image;
   ASSERT_TRUE(test::all_finite(bounced));
+  ASSERT_EQ(bounced_render.non_finite.total(), 0u) << bounced_render.non_finite.describe();
   int fireflies = 0;
   for (int y = 0; y < 64; ++y)
     for (int x = 0; x < 64; ++x) {

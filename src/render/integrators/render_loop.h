@@ -24,7 +24,8 @@ struct RenderScene;
 // Film position (in pixels) of sample `index` of `spp` in pixel (x, y) under
 // the classic integrators' StratifiedPixelSampler:
 //  - spp == 1: the pixel centre;
-//  - spp a perfect square n*n: one jittered sample in each cell of an n x n grid;
+//  - spp a perfect square n*n: one jittered sample in each cell of an n x n grid
+//    (sample `index` in cell index mod spp: each pass of spp samples fills it once);
 //  - otherwise: uniformly random positions in the pixel.
 // The jitter comes from Rng(hash(seed, pixel_index, index)).
 Vec2f sample_position(int x, int y, int index, int spp, uint64_t seed, uint64_t pixel_index);

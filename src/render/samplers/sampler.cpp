@@ -33,7 +33,10 @@ void StratifiedPixelSampler::start(uint64_t pixel_index, int index) {
     const float u = rng.next_float();
     const float v = rng.next_float();
     if (grid_ > 0) {
-      const int cx = index % grid_, cy = index / grid_;
+      // Sample `index` is sample index % spp of pass index / spp: each pass of
+      // spp samples fills the grid once (progressive passes, docs/cli.md).
+      const int cell = index % spp_;
+      const int cx = cell % grid_, cy = cell / grid_;
       const float inv = 1.0f / static_cast<float>(grid_);
       pixel_ = {(static_cast<float>(cx) + u) * inv, (static_cast<float>(cy) + v) * inv};
     } else {

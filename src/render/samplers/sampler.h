@@ -55,8 +55,9 @@ class IndependentSampler {
 
 // The classic integrators' sampler (docs/rendering.md): the pixel position of
 // sample i of n is the pixel centre for n = 1, one jittered sample in each
-// cell of a k x k grid for n = k^2, and uniform in the pixel otherwise; the
-// jitter comes from Rng(hash(seed, y * width + x, i)). Every other dimension
+// cell of a k x k grid for n = k^2 (sample i in cell i mod n, so each pass of
+// n samples of a progressive render fills the grid once), and uniform in the
+// pixel otherwise; the jitter comes from Rng(hash(seed, y * width + x, i)). Every other dimension
 // (the thin lens) comes from a second stream keyed on the same values.
 class StratifiedPixelSampler {
  public:
