@@ -336,6 +336,10 @@ int run(const Options& o) {
   stamp.seed = settings.seed;
   stamp.backend = scene->accel->stats().backend;
   stamp.integrator = job->integrator;
+  stamp.sampler = job->integrator == "path" ? sampler_type_name(settings.sampler) : "pixel-grid";
+  stamp.filter = job->integrator == "path" ? pixel_filter_name(settings.filter) : "box";
+  stamp.max_depth = settings.max_depth;
+  stamp.clamp = settings.clamp;
   stamp.software_version = PT_VERSION;
   stamp.partial = outcome.cancelled;
   stamp.has_camera = true;

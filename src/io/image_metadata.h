@@ -36,6 +36,10 @@ struct RenderStamp {
   uint64_t seed = 0;
   std::string backend;     // the accelerator's description
   std::string integrator;
+  std::string sampler;  // the path integrator's; the classic integrators use the pixel grid (docs/rendering.md)
+  std::string filter;   // pixel filter
+  int max_depth = 0;
+  float clamp = 0.0f;   // firefly clamp on each sample's radiance; 0: off
   std::string software_version;
   // A signal (SIGINT, SIGTERM) stopped the render: some pixels have fewer
   // samples than others. Not set when a time budget runs out: that is the
@@ -45,10 +49,11 @@ struct RenderStamp {
   ImageMetadata::Matrix world_to_camera{}, world_to_ndc{};
 };
 
-// Adds `stamp` to `metadata`: pathtracer:renderTime (float seconds),
-// pathtracer:spp, pathtracer:partial (int 0/1), pathtracer:seed,
-// pathtracer:backend, pathtracer:integrator, pathtracer:version (strings),
-// and worldToCamera / worldToNDC when has_camera.
+// Adds `stamp` to `metadata`: pathtracer:renderTime, pathtracer:clamp
+// (float; clamp 0 means off), pathtracer:spp, pathtracer:maxDepth,
+// pathtracer:partial (int 0/1), pathtracer:seed, pathtracer:backend,
+// pathtracer:integrator, pathtracer:sampler, pathtracer:filter,
+// pathtracer:version (strings), and worldToCamera / worldToNDC when has_camera.
 inline void add_render_stamp(ImageMetadata& metadata, const RenderStamp& stamp) {
   metadata.set("pathtracer:renderTime", static_cast<float>(stamp.render_seconds));
   metadata.set("pathtracer:spp", stamp.spp);
@@ -56,6 +61,10 @@ inline void add_render_stamp(ImageMetadata& metadata, const RenderStamp& stamp) 
   metadata.set("pathtracer:seed", std::to_string(stamp.seed));  // 64 bits: a string
   metadata.set("pathtracer:backend", stamp.backend);
   metadata.set("pathtracer:integrator", stamp.integrator);
+  metadata.set("pathtracer:sampler", stamp.sampler);
+  metadata.set("pathtracer:filter", stamp.filter);
+  metadata.set("pathtracer:maxDepth", stamp.max_depth);
+  metadata.set("pathtracer:clamp", stamp.clamp);
   metadata.set("pathtracer:version", stamp.software_version);
   if (stamp.has_camera) {
     metadata.set("worldToCamera", stamp.world_to_camera);

@@ -51,6 +51,10 @@ expect 'pathtracer:backend: "bvh'
 expect 'pathtracer:integrator: "path"'
 expect "pathtracer:version: \"$version\""
 expect "pathtracer:partial: 0"
+expect 'pathtracer:sampler: "sobol"'
+expect 'pathtracer:filter: "box"'
+expect "pathtracer:maxDepth: "
+expect "pathtracer:clamp: 0"
 expect "Software: \"pathtracer $version\""
 expect "worldToCamera: "
 expect "worldToNDC: "

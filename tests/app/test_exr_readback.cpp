@@ -72,6 +72,7 @@ class ExrReadBack : public AppTest {};
 TEST_F(ExrReadBack, EveryAovChannelTypeTheCropWindowAndEveryMetadataKey) {
   write("s.json", path_scene(48, 32, 1));
   const RunResult r = run(std::string("s.json -o out.exr --spp 3 --seed 12345678901234 --accel bvh --crop-px 8,4,20,16 "
+                                      "--sampler jittered --filter box --max-depth 7 --clamp 20 "
                                       "--report run.json --quiet --aov ") + kAllAovs);
   ASSERT_EQ(r.status, 0) << r.err;
   const nlohmann::json rec = read_json("run.json");
@@ -125,6 +126,16 @@ TEST_F(ExrReadBack, EveryAovChannelTypeTheCropWindowAndEveryMetadataKey) {
   EXPECT_EQ(spec.get_string_attribute("pathtracer:backend"), rec["accel"]["backend"].get<std::string>());
   attribute("pathtracer:integrator", OIIO::TypeString);
   EXPECT_EQ(spec.get_string_attribute("pathtracer:integrator"), "path");
+  // How the samples were taken (the firefly clamp above all: an image that was
+  // clamped must say so).
+  attribute("pathtracer:sampler", OIIO::TypeString);
+  EXPECT_EQ(spec.get_string_attribute("pathtracer:sampler"), "jittered");
+  attribute("pathtracer:filter", OIIO::TypeString);
+  EXPECT_EQ(spec.get_string_attribute("pathtracer:filter"), "box");  // P must project into its pixel
+  attribute("pathtracer:maxDepth", OIIO::TypeInt);
+  EXPECT_EQ(spec.get_int_attribute("pathtracer:maxDepth"), 7);
+  attribute("pathtracer:clamp", OIIO::TypeFloat);
+  EXPECT_EQ(spec.get_float_attribute("pathtracer:clamp"), 20.0f);
   attribute("pathtracer:version", OIIO::TypeString);
   EXPECT_EQ(spec.get_string_attribute("pathtracer:version"), version);
   attribute("pathtracer:partial", OIIO::TypeInt);
