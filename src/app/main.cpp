@@ -265,7 +265,7 @@ int run(const Options& o) {
 
   // Build.
   auto t0 = Clock::now();
-  AccelKind accel = AccelKind::Embree;
+  AccelKind accel = AccelKind::Bvh;
   parse_accel_kind(o.accel, accel);  // already validated by CLI11
   WorkerPool pool(o.threads);
   Diagnostics build_diag;

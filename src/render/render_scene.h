@@ -70,7 +70,7 @@ struct RenderScene {
 
 
 struct BuildOptions {
-  AccelKind accel = AccelKind::Embree;
+  AccelKind accel = AccelKind::Bvh;  // as the command line's default
   int width_override = 0;   // > 0 replaces the description's resolution
   int height_override = 0;
   int max_resolution = 32768;       // per side, as LoadOptions

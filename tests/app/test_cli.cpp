@@ -176,7 +176,7 @@ TEST_F(Cli, ReportRecordsSettingsAndPhases) {
   EXPECT_EQ(j["image"]["integrator"], "whitted");
   EXPECT_EQ(j["threads"], 2);
   EXPECT_EQ(j["accel"]["primitive_count"], 2);
-  EXPECT_NE(j["accel"]["backend"].get<std::string>().find("embree"), std::string::npos);
+  EXPECT_NE(j["accel"]["backend"].get<std::string>().find("bvh"), std::string::npos);
   double sum = 0;
   for (const char* phase : {"parse", "mesh_load", "texture_load", "scene_build", "accel_build", "render", "write"}) {
     const double t = j["timings"][phase];

@@ -49,7 +49,7 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 struct Options {
-  std::string scene, reference, csv, rect, accel = "embree", sampler = "random";
+  std::string scene, reference, csv, rect, accel = "bvh", sampler = "random";
   std::string checkpoints, seeds = "1";
   int threads = 0, width = 0, height = 0, max_depth = -1;
   double max_seconds = 0.0;
@@ -153,7 +153,7 @@ int run(const Options& o) {
     }
     rect = r;
   }
-  pt::AccelKind accel = pt::AccelKind::Embree;
+  pt::AccelKind accel = pt::AccelKind::Bvh;
   pt::parse_accel_kind(o.accel, accel);  // validated by CLI11
   const pt::SamplerType sampler = pt::parse_sampler_type(o.sampler).value_or(pt::SamplerType::Random);
 
