@@ -114,7 +114,8 @@ bool check_shape(const ShapeDesc& shape, std::size_t index, Diagnostics& diag) {
 // ---------------------------------------------------------------- textures and materials
 // Decodes each texture some material references, once. Unreferenced textures
 // are never read. Returns false if any referenced texture failed to decode.
-bool load_textures(const SceneDescription& desc, RenderScene& scene, Diagnostics& diag) {
+bool load_textures(const SceneDescription& desc, const TextureLimits& limits, RenderScene& scene,
+                   Diagnostics& diag) {
   std::vector<bool> used(desc.textures.size(), false);
   for (const MaterialDesc& m : desc.materials) {
     if (!m.texture) continue;
@@ -133,7 +134,7 @@ bool load_textures(const SceneDescription& desc, RenderScene& scene, Diagnostics
     const TextureDesc& t = desc.textures[i];
     auto tex = std::make_unique<Texture>();
     std::string error;
-    if (!Texture::load(t.resolved, *tex, error)) {
+    if (!Texture::load(t.resolved, *tex, error, limits)) {
       diag.error(t.where, "cannot read texture '" + t.written + "': " + error);
       ok = false;
       continue;
@@ -239,7 +240,7 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDescription& desc, co
   scene->camera = Camera(desc.camera, scene->width, scene->height);
   scene->background = desc.render.background;
 
-  bool ok = load_textures(desc, *scene, diag);
+  bool ok = load_textures(desc, options.textures, *scene, diag);
   if (ok) {
     scene->materials.reserve(desc.materials.size());
     for (const MaterialDesc& m : desc.materials) scene->materials.push_back(to_material(m, *scene));
@@ -274,7 +275,7 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDescription& desc, co
 
   if (desc.environment) {
     std::string error;
-    scene->environment_map = EnvironmentMap::load(*desc.environment, error);
+    scene->environment_map = EnvironmentMap::load(*desc.environment, error, options.textures);
     if (!scene->environment_map) {
       diag.error(desc.environment->file.where,
                  "cannot read environment map '" + desc.environment->file.value + "': " + error);
