@@ -25,7 +25,9 @@ bool same(const CheckpointInfo& a, const CheckpointInfo& b) {
          a.spp_done == b.spp_done;
 }
 
-bool names_the_file(const std::string& error) { return error.find(std::string("'") + kName + "'") != std::string::npos; }
+bool names_the_file(const std::string& error) {
+  return error.find(std::string("'") + kName + "'") != std::string::npos;
+}
 
 }  // namespace
 
