@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer harnesses (tests/fuzz: scene, ply, obj) with clang,
-# AddressSanitizer and UndefinedBehaviorSanitizer in build-fuzz/, and runs each
-# for SECONDS (default 600), one after the other.
+# Builds the libFuzzer harnesses (tests/fuzz: scene, ply, obj, film_state,
+# checkpoint) with clang, AddressSanitizer and UndefinedBehaviorSanitizer in
+# build-fuzz/, and runs each for SECONDS (default 600), one after the other.
 #
-#   tools/fuzz.sh [SECONDS] [HARNESS...]      e.g. tools/fuzz.sh 60 ply
+#   tools/fuzz.sh [SECONDS] [HARNESS...]      e.g. tools/fuzz.sh 60 ply, tools/fuzz.sh 600 checkpoint
 #
 # Corpora grow in build-fuzz/fuzz-corpus/<harness>/ (kept between runs, never
 # committed); seeds are assembled from the repository (scenes, bad scenes,
@@ -19,7 +19,7 @@ build="${PT_FUZZ_BUILD_DIR:-$repo/build-fuzz}"
 seconds="${1:-600}"
 shift || true
 harnesses=("$@")
-((${#harnesses[@]})) || harnesses=(scene ply obj film_state)
+((${#harnesses[@]})) || harnesses=(scene ply obj film_state checkpoint)
 shared="$repo/../shared"
 
 command -v clang++ >/dev/null || { echo "fuzz: clang++ is needed (apt-get install clang)" >&2; exit 2; }
@@ -38,6 +38,7 @@ seed_files() {
     ply)   dirs=(scenes/assets tests/hostile/files tests/fuzz/seeds/ply); pattern='*.ply' ;;
     obj)   dirs=(tests/hostile/files tests/fuzz/seeds/obj); pattern='*.obj' ;;
     film_state) dirs=(tests/fuzz/seeds/film_state); pattern='*.bin' ;;
+    checkpoint) dirs=(tests/fuzz/seeds/checkpoint); pattern='*.ckpt' ;;
   esac
   for d in "${dirs[@]}"; do [ -d "$repo/$d" ] && find "$repo/$d" -maxdepth 1 -type f -name "$pattern"; done
   case "$1" in  # ../shared beside the checkout, when present

@@ -1,8 +1,12 @@
 #include "app/checkpoint.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <istream>
 #include <iterator>
+#include <ostream>
+#include <utility>
 
 #include "io/atomic_file.h"
 #include "render/film/film.h"
@@ -20,26 +24,103 @@ uint64_t fnv1a(uint64_t h, const char* data, std::size_t n) {
   return h;
 }
 
+// A header line longer than this is not one of ours (they are a few hundred
+// bytes); reading on would let a damaged file claim any amount of memory.
+constexpr std::size_t kMaxHeaderBytes = 64 * 1024;
+
+// Ours nest 2 deep; deeper values are refused before they are parsed and
+// printed (printing a JSON value recurses once per level).
+constexpr int kMaxHeaderDepth = 16;
+
+// The deepest nesting of arrays and objects in a JSON text (strings skipped).
+int nesting_depth(const std::string& text) {
+  int depth = 0, deepest = 0;
+  bool in_string = false, escaped = false;
+  for (char c : text) {
+    if (in_string) {
+      if (escaped)
+        escaped = false;
+      else if (c == '\\')
+        escaped = true;
+      else if (c == '"')
+        in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      deepest = std::max(deepest, ++depth);
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return deepest;
+}
+
+bool damaged(const std::string& path, const std::string& why, std::string& error) {
+  error = "'" + path + "': damaged checkpoint header: " + why;
+  return false;
+}
+
+// A JSON value for a message: its type and, shortened, the value.
+std::string shown(const nlohmann::ordered_json& v) {
+  std::string text = v.dump();
+  if (text.size() > 40) text = text.substr(0, 37) + "...";
+  return std::string(v.type_name()) + " " + text;
+}
+
+bool is_hash(const std::string& s) {
+  return s.size() == 16 && std::all_of(s.begin(), s.end(), [](char c) {
+           return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
+         });
+}
+
+// Reads up to '\n' (not stored); false at the end of the stream or past `limit` bytes.
+bool read_line(std::istream& in, std::string& line, std::size_t limit) {
+  line.clear();
+  for (int c = in.get(); c != std::char_traits<char>::eof(); c = in.get()) {
+    if (c == '\n') return true;
+    if (line.size() == limit) return false;
+    line.push_back(static_cast<char>(c));
+  }
+  return false;
+}
+
 bool read_header(std::istream& in, const std::string& path, CheckpointInfo& info, std::string& error) {
   std::string magic, json;
-  if (!std::getline(in, magic) || magic != kMagicLine) {
+  if (!read_line(in, magic, 64) || magic != kMagicLine) {
     error = "'" + path + "' is not a pathtracer checkpoint";
     return false;
   }
-  if (!std::getline(in, json)) {
-    error = "'" + path + "': truncated checkpoint header";
-    return false;
+  if (!read_line(in, json, kMaxHeaderBytes)) {
+    return damaged(path, in.eof() ? "the file ends inside its second line (truncated)"
+                                  : "its second line is longer than " + std::to_string(kMaxHeaderBytes) + " bytes",
+                   error);
   }
+  if (nesting_depth(json) > kMaxHeaderDepth)
+    return damaged(path, "its JSON nests deeper than " + std::to_string(kMaxHeaderDepth) + " levels", error);
   const nlohmann::ordered_json j = nlohmann::ordered_json::parse(json, nullptr, false);
-  if (j.is_discarded() || !j.is_object() || !j.contains("scene") || !j.contains("scene_hash") ||
-      !j.contains("settings") || !j.contains("spp_done") || !j["spp_done"].is_number_integer()) {
-    error = "'" + path + "': damaged checkpoint header";
-    return false;
+  if (j.is_discarded() || !j.is_object()) return damaged(path, "its second line is not a JSON object", error);
+  for (const char* key : {"scene", "scene_hash", "settings", "spp_done"})
+    if (!j.contains(key)) return damaged(path, std::string("no \"") + key + "\"", error);
+  for (const auto& [key, value] : j.items()) {
+    if (key != "scene" && key != "scene_hash" && key != "settings" && key != "spp_done")
+      return damaged(path, "unknown key \"" + key + "\"", error);
   }
-  info.scene = j["scene"].get<std::string>();
-  info.scene_hash = j["scene_hash"].get<std::string>();
-  info.settings = j["settings"];
-  info.spp_done = j["spp_done"].get<int>();
+  const nlohmann::ordered_json &scene = j["scene"], &hash = j["scene_hash"], &settings = j["settings"],
+                               &spp = j["spp_done"];
+  if (!scene.is_string()) return damaged(path, "\"scene\" must be a string, got " + shown(scene), error);
+  if (!hash.is_string() || !is_hash(hash.get<std::string>()))
+    return damaged(path, "\"scene_hash\" must be 16 hexadecimal digits, got " + shown(hash), error);
+  if (!settings.is_object()) return damaged(path, "\"settings\" must be an object, got " + shown(settings), error);
+  if (!spp.is_number_integer())
+    return damaged(path, "\"spp_done\" must be an integer, got " + shown(spp), error);
+  const bool negative = !spp.is_number_unsigned() && spp.get<int64_t>() < 0;
+  if (negative || spp.get<uint64_t>() > static_cast<uint64_t>(kMaxCheckpointSpp))
+    return damaged(path, "\"spp_done\" must be in [0, " + std::to_string(kMaxCheckpointSpp) + "], got " + spp.dump(),
+                   error);
+  info.scene = scene.get<std::string>();
+  info.scene_hash = hash.get<std::string>();
+  info.settings = settings;
+  info.spp_done = static_cast<int>(spp.get<int64_t>());
   return true;
 }
 
@@ -60,17 +141,22 @@ std::string scene_content_hash(const std::string& path, const std::string& extra
   return buf;
 }
 
-bool write_checkpoint(const std::string& path, const CheckpointInfo& info, const Film& film, std::string& error) {
+bool write_checkpoint(std::ostream& out, const CheckpointInfo& info, const Film& film) {
   const nlohmann::ordered_json header = {{"scene", info.scene},
                                          {"scene_hash", info.scene_hash},
                                          {"settings", info.settings},
                                          {"spp_done", info.spp_done}};
+  // Replace, not throw, on a scene path that is not UTF-8 (a file name can be any bytes).
+  out << kMagicLine << '\n' << header.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << '\n';
+  return film.write_state(out);
+}
+
+bool write_checkpoint(const std::string& path, const CheckpointInfo& info, const Film& film, std::string& error) {
   return write_atomically(
       path,
       [&](const std::string& tmp, std::string& why) {
         std::ofstream out(tmp, std::ios::binary);
-        out << kMagicLine << '\n' << header.dump() << '\n';
-        if (!film.write_state(out)) {
+        if (!write_checkpoint(out, info, film)) {
           why = "write failed";
           return false;
         }
@@ -81,13 +167,45 @@ bool write_checkpoint(const std::string& path, const CheckpointInfo& info, const
       error);
 }
 
+bool read_checkpoint_info(std::istream& in, const std::string& path, CheckpointInfo& info, std::string& error) {
+  CheckpointInfo header;
+  if (!read_header(in, path, header, error)) return false;
+  info = std::move(header);
+  return true;
+}
+
 bool read_checkpoint_info(const std::string& path, CheckpointInfo& info, std::string& error) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     error = "cannot open checkpoint '" + path + "'";
     return false;
   }
-  return read_header(in, path, info, error);
+  return read_checkpoint_info(in, path, info, error);
+}
+
+bool read_checkpoint(std::istream& in, const std::string& path, CheckpointInfo& info, Film& film, std::string& error) {
+  CheckpointInfo header;
+  if (!read_header(in, path, header, error)) return false;
+  Film state(film.width(), film.height(), film.crop(), film.aovs());
+  std::string why;
+  if (!state.read_state(in, why)) {
+    error = "'" + path + "': " + why;
+    return false;
+  }
+  // Checkpoints are written between complete passes: no pixel holds more
+  // samples than spp_done (the binary view adds one per pass, so fewer).
+  const PixelRect& c = state.crop();
+  for (int y = c.y0; y < c.y1; ++y)
+    for (int x = c.x0; x < c.x1; ++x)
+      if (state.sum(x, y).samples > static_cast<uint64_t>(header.spp_done)) {
+        error = "'" + path + "': its film state holds " + std::to_string(state.sum(x, y).samples) +
+                " samples in pixel (" + std::to_string(x) + ", " + std::to_string(y) + "), more than the header's " +
+                "spp_done " + std::to_string(header.spp_done) + " (the two do not belong together)";
+        return false;
+      }
+  film = std::move(state);
+  info = std::move(header);
+  return true;
 }
 
 bool read_checkpoint(const std::string& path, CheckpointInfo& info, Film& film, std::string& error) {
@@ -96,13 +214,7 @@ bool read_checkpoint(const std::string& path, CheckpointInfo& info, Film& film, 
     error = "cannot open checkpoint '" + path + "'";
     return false;
   }
-  if (!read_header(in, path, info, error)) return false;
-  std::string why;
-  if (!film.read_state(in, why)) {
-    error = "'" + path + "': " + why;
-    return false;
-  }
-  return true;
+  return read_checkpoint(in, path, info, film, error);
 }
 
 std::string checkpoint_mismatch(const CheckpointInfo& saved, const CheckpointInfo& current) {

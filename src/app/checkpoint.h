@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <iosfwd>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -32,12 +33,28 @@ struct CheckpointInfo {
 // empty with `error` set when the file cannot be read.
 std::string scene_content_hash(const std::string& path, const std::string& extra, std::string& error);
 
-bool write_checkpoint(const std::string& path, const CheckpointInfo& info, const Film& film, std::string& error);
+// The largest spp_done a header may hold (the driver's "no target" count).
+constexpr int kMaxCheckpointSpp = 1 << 30;
 
+bool write_checkpoint(const std::string& path, const CheckpointInfo& info, const Film& film, std::string& error);
+// The same file's bytes, to a stream.
+bool write_checkpoint(std::ostream& out, const CheckpointInfo& info, const Film& film);
+
+// Every field of the header is checked: "scene" a string, "scene_hash" 16 hex
+// digits, "settings" an object, "spp_done" an integer in [0, kMaxCheckpointSpp].
+// Errors name the file: "'<path>': damaged checkpoint header: ...". Nothing
+// here throws, whatever the bytes.
+//
 // Reads the header only (to compare before the scene is built).
 bool read_checkpoint_info(const std::string& path, CheckpointInfo& info, std::string& error);
-// Reads header and film state into `film` (which must have the checkpoint's size).
+bool read_checkpoint_info(std::istream& in, const std::string& path, CheckpointInfo& info, std::string& error);
+// Reads header and film state into `film` (which must have the checkpoint's
+// size, crop and AOVs). The film is changed only if the whole file is valid:
+// a film state whose pixels hold more samples than spp_done does not belong
+// to its header and is refused.
 bool read_checkpoint(const std::string& path, CheckpointInfo& info, Film& film, std::string& error);
+// The same from a stream; `path` names it in messages.
+bool read_checkpoint(std::istream& in, const std::string& path, CheckpointInfo& info, Film& film, std::string& error);
 
 // Why `saved` cannot be resumed by a run with `current` (scene hash or settings
 // differ), or an empty string when it can.

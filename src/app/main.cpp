@@ -230,10 +230,11 @@ class Checkpointer {
   Clock::time_point last_;
 };
 
-// --pixel X,Y --sample N (or --replay X,Y,N): renders only that sample of that pixel (the film is cropped to it)
-// and prints its radiance and AOVs. The options are the render's, so the plan
-// is too: the sampler is made for the size of the pass that drew the sample
-// (the jittered sampler and the pixel grid stratify per pass).
+// --pixel X,Y --sample N (or --replay X,Y,N): renders only that sample of that
+// pixel (the film is cropped to it) and prints its radiance and AOVs. The
+// options are the render's, so the plan is too: the sampler is made for the
+// size of the pass that drew the sample (the jittered sampler and the pixel
+// grid stratify per pass).
 RenderOutcome replay_sample(const Options& o, const Job& job, const RenderScene& scene, Film& film, WorkerPool& pool) {
   IntegratorSettings settings = job.settings;
   settings.spp = replay_sampler_spp(job.plan);

@@ -119,7 +119,8 @@ bool check_shape(const ShapeDesc& shape, std::size_t index, Diagnostics& diag) {
 // ---------------------------------------------------------------- textures and materials
 // Decodes each texture some material references, once. Unreferenced textures
 // are never read. Returns false if any referenced texture failed to decode.
-bool load_textures(const SceneDescription& desc, RenderScene& scene, Diagnostics& diag) {
+bool load_textures(const SceneDescription& desc, const TextureLimits& limits, RenderScene& scene,
+                   Diagnostics& diag) {
   std::vector<bool> used(desc.textures.size(), false);
   for (const MaterialDesc& m : desc.materials) {
     if (!m.texture) continue;
@@ -139,7 +140,7 @@ bool load_textures(const SceneDescription& desc, RenderScene& scene, Diagnostics
     auto tex = std::make_unique<Texture>();
     std::string error;
     const auto start = std::chrono::steady_clock::now();
-    const bool loaded = Texture::load(t.resolved, *tex, error);
+    const bool loaded = Texture::load(t.resolved, *tex, error, limits);
     scene.texture_load_seconds += seconds_since(start);
     if (!loaded) {
       diag.error(t.where, "cannot read texture '" + t.written + "': " + error);
@@ -247,7 +248,7 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDescription& desc, co
   scene->camera = Camera(desc.camera, scene->width, scene->height);
   scene->background = desc.render.background;
 
-  bool ok = load_textures(desc, *scene, diag);
+  bool ok = load_textures(desc, options.textures, *scene, diag);
   if (ok) {
     scene->materials.reserve(desc.materials.size());
     for (const MaterialDesc& m : desc.materials) scene->materials.push_back(to_material(m, *scene));
@@ -283,7 +284,7 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDescription& desc, co
   if (desc.environment) {
     const auto environment_start = std::chrono::steady_clock::now();
     std::string error;
-    scene->environment_map = EnvironmentMap::load(*desc.environment, error);
+    scene->environment_map = EnvironmentMap::load(*desc.environment, error, options.textures);
     scene->texture_load_seconds += seconds_since(environment_start);
     if (!scene->environment_map) {
       diag.error(desc.environment->file.where,

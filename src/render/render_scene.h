@@ -75,6 +75,7 @@ struct BuildOptions {
   int height_override = 0;
   int max_resolution = 32768;       // per side, as LoadOptions
   long long max_pixels = 1LL << 28;  // width * height, as LoadOptions
+  TextureLimits textures;            // every texture and environment map, checked before decoding
 };
 
 // The image size build_render_scene gives `film` under `options` (an override

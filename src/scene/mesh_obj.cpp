@@ -9,6 +9,8 @@
 #include <limits>
 #include <system_error>
 
+#include "core/file_access.h"
+
 namespace pt {
 
 namespace {
@@ -18,6 +20,10 @@ bool finite(const aiVector3D& v) { return std::isfinite(v.x) && std::isfinite(v.
 }  // namespace
 
 bool load_obj(const std::string& path, MeshData& out, std::string& error) {
+  if (const std::string why = why_unreadable(path); !why.empty()) {
+    error = "cannot read the file: " + why;
+    return false;
+  }
   std::error_code ec;
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
   if (ec) {

@@ -19,6 +19,8 @@
 #include <string_view>
 #include <utility>
 
+#include "core/file_access.h"
+
 namespace pt {
 
 namespace {
@@ -527,6 +529,8 @@ bool parse_ply(const std::string& bytes, PlyMesh& out, PlyError& error) {
 }
 
 bool load_ply(const std::string& path, PlyMesh& out, PlyError& error) {
+  if (const std::string why = why_unreadable(path); !why.empty())
+    return fail(error, "cannot open '" + path + "': " + why);
   std::ifstream in(path, std::ios::binary);
   if (!in) return fail(error, "cannot open '" + path + "'");
   std::ostringstream ss;

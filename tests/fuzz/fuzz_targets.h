@@ -35,6 +35,14 @@ int obj_one_input(const uint8_t* data, std::size_t size);
 // byte for byte, a refused one must leave the film unchanged.
 int film_state_one_input(const uint8_t* data, std::size_t size);
 
+// A whole checkpoint file (--checkpoint, --resume: the header line and the
+// film state; src/app/checkpoint.h): the header alone, then the whole file
+// into films of the seeds' shapes. A refusal names the file and leaves the
+// film unchanged; an accepted checkpoint has a header of valid types and
+// ranges, no pixel with more samples than spp_done, and reads back unchanged
+// once written.
+int checkpoint_one_input(const uint8_t* data, std::size_t size);
+
 struct Harness {
   const char* name;  // also the folder name of its regression cases
   int (*run)(const uint8_t* data, std::size_t size);

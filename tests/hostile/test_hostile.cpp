@@ -123,6 +123,36 @@ const std::map<std::string, Generator>& generators() {
          write_file(dir / "scene.json", scene_with_shapes(R"({"type": "mesh", "file": "mesh.ply"})"));
          return std::string("scene.json");
        }},
+      {"obj-random-bytes",
+       [](const fs::path& dir) {
+         write_file(dir / "mesh.obj", random_bytes(4096, 3));
+         write_file(dir / "scene.json", scene_with_shapes(R"({"type": "mesh", "file": "mesh.obj"})"));
+         return std::string("scene.json");
+       }},
+      // chmod 000: unreadable, except to root (these cases are skipped as root;
+      // the *-is-a-directory cases stand in for them there).
+      {"unreadable-mesh-ply",
+       [](const fs::path& dir) {
+         write_file(dir / "mesh.ply", "ply\nformat ascii 1.0\nelement vertex 0\nend_header\n");
+         fs::permissions(dir / "mesh.ply", fs::perms::none);
+         write_file(dir / "scene.json", scene_with_shapes(R"({"type": "mesh", "file": "mesh.ply"})"));
+         return std::string("scene.json");
+       }},
+      {"unreadable-mesh-obj",
+       [](const fs::path& dir) {
+         write_file(dir / "mesh.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+         fs::permissions(dir / "mesh.obj", fs::perms::none);
+         write_file(dir / "scene.json", scene_with_shapes(R"({"type": "mesh", "file": "mesh.obj"})"));
+         return std::string("scene.json");
+       }},
+      {"unreadable-texture",
+       [](const fs::path& dir) {
+         fs::copy_file(kHostile / "files" / "not-an-image.png", dir / "wood.png");
+         fs::permissions(dir / "wood.png", fs::perms::none);
+         write_file(dir / "scene.json", kNativeHeader + std::string(R"("materials": {"wood": {"texture": "wood.png"}}, )") +
+                                            R"("shapes": [{"type": "sphere", "material": "wood", "center": [0, 0, 0], "radius": 1}]})");
+         return std::string("scene.json");
+       }},
       {"ply-header-claims-terabytes",
        [](const fs::path& dir) {
          // Counts that would need 2^40 faces of data; the file is a few bytes.
@@ -185,6 +215,8 @@ TEST_P(Hostile, FailsCleanlyWithItsLocation) {
   fs::path cwd = kHostile / "cases";
   std::string scene = c.name + ".json";
   fs::path sidecar = kHostile / "cases" / (c.name + ".expected");
+  if (c.name.rfind("unreadable-", 0) == 0 && ::geteuid() == 0)
+    GTEST_SKIP() << "running as root, which can read a chmod 000 file; run the suite as another user for this case";
   if (c.generated) {
     const auto it = generators().find(c.name);
     ASSERT_NE(it, generators().end()) << "generated/" << c.name << ".expected has no generator in test_hostile.cpp";

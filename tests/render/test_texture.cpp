@@ -123,5 +123,50 @@ TEST_F(TextureFiles, MissingOrCorruptFileFails) {
   EXPECT_FALSE(error.empty());
 }
 
+// The size an image declares is checked before anything is decoded: a PNG of
+// 70 bytes declaring 100000 x 100000 pixels (tests/hostile/files) is refused
+// with the sizes and the limits, not allocated (it ended in std::bad_alloc).
+TEST(TextureLimits, AHugeDeclaredSizeIsRefusedBeforeDecoding) {
+  Texture t;
+  std::string error;
+  const std::string path = std::string(PT_TEST_DATA_DIR) + "/hostile/files/huge-declared-size.png";
+  EXPECT_FALSE(Texture::load(path, t, error));
+  EXPECT_NE(error.find("the image declares 100000x100000 = 10000000000 pixels (240000000000 bytes decoded)"),
+            std::string::npos)
+      << error;
+  EXPECT_NE(error.find("at most 268435456 pixels and 4294967296 bytes"), std::string::npos) << error;
+  EXPECT_EQ(t.width(), 0);
+}
+
+// Both limits apply, at their exact values: a 4x4 RGB image is 16 pixels and
+// 16 * (3 * 4 + 12) = 384 bytes decoded; a grey one reads one channel (256 bytes).
+TEST_F(TextureFiles, PixelAndByteLimitsApplyAtTheirValues) {
+  std::vector<unsigned char> px(4 * 4 * 3, 200);
+  const std::string rgb = write("rgb.png", 4, 4, 3, OIIO::TypeDesc::UINT8, px.data());
+  const std::string grey = write("grey.png", 4, 4, 1, OIIO::TypeDesc::UINT8, px.data());
+  Texture t;
+  std::string error;
+  EXPECT_TRUE(Texture::load(rgb, t, error, TextureLimits{16, 384})) << error;
+  EXPECT_EQ(t.width(), 4);
+  EXPECT_FALSE(Texture::load(rgb, t, error, TextureLimits{15, 384}));
+  EXPECT_NE(error.find("at most 15 pixels"), std::string::npos) << error;
+  EXPECT_FALSE(Texture::load(rgb, t, error, TextureLimits{16, 383}));
+  EXPECT_NE(error.find("(384 bytes decoded)"), std::string::npos) << error;
+  EXPECT_TRUE(Texture::load(grey, t, error, TextureLimits{16, 256})) << error;
+  EXPECT_FALSE(Texture::load(grey, t, error, TextureLimits{16, 255}));
+}
+
+// An unreadable file is reported with the system's reason (root reads anything).
+TEST_F(TextureFiles, AnUnreadableFileSaysWhy) {
+  if (::geteuid() == 0) GTEST_SKIP() << "running as root, which can read a chmod 000 file";
+  const unsigned char px[] = {1, 2, 3};
+  const std::string path = write("locked.png", 1, 1, 3, OIIO::TypeDesc::UINT8, px);
+  fs::permissions(path, fs::perms::none);
+  Texture t;
+  std::string error;
+  EXPECT_FALSE(Texture::load(path, t, error));
+  EXPECT_NE(error.find("cannot open the file: Permission denied"), std::string::npos) << error;
+}
+
 }  // namespace
 }  // namespace pt

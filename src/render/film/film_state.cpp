@@ -1,6 +1,7 @@
 // Film::write_state / read_state: checkpoints of a film, bit for bit.
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <istream>
 #include <ostream>
@@ -153,6 +154,17 @@ bool Film::read_state(std::istream& in, std::string& error) {
   for (PixelSum& p : pixels) {
     if (!get(in, p.r) || !get(in, p.g) || !get(in, p.b) || !get(in, p.weight) || !get(in, p.samples)) {
       error = "truncated film state";
+      return false;
+    }
+  }
+  // The render loop adds non-finite samples as black, so a film's sums are
+  // always finite: anything else is corruption, which would reach the image.
+  for (std::size_t i = 0; i < pixels.size(); ++i) {
+    const PixelSum& p = pixels[i];
+    if (!std::isfinite(p.r) || !std::isfinite(p.g) || !std::isfinite(p.b) || !std::isfinite(p.weight)) {
+      const std::size_t row = static_cast<std::size_t>(crop_.width());
+      error = "corrupt film state (pixel (" + std::to_string(crop_.x0 + static_cast<int>(i % row)) + ", " +
+              std::to_string(crop_.y0 + static_cast<int>(i / row)) + ") holds a non-finite sum)";
       return false;
     }
   }

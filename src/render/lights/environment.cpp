@@ -37,9 +37,10 @@ EnvironmentMap::EnvironmentMap(Texture image, Vec3f up, float rotation_deg, floa
   mean_luminance_ = solid_angle > 0.0 ? static_cast<float>(weighted / solid_angle) * intensity_ : 0.0f;
 }
 
-std::unique_ptr<EnvironmentMap> EnvironmentMap::load(const EnvironmentDesc& desc, std::string& error) {
+std::unique_ptr<EnvironmentMap> EnvironmentMap::load(const EnvironmentDesc& desc, std::string& error,
+                                                     const TextureLimits& limits) {
   Texture image;
-  if (!Texture::load(desc.resolved, image, error)) return nullptr;
+  if (!Texture::load(desc.resolved, image, error, limits)) return nullptr;
   return std::make_unique<EnvironmentMap>(std::move(image), desc.up.value, desc.rotation_deg.value,
                                           desc.intensity.value);
 }

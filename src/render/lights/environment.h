@@ -29,7 +29,8 @@ class EnvironmentMap {
   EnvironmentMap(Texture image, Vec3f up, float rotation_deg, float intensity);
 
   // Reads the image (any format OpenImageIO reads; float images are linear).
-  static std::unique_ptr<EnvironmentMap> load(const EnvironmentDesc& desc, std::string& error);
+  static std::unique_ptr<EnvironmentMap> load(const EnvironmentDesc& desc, std::string& error,
+                                              const TextureLimits& limits = {});
 
   // Radiance arriving from direction `dir` (unit; pointing away from the scene).
   RGB radiance(Vec3f dir) const;

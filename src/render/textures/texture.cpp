@@ -7,6 +7,8 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "core/file_access.h"
+
 namespace pt {
 
 namespace {
@@ -40,7 +42,11 @@ int wrap(int i, int n) {
 Texture::Texture(int width, int height, std::vector<RGB> pixels)
     : width_(width), height_(height), pixels_(std::move(pixels)) {}
 
-bool Texture::load(const std::string& path, Texture& out, std::string& error) {
+bool Texture::load(const std::string& path, Texture& out, std::string& error, const TextureLimits& limits) {
+  if (const std::string why = why_unreadable(path); !why.empty()) {
+    error = "cannot open the file: " + why;
+    return false;
+  }
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);  // do not premultiply colour by alpha
   auto in = OIIO::ImageInput::open(path, &config);
@@ -56,22 +62,28 @@ bool Texture::load(const std::string& path, Texture& out, std::string& error) {
             std::to_string(nc) + " channels)";
     return false;
   }
-  const std::size_t count = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
-  if (count > std::numeric_limits<std::size_t>::max() / (sizeof(float) * static_cast<std::size_t>(nc))) {
-    error = "image too large";
+  // Grey (and grey + alpha) images need one channel, the rest three.
+  const int channels = nc >= 3 ? 3 : 1;
+  // Both factors are below 2^31: neither product overflows 64 bits.
+  const uint64_t count = static_cast<uint64_t>(w) * static_cast<uint64_t>(h);
+  const uint64_t bytes = count * (sizeof(float) * static_cast<uint64_t>(channels) + sizeof(RGB));
+  if (count > static_cast<uint64_t>(limits.max_pixels) || bytes > limits.max_bytes) {
+    error = "the image declares " + std::to_string(w) + "x" + std::to_string(h) + " = " + std::to_string(count) +
+            " pixels (" + std::to_string(bytes) + " bytes decoded); textures and environment maps may have at most " +
+            std::to_string(limits.max_pixels) + " pixels and " + std::to_string(limits.max_bytes) + " bytes";
     return false;
   }
-  std::vector<float> data(count * static_cast<std::size_t>(nc));
-  if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, data.data())) {
+  std::vector<float> data(static_cast<std::size_t>(count) * static_cast<std::size_t>(channels));
+  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data())) {
     error = in->geterror();
     if (error.empty()) error = "cannot decode image";
     return false;
   }
   const bool srgb = is_srgb_encoded(spec);
 
-  std::vector<RGB> pixels(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    RGB c = to_rgb(&data[i * static_cast<std::size_t>(nc)], nc);
+  std::vector<RGB> pixels(static_cast<std::size_t>(count));
+  for (std::size_t i = 0; i < pixels.size(); ++i) {
+    RGB c = to_rgb(&data[i * static_cast<std::size_t>(channels)], channels);
     if (srgb) c = {srgb_to_linear(c.r), srgb_to_linear(c.g), srgb_to_linear(c.b)};
     pixels[i] = c;
   }

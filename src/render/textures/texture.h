@@ -3,6 +3,7 @@
 // image's top-left pixel corner, u to the right, v downwards.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -11,14 +12,25 @@
 
 namespace pt {
 
+// What a texture or environment map may cost once decoded. The size an image
+// declares in its header is checked against these before anything is
+// allocated, so a small file claiming 100000 x 100000 pixels is refused, not
+// decoded (docs/scene-format.md, "Textures").
+struct TextureLimits {
+  int64_t max_pixels = int64_t{1} << 28;  // width * height, as the film (LoadOptions::max_pixels)
+  // Decoded bytes: the channels read (at most 3) as float, plus the RGB texels.
+  uint64_t max_bytes = uint64_t{1} << 32;
+};
+
 class Texture {
  public:
   Texture() = default;
   Texture(int width, int height, std::vector<RGB> pixels);
 
   // Loads an image file; 8-bit sRGB-encoded images are linearised.
-  // Returns false and fills `error` if the file cannot be read.
-  static bool load(const std::string& path, Texture& out, std::string& error);
+  // Returns false and fills `error` if the file cannot be read or declares a
+  // size beyond `limits`.
+  static bool load(const std::string& path, Texture& out, std::string& error, const TextureLimits& limits = {});
 
   RGB lookup(Vec2f uv) const;  // bilinear, repeat wrap
   // Texel (x, y), 0 <= x < width, 0 <= y < height, row 0 at the top.
