@@ -15,7 +15,7 @@ namespace pt {
 struct Options {
   std::string scene;
   std::vector<std::string> outputs;
-  std::string accel = "bvh";  // the faster of the two on every measured scene (docs/performance.md)
+  std::string accel = "bvh";  // the faster in path tracing (docs/performance.md)
   int threads = 0;     // 0: all hardware threads
   int spp = 0;         // 0: the scene's value (unless a time budget alone is given)
   uint64_t seed = 0;
