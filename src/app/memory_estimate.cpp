@@ -13,6 +13,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "render/textures/texture.h"
 #include "scene/scene_description.h"
 
 namespace pt {
@@ -56,6 +57,9 @@ uint64_t texture_bytes(const SceneDescription& scene) {
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) return;
     const uint64_t texels = saturating_mul(static_cast<uint64_t>(spec.width) * static_cast<uint64_t>(spec.height),
                                            static_cast<uint64_t>(std::max(1, spec.depth)));
+    // An image beyond the texture limits is refused by the build, with the
+    // scene location that names it; it is never decoded, so it costs nothing.
+    if (texels > static_cast<uint64_t>(TextureLimits{}.max_pixels)) return;
     total = saturating_add(total, saturating_mul(texels, bytes_per_texel));
     largest_decode = std::max(largest_decode,
                               saturating_mul(texels, sizeof(float) * static_cast<uint64_t>(spec.nchannels)));

@@ -1,6 +1,8 @@
 // $OCIO as users set it (docs/rendering.md, "Output and display transforms"):
 // the application, run with OCIO naming a config file in its environment,
 // encodes display images through that config's displays, views and looks.
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -11,31 +13,6 @@
 namespace pt::test {
 namespace {
 
-// One display with two views (sRGB-encoded and raw) and a look that doubles.
-const char* kConfig = R"(ocio_profile_version: 2
-roles:
-  default: linear
-  scene_linear: linear
-file_rules:
-  - !<Rule> {name: Default, colorspace: default}
-displays:
-  sRGB:
-    - !<View> {name: Standard, colorspace: srgb}
-    - !<View> {name: Raw, colorspace: linear}
-active_displays: [sRGB]
-active_views: [Standard, Raw]
-looks:
-  - !<Look>
-    name: brighter
-    process_space: linear
-    transform: !<MatrixTransform> {matrix: [2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 1]}
-colorspaces:
-  - !<ColorSpace>
-    name: linear
-  - !<ColorSpace>
-    name: srgb
-    from_scene_reference: !<ExponentWithLinearTransform> {gamma: 2.4, offset: 0.055, direction: inverse}
-)";
 
 // Every pixel sees the background: linear 0.25 (native scene: OCIO applies).
 const char* kGreyScene = R"({"format": "pathtracer-scene", "version": 1,
@@ -50,7 +27,9 @@ class OcioEnvironment : public AppTest {
  protected:
   void SetUp() override {
     AppTest::SetUp();
-    write("config.ocio", kConfig);
+    // One display with two views (sRGB-encoded and raw) and a look that doubles.
+    std::ifstream in(std::string(PT_TEST_DATA_DIR) + "/data/ocio/two-views-one-look.ocio");
+    write("config.ocio", std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()));
     write("grey.json", kGreyScene);
   }
   // Runs with $OCIO naming the config (an absolute path, as users set it).

@@ -84,31 +84,7 @@ class OcioConfig : public ::testing::Test {
     dir_ = fs::temp_directory_path() / ("pt_ocio_test_" + std::to_string(::getpid()) + "_" +
                                         ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::create_directories(dir_);
-    config_ = (dir_ / "config.ocio").string();
-    std::ofstream(config_) << R"(ocio_profile_version: 2
-roles:
-  default: linear
-  scene_linear: linear
-file_rules:
-  - !<Rule> {name: Default, colorspace: default}
-displays:
-  sRGB:
-    - !<View> {name: Standard, colorspace: srgb}
-    - !<View> {name: Raw, colorspace: linear}
-active_displays: [sRGB]
-active_views: [Standard, Raw]
-looks:
-  - !<Look>
-    name: brighter
-    process_space: linear
-    transform: !<MatrixTransform> {matrix: [2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 1]}
-colorspaces:
-  - !<ColorSpace>
-    name: linear
-  - !<ColorSpace>
-    name: srgb
-    from_scene_reference: !<ExponentWithLinearTransform> {gamma: 2.4, offset: 0.055, direction: inverse}
-)";
+    config_ = std::string(PT_TEST_DATA_DIR) + "/data/ocio/two-views-one-look.ocio";
   }
   void TearDown() override { fs::remove_all(dir_); }
 

@@ -5,7 +5,7 @@
 // targets and reports that pass's error; `profile` counts the rays of a
 // direct-light render exactly (a camera ray, a shadow ray and a BSDF ray per
 // sample of a scene every pixel of which sees a lit surface). Timings are not
-// checked, only that they are positive: no test measures time.
+// checked beyond being present: no test measures time.
 #include <cmath>
 #include <string>
 
@@ -101,9 +101,8 @@ TEST_F(BenchRender, ProfileCountsTheRaysOfADirectLightRender) {
     // BSDF ray (max_depth 1, looking for the emitter), whatever the backend.
     EXPECT_EQ(m.at("rays").get<int>(), 32 * 32 * 4 * 3) << m.at("accel");
     EXPECT_EQ(m.at("shadow_rays").get<int>(), 32 * 32 * 4);
-    const double share = m.at("median_traversal_share").get<double>();
-    EXPECT_GT(share, 0.0);
-    EXPECT_LE(share, 1.5);  // a lower bound of the true share; replay timing is noisy on tiny renders
+    // The share is a ratio of two timings: only its presence is checked (no test measures time).
+    EXPECT_GT(m.at("median_traversal_share").get<double>(), 0.0);
   }
 }
 
