@@ -18,4 +18,8 @@ export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1:check_initialization_order=1
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 export LSAN_OPTIONS="suppressions=$repo/tools/lsan-suppressions.txt:print_suppressions=0"
 cd "$build"
-ctest --output-on-failure -j "$(nproc 2>/dev/null || echo 2)" "$@"
+# study_quick is left out: it renders against wall-clock budgets sized for an
+# optimized build (0.4 s for the Cornell box), which an ASan build does not
+# reach, so its tables come out empty without any sanitizer report. The tools
+# it drives (pt-converge, pt-imgerr) run under the sanitizers in test_study_tools.
+ctest --output-on-failure -j "$(nproc 2>/dev/null || echo 2)" -E '^study_quick$' "$@"
