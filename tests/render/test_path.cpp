@@ -128,6 +128,42 @@ TEST(PathAnalytic, InsideADiffuseSphereWithAPointLightAtItsCentre) {
   for (const RGB& p : direct.pixels) ASSERT_NEAR(p.r, 0.5f, 1e-4f);
 }
 
+TEST(PathAnalytic, RussianRouletteIsUnbiasedForEveryPolicy) {
+  // The same scene (L = 1 everywhere, half of it from interreflections) under
+  // roulette policies from none to one that ends most paths at the first bounce
+  // (threshold 8: a throughput of 0.5 survives with probability 1/16 and is
+  // scaled by 16). Every policy must average 1. The tolerance is 5 standard
+  // errors of the image mean, estimated from the spread of the 36 pixel means
+  // (independent estimates: each pixel has its own scramble), and the standard
+  // error itself is bounded, so a policy so noisy that the test could not see
+  // a bias fails too.
+  SceneDescription d = test::empty_scene(6, 6, {0, 0, 0.3f}, {0, 0, -1}, {0, 1, 0}, 60);
+  add_sphere(d, {0, 0, 0}, 1.0f, add_material(d, lambert(RGB(0.5f))));
+  add_point_light(d, {0, 0, 0}, RGB(1.0f), RGB(1.0f));
+  struct Policy {
+    int depth;
+    float threshold;
+  };
+  for (const Policy policy : {Policy{64, 1.0f}, Policy{3, 1.0f}, Policy{3, 1.0f / 3.0f}, Policy{1, 8.0f}}) {
+    SCOPED_TRACE("roulette depth " + std::to_string(policy.depth) + ", threshold " +
+                 std::to_string(policy.threshold));
+    IntegratorSettings s = test::path_settings(1024, 64, 7);
+    s.roulette_depth = policy.depth;
+    s.roulette_threshold = policy.threshold;
+    const Image img = test::render_path(d, s);
+    double sum = 0.0, sum2 = 0.0;
+    for (const RGB& p : img.pixels) {
+      sum += p.r;
+      sum2 += static_cast<double>(p.r) * p.r;
+    }
+    const double n = static_cast<double>(img.pixels.size());
+    const double mean = sum / n;
+    const double standard_error = std::sqrt(std::max(0.0, (sum2 / n - mean * mean) / (n - 1.0)));
+    EXPECT_LT(standard_error, 0.01);
+    EXPECT_NEAR(mean, 1.0, std::max(5.0 * standard_error, 1e-4));
+  }
+}
+
 // ---------------------------------------------------------------- delta lights
 SceneDescription lit_plane(float kd) {
   SceneDescription d = test::empty_scene(12, 12, {0, 0, 3}, {0, 0, 0}, {0, 1, 0}, 30);

@@ -35,6 +35,8 @@ IntegratorSettings settings_for(const LoadedScene& scene, int spp, int first_sam
   const SceneDescription& desc = scene.desc;
   IntegratorSettings s;
   s.sampler = scene.sampler;
+  s.roulette_depth = scene.roulette_depth;
+  s.roulette_threshold = scene.roulette_threshold;
   s.max_depth = desc.render.max_depth;
   s.filter = desc.render.filter;
   s.clamp = desc.render.clamp;

@@ -24,6 +24,8 @@ struct LoadedScene {
   std::unique_ptr<RenderScene> scene;
   double load_seconds = 0, build_seconds = 0;
   SamplerType sampler = IntegratorSettings{}.sampler;  // the path integrator's sampler (--sampler)
+  int roulette_depth = IntegratorSettings{}.roulette_depth;            // --rr-depth
+  float roulette_threshold = IntegratorSettings{}.roulette_threshold;  // --rr-threshold
 };
 
 // Loads and builds `path` on backend `accel` inside `pool`; nullopt after

@@ -8,7 +8,8 @@
 //   bench_render profile SCENE [--accel A ...] [--threads N] [--spp K] [--json FILE]
 //
 // Every subcommand takes --sampler random|jittered|sobol (default: the path
-// integrator's default) and records it in its JSON.
+// integrator's default) and --rr-depth / --rr-threshold (Russian roulette,
+// default: the integrator's), and records them in its JSON.
 //
 // tools/bench_render/run_benchmarks.py runs the set documented in
 // docs/performance.md and writes docs/bench/cornell.* and docs/bench/render.*.
@@ -38,12 +39,18 @@ struct Common {
   int runs = 3;
   std::string json;
   std::string sampler = sampler_type_name(IntegratorSettings{}.sampler);
+  int roulette_depth = IntegratorSettings{}.roulette_depth;
+  float roulette_threshold = IntegratorSettings{}.roulette_threshold;
 };
 
 // Loads the scene with the sampler of `c`; nullopt after printing why.
 std::optional<LoadedScene> load_for(const Common& c, AccelKind accel, WorkerPool& pool) {
   auto s = load(c.scene, accel, pool);
-  if (s) s->sampler = parse_sampler_type(c.sampler).value_or(s->sampler);
+  if (s) {
+    s->sampler = parse_sampler_type(c.sampler).value_or(s->sampler);
+    s->roulette_depth = c.roulette_depth;
+    s->roulette_threshold = c.roulette_threshold;
+  }
   return s;
 }
 
@@ -72,6 +79,8 @@ ordered_json scene_json(const LoadedScene& s, AccelKind accel) {
           {"accel", accel_kind_name(accel)},
           {"backend", stats.backend},
           {"sampler", sampler_type_name(s.sampler)},
+          {"roulette_depth", s.roulette_depth},
+          {"roulette_threshold", s.roulette_threshold},
           {"primitives", stats.primitive_count},
           {"load_seconds", s.load_seconds},
           {"build_seconds", s.build_seconds}};
@@ -246,6 +255,11 @@ void add_common(CLI::App& app, Common& c) {
   app.add_option("--json", c.json, "Write the result here (default: standard output)");
   app.add_option("--sampler", c.sampler, "Sampler of the path integrator (docs/samplers.md)")
       ->check(CLI::IsMember(sampler_type_names()));
+  app.add_option("--rr-depth", c.roulette_depth, "Russian roulette: first bounce it applies to (path integrator)")
+      ->check(CLI::Range(1, 1 << 20));
+  app.add_option("--rr-threshold", c.roulette_threshold,
+                 "Russian roulette: throughput below which paths may end (path integrator)")
+      ->check(CLI::Range(1e-6f, 1e6f));
 }
 
 }  // namespace

@@ -53,6 +53,13 @@ struct IntegratorSettings {
   PixelFilterType filter = PixelFilterType::Box;  // the path integrator's pixel filter
   float clamp = 0.0f;   // path: largest channel of one sample's radiance; 0 = no clamp
   LightStrategy light_strategy = LightStrategy::Mis;
+  // path: Russian roulette. From bounce `roulette_depth` on, a path whose
+  // throughput (largest channel, times eta^2) t is below `roulette_threshold`
+  // survives with probability t / roulette_threshold and is reweighted, so the
+  // estimate stays unbiased. The defaults were chosen by measured efficiency
+  // (1 / (MSE x time), tools/bench_render/roulette_study.py, docs/path-tracing.md).
+  int roulette_depth = 3;
+  float roulette_threshold = 1.0f / 3.0f;
   SamplerType sampler = SamplerType::Sobol;  // path: where its random numbers come from (docs/samplers.md)
   // Replay: >= 0 renders only this sample index of every pixel of the film's
   // crop (the sampler still sees spp, so the sample is the one a full render draws).

@@ -5,9 +5,9 @@
 // one light, chosen by power, is sampled (next-event estimation) and combined
 // with BSDF sampling by the power heuristic, except delta lights (only NEE can
 // find them) and delta lobes (only BSDF sampling can); then the BSDF picks the
-// next direction. Russian roulette starts after kRouletteDepth bounces, with
-// survival probability min(1, max channel of the throughput), and divides by
-// it, so it is unbiased. `max_depth` bounds the number of bounces: a path sees
+// next direction. Russian roulette starts after `roulette_depth` bounces, with
+// survival probability min(1, max channel of the throughput / threshold), and
+// divides by it, so it is unbiased. `max_depth` bounds the number of bounces: a path sees
 // emitters and lights across at most max_depth scattering events.
 #include <algorithm>
 #include <cmath>
@@ -24,8 +24,6 @@ namespace pt {
 
 namespace {
 
-constexpr int kRouletteDepth = 3;
-
 class PathTracer {
  public:
   PathTracer(const RenderScene& scene, const IntegratorSettings& settings)
@@ -33,7 +31,9 @@ class PathTracer {
         lights_(scene.lights),
         max_depth_(std::max(0, settings.max_depth)),
         clamp_(settings.clamp),
-        strategy_(settings.light_strategy) {}
+        strategy_(settings.light_strategy),
+        roulette_depth_(std::max(1, settings.roulette_depth)),
+        inv_roulette_threshold_(settings.roulette_threshold > 0.0f ? 1.0f / settings.roulette_threshold : 1.0f) {}
 
   // `aov`, when not null, receives the lighting split (path_aov.h).
   RGB radiance(Ray ray, Sampler& sampler, AovSample* aov = nullptr) const {
@@ -88,8 +88,8 @@ class PathTracer {
       prev_p = isect.geo.p;
       ray = spawn_ray(isect.geo, bs.wi);
 
-      if (depth + 1 >= kRouletteDepth) {
-        const float survive = (beta * eta2).max_component();
+      if (depth + 1 >= roulette_depth_) {
+        const float survive = (beta * eta2).max_component() * inv_roulette_threshold_;
         if (survive < 1.0f) {
           if (sampler.get_1d() >= survive) break;
           beta *= 1.0f / survive;
@@ -169,6 +169,8 @@ class PathTracer {
   int max_depth_;
   float clamp_;
   LightStrategy strategy_;
+  int roulette_depth_;
+  float inv_roulette_threshold_;
 };
 
 class PathIntegrator final : public Integrator {
