@@ -77,7 +77,8 @@ class PathTracer {
       }
 
       BsdfSample bs;
-      const float u_lobe = sampler.get_1d();
+      // A BSDF with one lobe has nothing to choose: no sample dimension for it.
+      const float u_lobe = bsdf.needs_lobe_choice() ? sampler.get_1d() : 0.0f;
       if (!bsdf.sample(wo, u_lobe, sampler.get_2d(), bs)) break;
       if (rec.active() && depth == 0) rec.first_bounce(wo, bs);
       beta *= bs.weight;

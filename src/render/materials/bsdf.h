@@ -40,11 +40,19 @@ class Bsdf {
   // True if the surface scatters nothing (a black material: paths end here).
   bool black() const { return !glass_ && p_diffuse_ + p_glossy_ + p_mirror_ == 0.0f; }
 
+  // True if sample() chooses between lobes (glass between reflection and
+  // transmission): otherwise its `u_lobe` is not read and the caller need not
+  // spend a sample dimension on it.
+  bool needs_lobe_choice() const {
+    return glass_ || (p_diffuse_ > 0.0f) + (p_glossy_ > 0.0f) + (p_mirror_ > 0.0f) > 1;
+  }
+
   // The non-delta part of f(wo, wi) for unit world directions.
   RGB f(Vec3f wo, Vec3f wi) const;
   // The solid-angle density with which sample() produces wi through a non-delta lobe.
   float pdf(Vec3f wo, Vec3f wi) const;
-  // Samples wi (world space): `u_lobe` picks the lobe, `u` the direction.
+  // Samples wi (world space): `u_lobe` picks the lobe (read only if
+  // needs_lobe_choice()), `u` the direction.
   bool sample(Vec3f wo, float u_lobe, Vec2f u, BsdfSample& s) const;
 
   // The shading normal the BSDF uses (on wo's side for reflective materials):
