@@ -1,7 +1,6 @@
 #include "app/film_options.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <iomanip>
@@ -9,6 +8,7 @@
 #include <string>
 
 #include "app/options.h"
+#include "io/image_io.h"
 
 namespace pt {
 
@@ -74,10 +74,8 @@ std::size_t output_bytes_per_pixel(const std::vector<AovRequest>& aovs, const st
   const std::size_t layers = channels * sizeof(float);
   std::size_t largest = 0;
   for (const std::string& path : outputs) {
-    std::string ext = path.substr(std::min(path.size(), path.find_last_of('.')));
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    const std::size_t own = ext == ".exr" ? channels * sizeof(float)                  // the interleaved buffer
-                                          : 3 * sizeof(float) + 3 * sizeof(uint8_t);  // RGB image, 8-bit codes
+    const std::size_t own = is_exr_path(path) ? channels * sizeof(float)                  // the interleaved buffer
+                                              : 3 * sizeof(float) + 3 * sizeof(uint8_t);  // RGB image, 8-bit codes
     largest = std::max(largest, own);
   }
   return layers + largest;

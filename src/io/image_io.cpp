@@ -109,6 +109,8 @@ std::vector<std::string> supported_image_extensions() { return {".exr", ".png", 
 
 bool is_supported_image_path(const std::string& path) { return file_kind(path) != FileKind::Unsupported; }
 
+bool is_exr_path(const std::string& path) { return file_kind(path) == FileKind::Exr; }
+
 bool write_image(const std::string& path, const Image& image, const DisplaySettings& settings, std::string& error,
                  const ImageMetadata& metadata) {
   const FileKind kind = file_kind(path);

@@ -20,6 +20,9 @@ namespace pt {
 // Extensions write_image accepts (".exr", ".png", ".jpg", ".jpeg", ".ppm").
 std::vector<std::string> supported_image_extensions();
 bool is_supported_image_path(const std::string& path);
+// True if write_image / write_layered_image write `path` as OpenEXR (every
+// layer, float or half); false for the 8-bit formats and unsupported names.
+bool is_exr_path(const std::string& path);
 
 // Returns false and fills `error` on failure (nothing is left at `path` then).
 // `metadata` goes into the header (all of it in EXR; strings only in PNG/JPEG;
