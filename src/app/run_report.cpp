@@ -17,15 +17,6 @@ namespace {
 
 const char* type_name(ChannelType type) { return type == ChannelType::Half ? "half" : "float"; }
 
-const char* transform_name(DisplayTransform t) {
-  switch (t) {
-    case DisplayTransform::Linear: return "linear";
-    case DisplayTransform::CgrCourse: return "cgr";
-    case DisplayTransform::Srgb: break;
-  }
-  return "srgb";  // the names of the scene file's "film.display"
-}
-
 }  // namespace
 
 void record_request(const Options& o, const Film& film, ChannelType beauty, const PassPlan& plan,
@@ -43,7 +34,7 @@ void record_request(const Options& o, const Film& film, ChannelType beauty, cons
   record.checkpoint_every = o.checkpoint.empty() ? 0.0 : o.checkpoint_every;
   record.resumed_from = o.resume;
   RunRecord::Display& d = record.display;
-  d.transform = transform_name(display.transform);
+  d.transform = kDisplayTransformNames[static_cast<int>(display.transform)];
   d.exposure = display.exposure;
   d.view = display.view;
   d.display = display.display;

@@ -1,6 +1,7 @@
 // The native format (docs/scene-format.md): top level, camera, film, render
 // settings, materials and lights. Shapes are in import_native_shapes.cpp.
 #include <algorithm>
+#include <iterator>
 #include <optional>
 #include <string>
 #include <vector>
@@ -41,12 +42,9 @@ void read_film(ImportContext& ctx, const JsonValue& v) {
   r.read("width", film.width);
   r.read("height", film.height);
   SourceLocation display_at;
-  const int display = read_choice(r, "display", {"srgb", "linear", "cgr"}, &display_at);
-  if (display >= 0) {
-    constexpr DisplayTransform kTransforms[] = {DisplayTransform::Srgb, DisplayTransform::Linear,
-                                                DisplayTransform::CgrCourse};
-    film.display = Sourced<DisplayTransform>(kTransforms[display], display_at);
-  }
+  const int display = read_choice(
+      r, "display", {std::begin(kDisplayTransformNames), std::end(kDisplayTransformNames)}, &display_at);
+  if (display >= 0) film.display = Sourced<DisplayTransform>(static_cast<DisplayTransform>(display), display_at);
   r.read("exposure", film.exposure);
   r.finish();
 }

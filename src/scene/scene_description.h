@@ -66,6 +66,8 @@ enum class DisplayTransform {
   Linear,     // exposure scale, clamp, value*255 (the Path of Light course's PPM)
   CgrCourse,  // the CGR course's mapping, see docs/scene-format.md
 };
+// The scene file's names of the transforms ("film.display"), in enum order.
+inline constexpr const char* kDisplayTransformNames[] = {"srgb", "linear", "cgr"};
 
 struct FilmDesc {
   Sourced<int> width{640};
