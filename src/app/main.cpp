@@ -329,6 +329,12 @@ int run(const Options& o) {
   if (non_finite.total() > 0 && !o.quiet)
     std::cerr << "warning: " << non_finite.describe() << "; they were added as black" << replay_hint(non_finite) << '\n';
 
+  // What took the samples, for the EXR and the run record alike: the path
+  // integrator's sampler and filter; the classic integrators' pixel grid and box.
+  const bool path_integrator = job->integrator == "path";
+  const std::string sampler_name = path_integrator ? sampler_type_name(settings.sampler) : "pixel-grid";
+  const std::string filter_name = path_integrator ? pixel_filter_name(settings.filter) : "box";
+
   // Write.
   t0 = Clock::now();
   RenderStamp stamp;
@@ -337,8 +343,8 @@ int run(const Options& o) {
   stamp.seed = settings.seed;
   stamp.backend = scene->accel->stats().backend;
   stamp.integrator = job->integrator;
-  stamp.sampler = job->integrator == "path" ? sampler_type_name(settings.sampler) : "pixel-grid";
-  stamp.filter = job->integrator == "path" ? pixel_filter_name(settings.filter) : "box";
+  stamp.sampler = sampler_name;
+  stamp.filter = filter_name;
   stamp.max_depth = settings.max_depth;
   stamp.clamp = settings.clamp;
   stamp.software_version = PT_VERSION;
@@ -359,7 +365,7 @@ int run(const Options& o) {
     record.scene = o.scene;
     record.overrides = o.overrides;
     record.integrator = job->integrator;
-    record.sampler = sampler_type_name(settings.sampler);
+    record.sampler = sampler_name;
     record.width = scene->width;
     record.height = scene->height;
     record.spp = outcome.spp_done;
@@ -371,7 +377,7 @@ int run(const Options& o) {
     record.signal = signals.received();
     record.max_depth = settings.max_depth;
     record.seed = settings.seed;
-    record.filter = pixel_filter_name(settings.filter);
+    record.filter = filter_name;
     record.clamp = settings.clamp;
     record.threads = pool.threads();
     const AccelStats stats = scene->accel->stats();

@@ -168,5 +168,27 @@ TEST_F(RunRecordApp, RecordsOutputsCropAovsPassesCheckpointsAndDisplay) {
   EXPECT_EQ(rec["display"]["view"], "");
 }
 
+TEST_F(RunRecordApp, SamplerAndFilterAreWhatTookTheSamples) {
+  // The path integrator's own; the classic integrators sample a pixel grid with
+  // a box filter, whatever the path integrator's settings say. The run record
+  // and the EXR's header say the same.
+  write("s.json", path_scene(8, 6, 1));
+  ASSERT_EQ(run("s.json -o p.exr --sampler jittered --filter gaussian --report path.json --quiet").status, 0);
+  ASSERT_EQ(run("s.json -o w.exr --integrator whitted --sampler jittered --filter gaussian --report whitted.json --quiet").status, 0);
+  const struct {
+    const char *exr, *record, *sampler, *filter;
+  } expected[] = {{"p.exr", "path.json", "jittered", "gaussian"}, {"w.exr", "whitted.json", "pixel-grid", "box"}};
+  for (const auto& e : expected) {
+    SCOPED_TRACE(e.record);
+    const nlohmann::json rec = read_json(e.record);
+    EXPECT_EQ(rec["image"]["sampler"], e.sampler);
+    EXPECT_EQ(rec["image"]["filter"], e.filter);
+    auto in = OIIO::ImageInput::open(path(e.exr));
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->spec().get_string_attribute("pathtracer:sampler"), e.sampler);
+    EXPECT_EQ(in->spec().get_string_attribute("pathtracer:filter"), e.filter);
+  }
+}
+
 }  // namespace
 }  // namespace pt::test
