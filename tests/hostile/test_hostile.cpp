@@ -57,6 +57,25 @@ std::string random_bytes(std::size_t n, uint32_t seed) {
 
 std::string scene_with_shapes(const std::string& shapes) { return kNativeHeader + std::string(R"("shapes": [)") + shapes + "]}\n"; }
 
+// Writes dir/scene.json with one mesh shape read from `file` (which the case
+// makes beside it); returns the scene argument.
+std::string mesh_scene(const fs::path& dir, const std::string& file) {
+  write_file(dir / "scene.json", scene_with_shapes(R"({"type": "mesh", "file": ")" + file + R"("})"));
+  return "scene.json";
+}
+
+// Writes dir/scene.json with a sphere whose material is textured from `file`;
+// returns the scene argument.
+std::string textured_scene(const fs::path& dir, const std::string& file) {
+  write_file(dir / "scene.json", kNativeHeader + std::string(R"("materials": {"wood": {"texture": ")") + file +
+                                     R"("}}, "shapes": [{"type": "sphere", "material": "wood", "center": [0, 0, 0], )"
+                                     R"("radius": 1}]})");
+  return "scene.json";
+}
+
+// chmod 000: unreadable, except to root.
+void make_unreadable(const fs::path& path) { fs::permissions(path, fs::perms::none); }
+
 // Generators: make the case's files in `dir`; return the scene argument.
 using Generator = std::function<std::string(const fs::path& dir)>;
 
@@ -101,15 +120,12 @@ const std::map<std::string, Generator>& generators() {
       {"mesh-is-a-directory",
        [](const fs::path& dir) {
          fs::create_directories(dir / "mesh.ply");  // root can read anything: a directory cannot be read as a file
-         write_file(dir / "scene.json", scene_with_shapes(R"({"type": "mesh", "file": "mesh.ply"})"));
-         return std::string("scene.json");
+         return mesh_scene(dir, "mesh.ply");
        }},
       {"texture-is-a-directory",
        [](const fs::path& dir) {
          fs::create_directories(dir / "wood.png");
-         write_file(dir / "scene.json", kNativeHeader + std::string(R"("materials": {"wood": {"texture": "wood.png"}}, )") +
-                                            R"("shapes": [{"type": "sphere", "material": "wood", "center": [0, 0, 0], "radius": 1}]})");
-         return std::string("scene.json");
+         return textured_scene(dir, "wood.png");
        }},
       {"scene-is-a-directory",
        [](const fs::path& dir) {
@@ -120,38 +136,32 @@ const std::map<std::string, Generator>& generators() {
       {"ply-random-bytes",
        [](const fs::path& dir) {
          write_file(dir / "mesh.ply", random_bytes(4096, 2));
-         write_file(dir / "scene.json", scene_with_shapes(R"({"type": "mesh", "file": "mesh.ply"})"));
-         return std::string("scene.json");
+         return mesh_scene(dir, "mesh.ply");
        }},
       {"obj-random-bytes",
        [](const fs::path& dir) {
          write_file(dir / "mesh.obj", random_bytes(4096, 3));
-         write_file(dir / "scene.json", scene_with_shapes(R"({"type": "mesh", "file": "mesh.obj"})"));
-         return std::string("scene.json");
+         return mesh_scene(dir, "mesh.obj");
        }},
       // chmod 000: unreadable, except to root (these cases are skipped as root;
       // the *-is-a-directory cases stand in for them there).
       {"unreadable-mesh-ply",
        [](const fs::path& dir) {
          write_file(dir / "mesh.ply", "ply\nformat ascii 1.0\nelement vertex 0\nend_header\n");
-         fs::permissions(dir / "mesh.ply", fs::perms::none);
-         write_file(dir / "scene.json", scene_with_shapes(R"({"type": "mesh", "file": "mesh.ply"})"));
-         return std::string("scene.json");
+         make_unreadable(dir / "mesh.ply");
+         return mesh_scene(dir, "mesh.ply");
        }},
       {"unreadable-mesh-obj",
        [](const fs::path& dir) {
          write_file(dir / "mesh.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-         fs::permissions(dir / "mesh.obj", fs::perms::none);
-         write_file(dir / "scene.json", scene_with_shapes(R"({"type": "mesh", "file": "mesh.obj"})"));
-         return std::string("scene.json");
+         make_unreadable(dir / "mesh.obj");
+         return mesh_scene(dir, "mesh.obj");
        }},
       {"unreadable-texture",
        [](const fs::path& dir) {
          fs::copy_file(kHostile / "files" / "not-an-image.png", dir / "wood.png");
-         fs::permissions(dir / "wood.png", fs::perms::none);
-         write_file(dir / "scene.json", kNativeHeader + std::string(R"("materials": {"wood": {"texture": "wood.png"}}, )") +
-                                            R"("shapes": [{"type": "sphere", "material": "wood", "center": [0, 0, 0], "radius": 1}]})");
-         return std::string("scene.json");
+         make_unreadable(dir / "wood.png");
+         return textured_scene(dir, "wood.png");
        }},
       {"ply-header-claims-terabytes",
        [](const fs::path& dir) {
@@ -160,8 +170,7 @@ const std::map<std::string, Generator>& generators() {
                     "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                     "property float z\nelement face 1099511627776\nproperty list uchar uint vertex_indices\nend_header\n" +
                         std::string(36, '\0'));
-         write_file(dir / "scene.json", scene_with_shapes(R"({"type": "mesh", "file": "mesh.ply"})"));
-         return std::string("scene.json");
+         return mesh_scene(dir, "mesh.ply");
        }},
   };
   return g;
