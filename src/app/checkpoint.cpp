@@ -6,6 +6,7 @@
 #include <istream>
 #include <iterator>
 #include <ostream>
+#include <string_view>
 #include <utility>
 
 #include "io/atomic_file.h"
@@ -27,6 +28,9 @@ uint64_t fnv1a(uint64_t h, const char* data, std::size_t n) {
 // A header line longer than this is not one of ours (they are a few hundred
 // bytes); reading on would let a damaged file claim any amount of memory.
 constexpr std::size_t kMaxHeaderBytes = 64 * 1024;
+
+// The header's keys, each required; any other is refused.
+constexpr std::string_view kHeaderKeys[] = {"scene", "scene_hash", "settings", "spp_done"};
 
 // Ours nest 2 deep; deeper values are refused before they are parsed and
 // printed (printing a JSON value recurses once per level).
@@ -99,10 +103,10 @@ bool read_header(std::istream& in, const std::string& path, CheckpointInfo& info
     return damaged(path, "its JSON nests deeper than " + std::to_string(kMaxHeaderDepth) + " levels", error);
   const nlohmann::ordered_json j = nlohmann::ordered_json::parse(json, nullptr, false);
   if (j.is_discarded() || !j.is_object()) return damaged(path, "its second line is not a JSON object", error);
-  for (const char* key : {"scene", "scene_hash", "settings", "spp_done"})
-    if (!j.contains(key)) return damaged(path, std::string("no \"") + key + "\"", error);
+  for (const std::string_view key : kHeaderKeys)
+    if (!j.contains(std::string(key))) return damaged(path, "no \"" + std::string(key) + "\"", error);
   for (const auto& [key, value] : j.items()) {
-    if (key != "scene" && key != "scene_hash" && key != "settings" && key != "spp_done")
+    if (std::find(std::begin(kHeaderKeys), std::end(kHeaderKeys), key) == std::end(kHeaderKeys))
       return damaged(path, "unknown key \"" + key + "\"", error);
   }
   const nlohmann::ordered_json &scene = j["scene"], &hash = j["scene_hash"], &settings = j["settings"],
