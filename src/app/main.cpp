@@ -12,7 +12,6 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -34,6 +33,7 @@
 #include "app/signals.h"
 #include "app/versions.h"
 #include "core/diagnostics.h"
+#include "core/stopwatch.h"
 #include "core/parallel.h"
 #include "io/image_metadata.h"
 #include "io/run_record.h"
@@ -49,9 +49,6 @@ namespace {
 // Pass size when checkpointing a render with a sample target and no
 // --pass-spp: checkpoints are written at pass boundaries only.
 constexpr int kCheckpointPassSpp = 16;
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 void print_diagnostics(const Diagnostics& diag, bool quiet) {
   if (diag.all().empty() || (quiet && !diag.has_errors())) return;

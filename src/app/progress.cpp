@@ -6,6 +6,7 @@
 #include <ostream>
 
 #include "app/signals.h"
+#include "core/stopwatch.h"
 
 namespace pt {
 namespace {
@@ -111,7 +112,7 @@ void ProgressMonitor::stop() {
 }
 
 ProgressSnapshot ProgressMonitor::snapshot() const {
-  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const double elapsed = seconds_since(start_);
   return make_snapshot(settings_, elapsed, samples(), spp_done_.load(std::memory_order_relaxed), rays());
 }
 

@@ -1,16 +1,14 @@
 #include "app/render_driver.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "core/parallel.h"
+#include "core/stopwatch.h"
 #include "render/film/film.h"
 
 namespace pt {
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 // Under a time budget, a pass is aimed at no more than this share of the time
 // left, so a misestimate of one pass cannot overshoot by much, and never at
@@ -68,7 +66,7 @@ RenderOutcome render_passes(const RenderScene& scene, Film& film, WorkerPool& po
   double seconds_per_spp = 0;
   int previous = 0;
   while (out.spp_done < target) {
-    const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+    const double elapsed = seconds_since(start);
     const double left = plan.time_budget_s > 0 ? plan.time_budget_s - elapsed : 1e300;
     int n = adaptive ? adaptive_pass_size(seconds_per_spp, left, previous, target - out.spp_done)
                      : std::min(fixed, target - out.spp_done);
@@ -81,7 +79,7 @@ RenderOutcome render_passes(const RenderScene& scene, Film& film, WorkerPool& po
     const std::unique_ptr<Integrator> integrator = callbacks.make_integrator(settings);
     const auto t0 = Clock::now();
     integrator->render(scene, film, pool);
-    const double pass_s = std::chrono::duration<double>(Clock::now() - t0).count();
+    const double pass_s = seconds_since(t0);
     if (settings.monitor != nullptr && settings.monitor->cancelled()) {
       out.cancelled = true;
       break;
@@ -92,7 +90,7 @@ RenderOutcome render_passes(const RenderScene& scene, Film& film, WorkerPool& po
     ++out.passes;
     if (callbacks.pass_done) callbacks.pass_done(out.spp_done);
   }
-  out.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  out.seconds = seconds_since(start);
   return out;
 }
 

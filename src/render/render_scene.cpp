@@ -1,9 +1,10 @@
 #include "render/render_scene.h"
 
-#include <chrono>
 #include <cmath>
 #include <type_traits>
 #include <utility>
+
+#include "core/stopwatch.h"
 
 namespace pt {
 
@@ -39,10 +40,6 @@ void resolve_resolution(const FilmDesc& film, const BuildOptions& options, int& 
 }
 
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // ---------------------------------------------------------------- shapes
 Shape to_shape(const SphereDesc& d) {
@@ -139,7 +136,7 @@ bool load_textures(const SceneDescription& desc, const TextureLimits& limits, Re
     const TextureDesc& t = desc.textures[i];
     auto tex = std::make_unique<Texture>();
     std::string error;
-    const auto start = std::chrono::steady_clock::now();
+    const auto start = Clock::now();
     const bool loaded = Texture::load(t.resolved, *tex, error, limits);
     scene.texture_load_seconds += seconds_since(start);
     if (!loaded) {
@@ -282,7 +279,7 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDescription& desc, co
   for (const LightDesc& l : desc.lights) std::visit([&](const auto& light) { add_light(*scene, light); }, l);
 
   if (desc.environment) {
-    const auto environment_start = std::chrono::steady_clock::now();
+    const auto environment_start = Clock::now();
     std::string error;
     scene->environment_map = EnvironmentMap::load(*desc.environment, error, options.textures);
     scene->texture_load_seconds += seconds_since(environment_start);

@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cctype>
-#include <chrono>
 #include <filesystem>
 #include <system_error>
 
+#include "core/stopwatch.h"
 #include "scene/mesh_obj.h"
 #include "scene/ply.h"
 
@@ -66,7 +66,7 @@ bool load_mesh_file(ImportContext& ctx, const Sourced<std::string>& written, Mes
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   MeshData ply;
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = Clock::now();
   std::string error;
   bool loaded = false;
   if (extension == ".obj") {
@@ -75,7 +75,7 @@ bool load_mesh_file(ImportContext& ctx, const Sourced<std::string>& written, Mes
     error = ply_error.message;
     if (ply_error.line > 0) error += " (header line " + std::to_string(ply_error.line) + ")";
   }
-  ctx.scene.mesh_load_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ctx.scene.mesh_load_seconds += seconds_since(start);
   if (!loaded) {
     ctx.diag().error(written.where, "cannot read mesh '" + written.value + "': " + error);
     return false;

@@ -12,6 +12,7 @@
 #include "accel/accelerator.h"
 #include "core/image.h"
 #include "core/parallel.h"
+#include "core/stopwatch.h"
 #include "render/film/film.h"
 #include "render/integrators/integrator.h"
 #include "render/render_scene.h"
@@ -64,8 +65,5 @@ std::vector<RegionError> error_breakdown(const Image& image, const Image& refere
 // The per-pixel squared error, mean over the channels, in every channel (an
 // image to look at, e.g. with a logarithmic colour scale).
 Image error_map(const Image& image, const Image& reference);
-
-using Clock = std::chrono::steady_clock;
-inline double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 }  // namespace pt::bench

@@ -32,6 +32,7 @@
 
 #include "accel/accelerator.h"
 #include "core/parallel.h"
+#include "core/stopwatch.h"
 #include "io/atomic_file.h"
 #include "io/image_error.h"
 #include "io/image_io.h"
@@ -45,8 +46,8 @@ namespace {
 constexpr int kExitFailure = 1;
 constexpr int kExitUsage = 2;
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+using pt::Clock;
+using pt::seconds_since;
 
 struct Options {
   std::string scene, reference, csv, rect, accel = "bvh", sampler = "random";
