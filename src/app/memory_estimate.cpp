@@ -45,7 +45,7 @@ uint64_t MemoryEstimate::total() const {
   return saturating_add(saturating_add(film, images), saturating_add(textures, geometry));
 }
 
-uint64_t texture_bytes(const SceneDescription& scene) {
+uint64_t texture_bytes(const SceneDescription& scene, const TextureLimits& limits) {
   uint64_t total = 0, largest_decode = 0;
   const auto add = [&](const std::string& path, uint64_t bytes_per_texel) {
     const std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);  // the header only
@@ -55,11 +55,11 @@ uint64_t texture_bytes(const SceneDescription& scene) {
     }
     const OIIO::ImageSpec& spec = in->spec();
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) return;
-    const uint64_t texels = saturating_mul(static_cast<uint64_t>(spec.width) * static_cast<uint64_t>(spec.height),
-                                           static_cast<uint64_t>(std::max(1, spec.depth)));
-    // An image beyond the texture limits is refused by the build, with the
-    // scene location that names it; it is never decoded, so it costs nothing.
-    if (texels > static_cast<uint64_t>(TextureLimits{}.max_pixels)) return;
+    const uint64_t texels = static_cast<uint64_t>(spec.width) * static_cast<uint64_t>(spec.height);
+    // An image the loader would refuse (a volume, or beyond the texture
+    // limits) is refused by the build, with the scene location that names it;
+    // it is never decoded, so it costs nothing.
+    if (spec.depth > 1 || !limits.admit(texels, spec.nchannels)) return;
     total = saturating_add(total, saturating_mul(texels, bytes_per_texel));
     largest_decode = std::max(largest_decode,
                               saturating_mul(texels, sizeof(float) * static_cast<uint64_t>(spec.nchannels)));

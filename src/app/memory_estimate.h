@@ -7,6 +7,8 @@
 #include <optional>
 #include <string>
 
+#include "render/textures/texture.h"
+
 namespace pt {
 
 struct SceneDescription;
@@ -35,8 +37,9 @@ MemoryEstimate estimate_memory(const SceneDescription& scene, uint64_t pixels, c
 // texel (float RGB), 12 more for the environment map's sampling distribution,
 // and the largest file's float decode buffer (4 bytes per channel per texel),
 // which exists while that file is read. A file that cannot be opened counts 0
-// (the build reports it).
-uint64_t texture_bytes(const SceneDescription& scene);
+// (the build reports it), and so does one the loader refuses under `limits`
+// (TextureLimits::admit: the build reports it too, before decoding).
+uint64_t texture_bytes(const SceneDescription& scene, const TextureLimits& limits = {});
 
 // "4G", "512M", "64k", "1000" (bytes; K/M/G/T are powers of 1024, an optional
 // trailing "B"/"iB" is accepted). std::nullopt for anything else.

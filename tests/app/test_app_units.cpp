@@ -245,6 +245,14 @@ TEST(MemoryEstimate, TexturesFromTheirFileHeaders) {
   EXPECT_EQ(estimate_memory(scene, 1, {40, 32}).textures, texture_bytes(scene));
   scene.environment->resolved = (dir / "missing.exr").string();  // the build reports it
   EXPECT_EQ(texture_bytes(scene), 64u * 32u * 12u + 64u * 32u * 3u * 4u);
+  // An image the loader would refuse counts nothing, by either limit, at the
+  // loader's exact values (Texture::load reads 3 channels as float and keeps
+  // RGB texels: 64 * 32 * 24 bytes).
+  scene.environment.reset();
+  constexpr uint64_t kPixels = 64 * 32, kBytes = kPixels * 24;
+  EXPECT_EQ(texture_bytes(scene, TextureLimits{kPixels, kBytes}), kPixels * 12u + kPixels * 3u * 4u);
+  EXPECT_EQ(texture_bytes(scene, TextureLimits{kPixels - 1, kBytes}), 0u);
+  EXPECT_EQ(texture_bytes(scene, TextureLimits{kPixels, kBytes - 1}), 0u);
   std::filesystem::remove_all(dir);
 }
 

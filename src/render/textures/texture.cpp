@@ -39,6 +39,11 @@ int wrap(int i, int n) {
 
 }  // namespace
 
+uint64_t TextureLimits::decoded_bytes(uint64_t pixels, int file_channels) {
+  const uint64_t per_pixel = sizeof(float) * static_cast<uint64_t>(file_channels >= 3 ? 3 : 1) + sizeof(RGB);
+  return pixels > UINT64_MAX / per_pixel ? UINT64_MAX : pixels * per_pixel;
+}
+
 Texture::Texture(int width, int height, std::vector<RGB> pixels)
     : width_(width), height_(height), pixels_(std::move(pixels)) {}
 
@@ -64,10 +69,10 @@ bool Texture::load(const std::string& path, Texture& out, std::string& error, co
   }
   // Grey (and grey + alpha) images need one channel, the rest three.
   const int channels = nc >= 3 ? 3 : 1;
-  // Both factors are below 2^31: neither product overflows 64 bits.
+  // Both factors are below 2^31: the product does not overflow 64 bits.
   const uint64_t count = static_cast<uint64_t>(w) * static_cast<uint64_t>(h);
-  const uint64_t bytes = count * (sizeof(float) * static_cast<uint64_t>(channels) + sizeof(RGB));
-  if (count > static_cast<uint64_t>(limits.max_pixels) || bytes > limits.max_bytes) {
+  if (!limits.admit(count, nc)) {
+    const uint64_t bytes = TextureLimits::decoded_bytes(count, nc);
     error = "the image declares " + std::to_string(w) + "x" + std::to_string(h) + " = " + std::to_string(count) +
             " pixels (" + std::to_string(bytes) + " bytes decoded); textures and environment maps may have at most " +
             std::to_string(limits.max_pixels) + " pixels and " + std::to_string(limits.max_bytes) + " bytes";
