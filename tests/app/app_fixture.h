@@ -1,25 +1,18 @@
 // A temporary folder to run the pathtracer in, for the command-line tests.
 #pragma once
 
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
-#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+
+#include "scratch_dir_test.h"
 
 namespace pt::test {
 
-struct RunResult {
-  int status = -1;
-  std::string out, err;
-};
+using RunResult = CommandResult;
 
 // A native scene for the path integrator: a diffuse sphere on a floor under an
 // area light; `width` x `height` pixels, `spp` samples.
@@ -40,22 +33,11 @@ inline std::string path_scene(int width, int height, int spp) {
 })";
 }
 
-class AppTest : public ::testing::Test {
+class AppTest : public ScratchDirTest {
  protected:
-  void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() /
-           ("pt_app_test_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
+  AppTest() : ScratchDirTest("pt_app_test_") {}
 
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
   void write(const std::string& name, const std::string& text) const { std::ofstream(path(name)) << text; }
-  static std::string slurp(const std::string& p) {
-    std::ifstream in(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  }
   nlohmann::json read_json(const std::string& name) const {
     return nlohmann::json::parse(slurp(path(name)), nullptr, false);
   }
@@ -63,16 +45,7 @@ class AppTest : public ::testing::Test {
   // Runs the executable in the folder with `args` (a shell word list) and
   // `env` (shell assignments, e.g. "OCIO=config.ocio") in its environment.
   RunResult run(const std::string& args, const std::string& env = "") const {
-    const std::string cmd = "cd '" + dir_.string() + "' && " + env + " '" PT_PATHTRACER_EXE "' " + args +
-                            " > stdout.txt 2> stderr.txt";
-    const int raw = std::system(cmd.c_str());
-    RunResult r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    r.out = slurp(path("stdout.txt"));
-    r.err = slurp(path("stderr.txt"));
-    std::filesystem::remove(path("stdout.txt"));
-    std::filesystem::remove(path("stderr.txt"));
-    return r;
+    return run_command(env + " '" PT_PATHTRACER_EXE "' " + args);
   }
 
   // Names of the files in the folder.
@@ -87,8 +60,6 @@ class AppTest : public ::testing::Test {
       if (n.find(".tmp") != std::string::npos) return true;
     return false;
   }
-
-  std::filesystem::path dir_;
 };
 
 }  // namespace pt::test

@@ -1,11 +1,6 @@
 // The pathtracer command line, run as a process in a temporary folder.
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -13,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "app_fixture.h"
 #include "io/image_io.h"
 
 namespace pt {
@@ -42,41 +38,14 @@ std::string cgr_scene(const std::string& mode, const std::string& extra_camera_k
 )";
 }
 
-struct Result {
-  int status = -1;
-  std::string out, err;
-};
+using Result = test::RunResult;
 
-class Cli : public ::testing::Test {
+class Cli : public test::AppTest {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("pt_cli_test_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
+    AppTest::SetUp();
     write("binary.json", cgr_scene("binary"));
     write("phong.json", cgr_scene("phong"));
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  void write(const std::string& name, const std::string& text) const { std::ofstream(path(name)) << text; }
-  static std::string slurp(const std::string& p) {
-    std::ifstream in(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  }
-
-  // Runs the executable in the temporary folder with `args` (a shell word list).
-  Result run(const std::string& args) const {
-    const std::string cmd = "cd '" + dir_.string() + "' && '" PT_PATHTRACER_EXE "' " + args + " > stdout.txt 2> stderr.txt";
-    const int raw = std::system(cmd.c_str());
-    Result r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    r.out = slurp(path("stdout.txt"));
-    r.err = slurp(path("stderr.txt"));
-    fs::remove(path("stdout.txt"));
-    fs::remove(path("stderr.txt"));
-    return r;
   }
 
   // Files in the folder other than the scenes the fixture wrote.
@@ -88,8 +57,6 @@ class Cli : public ::testing::Test {
     }
     return names;
   }
-
-  fs::path dir_;
 };
 
 TEST_F(Cli, RendersAndWritesTheImage) {
