@@ -29,33 +29,22 @@ import argparse
 import json
 import os
 import statistics
-import subprocess
 import sys
 import tempfile
 
-from run_benchmarks import REPO, REFERENCE, CORNELL, SPONZA, SPONZA_OBJ, lscpu
+from run_benchmarks import REPO, REFERENCE, CORNELL, SPONZA, SPONZA_OBJ, bench, lscpu
 
-# (depth, threshold): the textbook rule at three depths, then thresholds at depth 3.
+# (depth, threshold): the textbook rule at depths 3 and 5, then thresholds at depth 3 and 1/3 at depths 1 and 5.
 POLICIES = [(3, 1.0), (5, 1.0), (3, 0.5), (3, 0.4), (3, 1 / 3), (3, 0.25), (3, 0.2), (1, 1 / 3), (5, 1 / 3)]
 DEFAULT = (3, 1 / 3)  # IntegratorSettings' defaults
 
 
 def compare(exe, scene, reference, spp, seed, policy, output=None):
-    with tempfile.NamedTemporaryFile(suffix=".json", delete=False) as f:
-        path = f.name
-    try:
-        cmd = [exe, "compare", scene, "--reference", reference, "--accel", "bvh", "--threads", "2",
-               "--spp", str(spp), "--seed", str(seed), "--rr-depth", str(policy[0]),
-               "--rr-threshold", repr(policy[1]), "--json", path]
-        if output:
-            cmd += ["--output", output]
-        print("+ " + " ".join(cmd), file=sys.stderr)
-        subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
-        with open(path) as f:
-            r = json.load(f)[0]
-        return r["rmse"] ** 2, r["seconds"]
-    finally:
-        os.unlink(path)
+    """One `bench_render compare` render: (MSE against `reference`, render seconds)."""
+    args = ["compare", scene, "--reference", reference, "--accel", "bvh", "--threads", "2", "--spp", str(spp),
+            "--seed", str(seed), "--rr-depth", str(policy[0]), "--rr-threshold", repr(policy[1])]
+    r = bench(exe, args + (["--output", output] if output else []))[0]
+    return r["rmse"] ** 2, r["seconds"]
 
 
 def measure_seed(exe, a, policy, s, tmp, row):
