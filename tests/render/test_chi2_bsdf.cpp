@@ -175,6 +175,47 @@ TEST(Bsdf, LambertAlbedoIsExact) {
   EXPECT_NEAR(s.weight.b, 0.75f, 1e-6f);
 }
 
+// The path integrator draws the lobe-choice number only where
+// needs_lobe_choice() says so; where it does not, sample() must not read it
+// (any u_lobe gives the same sample), and where there are two lobes it must.
+TEST(Bsdf, LobeChoiceIsDrawnOnlyWhereThereIsAChoice) {
+  const SurfaceGeometry geo = flat_surface();
+  const Vec3f wo = direction_at(30.0f);
+  const Vec2f u(0.2f, 0.7f);
+  const auto sample_with = [&](const Bsdf& bsdf, float u_lobe) {
+    BsdfSample s;
+    EXPECT_TRUE(bsdf.sample(wo, u_lobe, u, s));
+    return s;
+  };
+  Material lambert;
+  lambert.type = MaterialType::Lambert;
+  Material glossy = lambert;  // Phong with its specular lobe alone
+  glossy.type = MaterialType::Phong;
+  glossy.kd = 0.0f;
+  glossy.ks = 0.8f;
+  glossy.exponent = 20.0f;
+  Material mirror;
+  mirror.type = MaterialType::Mirror;
+  for (const Material* m : {&lambert, &glossy, &mirror}) {
+    const Bsdf bsdf(*m, geo, wo);
+    EXPECT_FALSE(bsdf.needs_lobe_choice()) << static_cast<int>(m->type);
+    const BsdfSample a = sample_with(bsdf, 0.0f), b = sample_with(bsdf, 0.999f);
+    EXPECT_EQ(a.wi, b.wi);
+    EXPECT_EQ(a.weight, b.weight);
+  }
+  Material phong = glossy;  // diffuse and specular lobes
+  phong.kd = 0.5f;
+  phong.ks = 0.5f;
+  Material glass;
+  glass.type = MaterialType::Glass;
+  glass.ior = 1.5f;
+  for (const Material* m : {&phong, &glass}) {
+    const Bsdf bsdf(*m, geo, wo);
+    EXPECT_TRUE(bsdf.needs_lobe_choice()) << static_cast<int>(m->type);
+    EXPECT_FALSE(sample_with(bsdf, 0.0f).wi == sample_with(bsdf, 0.999f).wi) << static_cast<int>(m->type);
+  }
+}
+
 TEST(Bsdf, MirrorReflectsExactlyWithTint) {
   Material m;
   m.type = MaterialType::Mirror;
