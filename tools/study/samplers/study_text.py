@@ -14,7 +14,7 @@ METHOD = """## How it was measured
   time-to-error target use: that target, per-channel RMSE 0.005, is RMSE 0.00866 and MSE 7.5e-5 in
   this report's units (exactly so where no value is clamped).
   The factor does not change slopes; RMSE slopes are half the MSE slopes.
-- **Checkpoints**: `build/tools/study/pt-converge` renders in one process and measures the error at
+- **Checkpoints**: `build/tools/study/samplers/pt-converge` renders in one process and measures the error at
   each checkpoint. For `random` and `sobol` one progressive render per seed: samples [0, n) of every
   pixel are exactly the n-spp render (the sample values depend only on seed, pixel, sample index and
   dimension), so the passes [previous, n) are added to the same film. `jittered` stratifies over the
