@@ -19,7 +19,8 @@ python3-matplotlib). Steps:
 3. speed against error: pt-converge with wall time for --accel embree and bvh
    and every sampler, on the Cornell box (256x256, the Cycles reference in
    ../shared) and the soft-shadow study scene; equal-time and equal-error tables;
-4. the report (study_report.py).
+4. the report: report_template.md (prose written by hand) filled with the
+   run's numbers and tables (study_report.py).
 """
 import argparse
 import json
