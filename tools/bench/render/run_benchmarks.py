@@ -32,6 +32,7 @@ CORNELL = os.path.join(REPO, "scenes", "cornell-box.json")
 REFERENCE = os.path.join(SHARED, "reference", "cornell-box", "cornell_cycles_8192spp.exr")
 SPONZA = os.path.join(REPO, "tools", "bench", "render", "sponza-env.json")
 SPONZA_OBJ = os.path.join(SHARED, "assets", "sponza", "sponza.obj")
+BENCH_RENDER = os.path.join(REPO, "build", "tools", "bench", "render", "bench_render")  # the default build
 SAMPLER = ["sobol"]  # set from --sampler in main()
 QUICK = "; QUICK SMOKE RUN, its figures are not measurements"
 
@@ -150,7 +151,7 @@ def render_markdown(r, a, machine):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--exe", default=os.path.join(REPO, "build", "tools", "bench", "render", "bench_render"))
+    ap.add_argument("--exe", default=BENCH_RENDER)
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--runs", type=int, default=5)
     ap.add_argument("--pass-spp", type=int, default=8)

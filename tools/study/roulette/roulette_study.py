@@ -34,7 +34,7 @@ import tempfile
 
 # run_benchmarks (the benchmark's scenes, reference and bench_render call) lives in tools/bench/render.
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "bench", "render"))
-from run_benchmarks import REPO, REFERENCE, CORNELL, SPONZA, SPONZA_OBJ, bench, lscpu
+from run_benchmarks import BENCH_RENDER, REPO, REFERENCE, CORNELL, SPONZA, SPONZA_OBJ, bench, lscpu
 
 # (depth, threshold): the textbook rule at depths 3 and 5, then thresholds at depth 3 and 1/3 at depths 1 and 5.
 POLICIES = [(3, 1.0), (5, 1.0), (3, 0.5), (3, 0.4), (3, 1 / 3), (3, 0.25), (3, 0.2), (1, 1 / 3), (5, 1 / 3)]
@@ -116,7 +116,7 @@ def markdown(rows, a, machine):
 
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--exe", default=os.path.join(REPO, "build", "tools", "bench", "render", "bench_render"))
+    p.add_argument("--exe", default=BENCH_RENDER)
     p.add_argument("--seeds", type=int, default=3)
     p.add_argument("--cornell-spp", type=int, default=96)
     p.add_argument("--sponza-spp", type=int, default=32)
