@@ -14,7 +14,7 @@ packages=(
   nlohmann-json3-dev libcli11-dev libassimp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-jsonschema
-  python3-matplotlib  # the study_quick test (tools/study/run_study.py --quick) plots; it skips without
+  python3-matplotlib  # the study_quick test (tools/study/samplers/run_study.py --quick) plots; it skips without
 )
 
 missing=()

@@ -88,9 +88,7 @@ inline float power_heuristic(float f_pdf, float g_pdf) {
   return f + g > 0.0f ? f / (f + g) : 0.0f;
 }
 
-// Spherical coordinates of a unit direction in a local frame: theta from +z,
-// phi in [0, 2 pi) from +x towards +y.
-inline float spherical_theta(Vec3f v) { return std::acos(std::clamp(v.z, -1.0f, 1.0f)); }
+// Azimuth of a direction in a local frame: phi in [0, 2 pi) from +x towards +y.
 float spherical_phi(Vec3f v);
 
 // ---------------------------------------------------------------- distributions

@@ -5,7 +5,7 @@
 // (indices in range, finite values, consistent sizes). A broken invariant
 // aborts with a message, which libFuzzer records as a crash.
 //
-// They are linked into the libFuzzer executables (PT_FUZZ=ON, tools/fuzz.sh)
+// They are linked into the libFuzzer executables (PT_FUZZ=ON, tools/dev/fuzz.sh)
 // and into the ordinary test suite, which replays the seed corpora and every
 // crash ever found (tests/hostile/fuzz-regressions/<harness>/) through them.
 #pragma once
@@ -48,7 +48,7 @@ struct Harness {
   int (*run)(const uint8_t* data, std::size_t size);
 };
 
-// Every harness, for the regression test and tools/fuzz.sh.
+// Every harness, for the regression test and tools/dev/fuzz.sh.
 std::vector<Harness> harnesses();
 
 }  // namespace pt::fuzz

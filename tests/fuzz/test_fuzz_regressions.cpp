@@ -1,6 +1,6 @@
 // Replays through the fuzzing harnesses (fuzz_targets.h) every seed in
 // tests/fuzz/seeds/<harness>/ and every input that ever crashed one of them,
-// kept in tests/hostile/fuzz-regressions/<harness>/ (tools/fuzz.sh copies new
+// kept in tests/hostile/fuzz-regressions/<harness>/ (tools/dev/fuzz.sh copies new
 // crashes there). Each harness checks its parser's invariants and aborts when
 // one breaks, so a regression fails this test (under the sanitizer build too).
 #include <gtest/gtest.h>

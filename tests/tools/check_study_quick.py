@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""CTest: `tools/study/run_study.py --quick` into a fresh folder, then checks what
+"""CTest: `tools/study/samplers/run_study.py --quick` into a fresh folder, then checks what
 it wrote: the report, every CSV (rows, columns, values), the PNG/SVG plots and
 sane slopes. Exit 0 pass, 1 fail, 77 skip (matplotlib missing: the tool says
 how to install it).
@@ -32,7 +32,7 @@ def main():
     source, build = sys.argv[1], sys.argv[2]
     out = tempfile.mkdtemp(prefix="pt-study-quick-")
     try:
-        r = subprocess.run([sys.executable, os.path.join(source, "tools", "study", "run_study.py"), "--quick",
+        r = subprocess.run([sys.executable, os.path.join(source, "tools", "study", "samplers", "run_study.py"), "--quick",
                             "--build", build, "--out", out], capture_output=True, text=True)
         print(r.stdout + r.stderr)
         if r.returncode == SKIP:

@@ -1,4 +1,4 @@
-// bench_render (tools/bench_render, docs/performance.md) run as a process on a
+// bench_render (tools/bench/render, docs/performance.md) run as a process on a
 // small scene: the benchmark must measure what the product renders. `compare`
 // at the pathtracer's own seed and spp finds no error at all, with both
 // backends; `time-to-error` stops at the first pass whose error is under the

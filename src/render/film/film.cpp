@@ -90,10 +90,6 @@ Film::Film(int width, int height, PixelRect crop, std::vector<AovRequest> aovs)
   aov_data_.assign(pixels_.size() * static_cast<std::size_t>(stride_), 0.0);
 }
 
-bool Film::wants(AovType type) const {
-  return std::any_of(aovs_.begin(), aovs_.end(), [&](const AovRequest& r) { return r.type == type; });
-}
-
 Image Film::image() const {
   Image out(crop_.width(), crop_.height());
   for (std::size_t i = 0; i < pixels_.size(); ++i) out.pixels[i] = pixels_[i].value();

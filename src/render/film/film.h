@@ -103,7 +103,6 @@ class Film {
   // zeros (accumulate() per sample, lowest sample index first), then added
   // with add_aovs().
   const std::vector<AovRequest>& aovs() const { return aovs_; }
-  bool wants(AovType type) const;
   bool wants_geometry() const { return wants_geometry_; }  // albedo, N, P, Z or ids
   bool wants_lighting() const { return wants_lighting_; }  // the path integrator's split
   int aov_doubles() const { return stride_; }

@@ -57,7 +57,7 @@ struct IntegratorSettings {
   // throughput (largest channel, times eta^2) t is below `roulette_threshold`
   // survives with probability t / roulette_threshold and is reweighted, so the
   // estimate stays unbiased. The defaults were chosen by measured efficiency
-  // (1 / (MSE x time), tools/bench_render/roulette_study.py, docs/path-tracing.md).
+  // (1 / (MSE x time), tools/study/roulette/roulette_study.py, docs/path-tracing.md).
   int roulette_depth = 3;
   float roulette_threshold = 1.0f / 3.0f;
   SamplerType sampler = SamplerType::Sobol;  // path: where its random numbers come from (docs/samplers.md)

@@ -31,12 +31,6 @@ Vec2f sample_position(int x, int y, int index, int spp, uint64_t seed, uint64_t 
   return Vec2f(static_cast<float>(x), static_cast<float>(y)) + sampler.get_pixel_2d();
 }
 
-Vec2f lens_position(int index, uint64_t seed, uint64_t pixel_index) {
-  StratifiedPixelSampler sampler(1, seed, 1);
-  sampler.start(pixel_index, index);
-  return sampler.get_2d();
-}
-
 void first_hit_aovs(const RenderScene& scene, const Ray& ray, AovSample& aov) {
   Intersection isect;
   if (!scene.intersect(ray, isect)) return;

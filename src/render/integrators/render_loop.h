@@ -30,11 +30,6 @@ struct RenderScene;
 // The jitter comes from Rng(hash(seed, pixel_index, index)).
 Vec2f sample_position(int x, int y, int index, int spp, uint64_t seed, uint64_t pixel_index);
 
-// Position on the lens, in [0,1)^2, of sample `index` of a pixel (thin-lens
-// cameras only) under the same sampler: from a stream of its own keyed on
-// (seed, pixel_index, index).
-Vec2f lens_position(int index, uint64_t seed, uint64_t pixel_index);
-
 // Computes one radiance estimate for a camera ray.
 using RadianceFn = FunctionRef<RGB(const Ray&)>;
 // Computes one radiance estimate for a camera ray, drawing further dimensions

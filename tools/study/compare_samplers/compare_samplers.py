@@ -6,7 +6,7 @@ Renders a reference (random sampler, --ref-spp), then each sampler at each
 reference, and the render time (from --report). Writes docs/bench/samplers.md
 and .json with the machine description (lscpu). All figures come from one run.
 
-  python3 tools/imgerr/compare_samplers.py --build build [--scene scenes/cornell-box.json]
+  python3 tools/study/compare_samplers/compare_samplers.py --build build [--scene scenes/cornell-box.json]
       [--width 160] [--spp 4 16 64] [--ref-spp 4096] [--seeds 3] [--out docs/bench/samplers]
 """
 import argparse
@@ -79,7 +79,7 @@ def main():
     with open(args.out + ".json", "w") as f:
         json.dump(record, f, indent=2)
     lines = ["# Samplers compared", "",
-             f"`python3 tools/imgerr/compare_samplers.py` on `{args.scene}`, width {args.width}, "
+             f"`python3 tools/study/compare_samplers/compare_samplers.py` on `{args.scene}`, width {args.width}, "
              f"reference: random sampler at {args.ref_spp} spp (its own noise is included in every MSE). "
              f"Mean over {args.seeds} seeds; MSE and relMSE as in docs/samplers.md; ratios to random at equal spp.",
              "", "| spp | sampler | MSE | relMSE | MSE / random | render s (median) |", "|---|---|---|---|---|---|"]

@@ -3,7 +3,7 @@
 # checkpoint) with clang, AddressSanitizer and UndefinedBehaviorSanitizer in
 # build-fuzz/, and runs each for SECONDS (default 600), one after the other.
 #
-#   tools/fuzz.sh [SECONDS] [HARNESS...]      e.g. tools/fuzz.sh 60 ply, tools/fuzz.sh 600 checkpoint
+#   tools/dev/fuzz.sh [SECONDS] [HARNESS...]      e.g. tools/dev/fuzz.sh 60 ply, tools/dev/fuzz.sh 600 checkpoint
 #
 # Corpora grow in build-fuzz/fuzz-corpus/<harness>/ (kept between runs, never
 # committed); seeds are assembled from the repository (scenes, bad scenes,
@@ -14,7 +14,7 @@
 # status 1 if anything was found.
 set -euo pipefail
 
-repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 build="${PT_FUZZ_BUILD_DIR:-$repo/build-fuzz}"
 seconds="${1:-600}"
 shift || true
@@ -65,7 +65,7 @@ for h in "${harnesses[@]}"; do
   # Under ASan, 64 bit: ASan's shadow memory needs -rss_limit_mb, not ulimit -v.
   set +e
   ASAN_OPTIONS="detect_leaks=1:allocator_may_return_null=0" UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
-  LSAN_OPTIONS="suppressions=$repo/tools/lsan-suppressions.txt:print_suppressions=0" \
+  LSAN_OPTIONS="suppressions=$repo/tools/dev/lsan-suppressions.txt:print_suppressions=0" \
     "$build/tests/fuzz/fuzz_$h" -max_total_time="$seconds" -rss_limit_mb=2048 -max_len=65536 -timeout=10 \
     -dict="$repo/tests/fuzz/$h.dict" -print_final_stats=1 -artifact_prefix="$artifacts/" \
     "$corpus" "$seeds" >"$build/fuzz-logs/$h.log" 2>&1

@@ -8,7 +8,7 @@ with the machine description (lscpu).
 
 Default scene: the official Path of Light example at 800x800 (../shared).
 
-  python3 tools/bench_foundation.py [--scene S] [--threads 1 2] [--runs 5]
+  python3 tools/bench/foundation/bench_foundation.py [--scene S] [--threads 1 2] [--runs 5]
                                     [--json docs/bench/foundation.json]
                                     [--markdown docs/bench/foundation.md]
 """
@@ -21,7 +21,7 @@ import subprocess
 import sys
 import tempfile
 
-REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 DEFAULT_SCENE = os.path.join(REPO, "..", "shared", "seed-scenes", "path-of-light", "examples",
                              "example.json")
 PHASES = ["parse", "scene_build", "accel_build", "render", "write", "total"]

@@ -2,14 +2,14 @@
 """The sampler convergence study and the speed-versus-error comparison, in one
 command; writes docs/report/ from scratch (README.md, PNG/SVG plots, CSV/JSON).
 
-    python3 tools/study/run_study.py                  # the real run, ~6 min on 2 idle cores
-    python3 tools/study/run_study.py --quick --out /tmp/report   # smoke run, < 1 min
+    python3 tools/study/samplers/run_study.py                  # the real run, ~6 min on 2 idle cores
+    python3 tools/study/samplers/run_study.py --quick --out /tmp/report   # smoke run, < 1 min
 
-Needs the build (build/pathtracer, build/tools/study/pt-converge,
+Needs the build (build/pathtracer, build/tools/study/samplers/pt-converge,
 build/tools/imgerr/pt-imgerr) and matplotlib (Debian: apt-get install
 python3-matplotlib). Steps:
 
-1. references: every study scene (tools/study/scenes/) rendered twice with the
+1. references: every study scene (tools/study/samplers/scenes/) rendered twice with the
    sobol sampler at REF_SPP and two seeds far from the study's; the MSE between
    the two is twice the noise of one, and must be far below the smallest MSE
    the study measures (checked and reported);
@@ -19,7 +19,8 @@ python3-matplotlib). Steps:
 3. speed against error: pt-converge with wall time for --accel embree and bvh
    and every sampler, on the Cornell box (256x256, the Cycles reference in
    ../shared) and the soft-shadow study scene; equal-time and equal-error tables;
-4. the report (study_report.py).
+4. the report: report_template.md (prose written by hand) filled with the
+   run's numbers and tables (study_report.py).
 """
 import argparse
 import json
@@ -29,7 +30,7 @@ import sys
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(os.path.dirname(HERE))
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(HERE)))  # tools/study/samplers -> repository
 EXIT_NO_MATPLOTLIB = 77  # CTest's skip code for the test that runs --quick
 
 SAMPLERS = ["random", "jittered", "sobol"]
@@ -175,7 +176,7 @@ def main():
     if not need_matplotlib():
         return EXIT_NO_MATPLOTLIB
     tools = {"pathtracer": os.path.join(args.build, "pathtracer"),
-             "converge": os.path.join(args.build, "tools", "study", "pt-converge"),
+             "converge": os.path.join(args.build, "tools", "study", "samplers", "pt-converge"),
              "imgerr": os.path.join(args.build, "tools", "imgerr", "pt-imgerr")}
     import study_report  # after the matplotlib check: it imports matplotlib
 
@@ -201,7 +202,7 @@ def main():
     info["loadavg_end"] = os.getloadavg()
     info["seconds"] = time.monotonic() - started
     info["threads"] = args.threads
-    info["command"] = "python3 tools/study/run_study.py" + (" --quick" if args.quick else "")
+    info["command"] = "python3 tools/study/samplers/run_study.py" + (" --quick" if args.quick else "")
     info["date"] = study_report.now()
     run_desc = {"cfg": cfg, "scenes": SCENES, "samplers": SAMPLERS, "accels": ACCELS, "info": info,
                 "refs": {k: dict(v, path=os.path.basename(v["path"])) for k, v in refs.items()},

@@ -3,9 +3,9 @@
 # made with debootstrap: a clean clone of HEAD, no ../shared, nothing
 # preinstalled but what minbase has. Needs root and debootstrap; takes ~15 min.
 #
-#   sudo bash tools/check_fresh_debian.sh [ROOTFS_DIR]
+#   sudo bash tools/dev/check_fresh_debian.sh [ROOTFS_DIR]
 set -euo pipefail
-repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 root="${1:-/tmp/pt-fresh-debian12}"
 
 if [ ! -x "$root/bin/bash" ]; then

@@ -134,7 +134,7 @@ std::string to_json(const Report& report) {
 std::string to_markdown(const Report& report) {
   std::ostringstream md;
   md << "# Acceleration structures: our BVH against Embree\n\n";
-  md << "Produced by `" << report.command << "` (`tools/bench_accel`); every figure below comes from that one run "
+  md << "Produced by `" << report.command << "` (`tools/bench/accel`); every figure below comes from that one run "
         "on the machine described at the end.\n\n";
   if (!report.note.empty()) md << "**Note.** " << report.note << "\n\n";
   if (!report.scenes.empty() && !report.scenes[0].runs.empty()) {

@@ -2,10 +2,10 @@
 """A/B of builds: samples per second of `bench_render throughput`, the builds
 alternating run by run, so that the machine's drift falls on all of them alike.
 
-    python3 tools/bench_render/ab_throughput.py [--rounds 12] [--scene scenes/cornell-box.json]
+    python3 tools/bench/render/ab_throughput.py [--rounds 12] [--scene scenes/cornell-box.json]
             [--accel bvh] [--spp 32] BUILD_DIR [BUILD_DIR ...]
 
-Each BUILD_DIR is a build tree with tools/bench_render/bench_render (e.g. build/
+Each BUILD_DIR is a build tree with tools/bench/render/bench_render (e.g. build/
 and a second tree configured with other flags). Prints, per build, the median
 and the largest of its runs and the ratio of its median to the first build's.
 The renders are the same image in every build (the error is the same), so the
@@ -19,11 +19,11 @@ import statistics
 import subprocess
 import tempfile
 
-REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
 
 def samples_per_second(build, a, out):
-    exe = os.path.join(build, "tools", "bench_render", "bench_render")
+    exe = os.path.join(build, "tools", "bench", "render", "bench_render")
     subprocess.run([exe, "throughput", a.scene, "--accel", a.accel, "--threads", str(a.threads), "--spp", str(a.spp),
                     "--runs", "1", "--json", out], cwd=REPO, check=True, capture_output=True)
     with open(out) as f:
