@@ -150,40 +150,7 @@ bool load_textures(const SceneDescription& desc, const TextureLimits& limits, Re
 }
 
 Material to_material(const MaterialDesc& d, const RenderScene& scene) {
-  Material m;
-  m.kd = d.kd;
-  m.ks = d.ks;
-  m.diffuse = d.diffuse;
-  m.specular = d.specular;
-  m.exponent = d.exponent;
-  m.reflectivity = std::clamp(d.reflectivity.value, 0.0f, 1.0f);
-  m.refractive = d.refractive;
-  m.ior = d.ior;
-  m.emission = d.emission;
-  m.two_sided = d.two_sided;
-  m.type = d.type;
-  // The classic integrator reads only the course fields: give the physical
-  // types their closest classic meaning (docs/path-tracing.md).
-  switch (m.type) {
-    case MaterialType::Lambert:
-      m.ks = 0.0f;
-      m.reflectivity = 0.0f;
-      m.refractive = false;
-      break;
-    case MaterialType::Mirror:
-      m.kd = 0.0f;
-      m.ks = 0.0f;
-      m.reflectivity = 1.0f;
-      m.refractive = false;
-      break;
-    case MaterialType::Glass:
-      m.refractive = true;
-      break;
-    case MaterialType::Phong:
-      break;
-  }
-  if (d.texture) m.texture = scene.textures[static_cast<std::size_t>(*d.texture)].get();
-  return m;
+  return make_material(d, d.texture ? scene.textures[static_cast<std::size_t>(*d.texture)].get() : nullptr);
 }
 
 // ---------------------------------------------------------------- lights

@@ -207,5 +207,35 @@ TEST_F(RenderSceneBuild, MeshWithOutOfRangeIndexIsAnError) {
   EXPECT_TRUE(diag.has_errors());
 }
 
+// The material's kind is decided once, when the scene is built: every
+// dielectric is Glass (a refractive Phong too, but not a refractive Lambert or
+// mirror, whose type says what they are), and the physical types carry their
+// classic meaning in the course fields.
+TEST(MakeMaterial, DecidesTheKindOnce) {
+  MaterialDesc d;
+  d.refractive = true;
+  d.ior = 1.3f;
+  Material m = make_material(d, nullptr);
+  EXPECT_TRUE(m.glass());
+  EXPECT_EQ(m.albedo_at(Vec2f()), RGB(1.0f));
+  d.type = MaterialType::Lambert;
+  d.kd = 0.5f;
+  d.diffuse = RGB(0.2f, 0.4f, 0.6f);
+  m = make_material(d, nullptr);
+  EXPECT_FALSE(m.glass());
+  EXPECT_EQ(m.ks, 0.0f);
+  EXPECT_EQ(m.albedo_at(Vec2f()), RGB(0.2f, 0.4f, 0.6f) * 0.5f);
+  d.type = MaterialType::Mirror;
+  d.specular = RGB(0.9f, 0.8f, 0.7f);
+  m = make_material(d, nullptr);
+  EXPECT_FALSE(m.glass());
+  EXPECT_EQ(m.reflectivity, 1.0f);
+  EXPECT_EQ(m.kd, 0.0f);
+  EXPECT_EQ(m.albedo_at(Vec2f()), RGB(0.9f, 0.8f, 0.7f));
+  d.type = MaterialType::Glass;
+  d.refractive = false;
+  EXPECT_TRUE(make_material(d, nullptr).glass());
+}
+
 }  // namespace
 }  // namespace pt

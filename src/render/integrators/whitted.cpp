@@ -88,7 +88,7 @@ class Whitted {
     Intersection isect;
     if (!scene_.intersect(ray, isect)) return scene_.escaped_radiance(ray.dir);
     const Material& m = *isect.material;
-    if (m.refractive) return dielectric(ray, isect, depth);
+    if (m.glass()) return dielectric(ray, isect, depth);
 
     // Both normals flipped to the viewer's side of the surface.
     const Vec3f wo = -ray.dir;
