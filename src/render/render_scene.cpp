@@ -150,60 +150,28 @@ bool load_textures(const SceneDescription& desc, const TextureLimits& limits, Re
 }
 
 Material to_material(const MaterialDesc& d, const RenderScene& scene) {
-  Material m;
-  m.kd = d.kd;
-  m.ks = d.ks;
-  m.diffuse = d.diffuse;
-  m.specular = d.specular;
-  m.exponent = d.exponent;
-  m.reflectivity = std::clamp(d.reflectivity.value, 0.0f, 1.0f);
-  m.refractive = d.refractive;
-  m.ior = d.ior;
-  m.emission = d.emission;
-  m.two_sided = d.two_sided;
-  m.type = d.type;
-  // The classic integrator reads only the course fields: give the physical
-  // types their closest classic meaning (docs/path-tracing.md).
-  switch (m.type) {
-    case MaterialType::Lambert:
-      m.ks = 0.0f;
-      m.reflectivity = 0.0f;
-      m.refractive = false;
-      break;
-    case MaterialType::Mirror:
-      m.kd = 0.0f;
-      m.ks = 0.0f;
-      m.reflectivity = 1.0f;
-      m.refractive = false;
-      break;
-    case MaterialType::Glass:
-      m.refractive = true;
-      break;
-    case MaterialType::Phong:
-      break;
-  }
-  if (d.texture) m.texture = scene.textures[static_cast<std::size_t>(*d.texture)].get();
-  return m;
+  return make_material(d, d.texture ? scene.textures[static_cast<std::size_t>(*d.texture)].get() : nullptr);
 }
 
-void add_light(RenderScene& scene, const PointLightDesc& d) {
-  scene.point_lights.push_back(PointLight{d.position, d.intensity, d.specular_intensity, d.inverse_square});
+// ---------------------------------------------------------------- lights
+// One overload per LightDesc alternative: the light it becomes (if any).
+void add_light(std::vector<Light>& lights, const PointLightDesc& d) {
+  lights.emplace_back(PointLight{d.position, d.intensity, d.specular_intensity, d.inverse_square});
 }
 
-void add_light(RenderScene& scene, const DirectionalLightDesc& d) {
+void add_light(std::vector<Light>& lights, const DirectionalLightDesc& d) {
   // The loader refuses a zero direction; a description built in code might not.
   // Scaled before normalising, so a tiny direction does not flush to zero.
   const float m = max_component(abs(d.direction.value));
   if (!(m > 0.0f) || !std::isfinite(m)) return;
-  scene.directional_lights.push_back(DirectionalLight{normalize(d.direction.value / m), d.irradiance});
+  lights.emplace_back(DirectionalLight{normalize(d.direction.value / m), d.irradiance});
 }
 
-// The path integrator's light list: delta lights, every emissive shape, and
-// the environment (the map, or the background colour if it is not black).
-LightSet build_light_set(const RenderScene& scene) {
+// Every light: the description's, every emissive shape, and the environment
+// (the map, or the background colour if it is not black).
+LightSet build_light_set(const SceneDescription& desc, const RenderScene& scene) {
   std::vector<Light> lights;
-  for (const PointLight& p : scene.point_lights) lights.emplace_back(p);
-  for (const DirectionalLight& d : scene.directional_lights) lights.emplace_back(d);
+  for (const LightDesc& l : desc.lights) std::visit([&](const auto& light) { add_light(lights, light); }, l);
   for (std::size_t i = 0; i < scene.geometry.shapes.size(); ++i) {
     const Material& m = scene.materials[static_cast<std::size_t>(scene.shape_material[i])];
     if (m.emits()) lights.emplace_back(ShapeLight(scene.geometry.shapes[i], static_cast<uint32_t>(i), m));
@@ -276,8 +244,6 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDescription& desc, co
     scene->shape_material.push_back(material);
   }
 
-  for (const LightDesc& l : desc.lights) std::visit([&](const auto& light) { add_light(*scene, light); }, l);
-
   if (desc.environment) {
     const auto environment_start = Clock::now();
     std::string error;
@@ -293,7 +259,7 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDescription& desc, co
   if (!ok) return nullptr;
   scene->accel = build_accelerator(options.accel, scene->geometry, pool, diag);
   if (!scene->accel) return nullptr;
-  scene->lights = build_light_set(*scene);
+  scene->lights = build_light_set(desc, *scene);
   return scene;
 }
 

@@ -47,12 +47,11 @@ struct RenderScene {
   std::vector<int> shape_material;   // per shape, index into materials
   std::vector<Material> materials;
   std::vector<std::unique_ptr<Texture>> textures;  // stable addresses (materials point in)
-  std::vector<PointLight> point_lights;
-  std::vector<DirectionalLight> directional_lights;
-  // Only when the scene has an environment map (its sampling distribution included).
+  // Owns the environment map (its sampling distribution included) when the
+  // scene has one; it is reached through `lights` (an EnvironmentLight).
   std::unique_ptr<EnvironmentMap> environment_map;
-  // Every light as the path integrator samples it (built after the accelerator:
-  // infinite lights' power estimates need the scene bounds).
+  // Every light, each stored once (built after the accelerator: infinite
+  // lights' power estimates need the scene bounds).
   LightSet lights;
   std::unique_ptr<Accelerator> accel;
   double texture_load_seconds = 0;  // decoding the textures and the environment map; 0 if there are none
@@ -64,8 +63,9 @@ struct RenderScene {
     return accel->occluded(ray);
   }
   // Radiance seen by a ray that leaves the scene in direction `dir`: the
-  // environment map, or else the background colour.
-  RGB escaped_radiance(Vec3f dir) const { return environment_map ? environment_map->radiance(dir) : background; }
+  // environment light's (the map, or the background colour), or else the
+  // background colour (black).
+  RGB escaped_radiance(Vec3f dir) const { return lights.escaped_radiance(dir, background); }
 };
 
 

@@ -76,8 +76,14 @@ TEST_F(RenderSceneBuild, ConvertsShapesMaterialsAndLights) {
   EXPECT_TRUE(std::holds_alternative<Sphere>(scene->geometry.shapes[0]));
   ASSERT_TRUE(std::holds_alternative<TriangleMesh>(scene->geometry.shapes[1]));
   EXPECT_EQ(std::get<TriangleMesh>(scene->geometry.shapes[1]).triangle_count(), 1u);
-  ASSERT_EQ(scene->point_lights.size(), 1u);
-  EXPECT_EQ(scene->point_lights[0].specular_intensity, RGB(5));
+  // The point light and the background as a uniform environment, each once.
+  ASSERT_EQ(scene->lights.size(), 2u);
+  ASSERT_EQ(scene->lights.delta_lights().size(), 1u);
+  ASSERT_TRUE(std::holds_alternative<PointLight>(scene->lights[0]));
+  EXPECT_EQ(std::get<PointLight>(scene->lights[0]).specular_intensity, RGB(5));
+  ASSERT_TRUE(std::holds_alternative<UniformEnvironment>(scene->lights[1]));
+  EXPECT_EQ(scene->lights.environment(), 1);
+  EXPECT_EQ(scene->escaped_radiance(Vec3f(0, 1, 0)), RGB(0.1f, 0.2f, 0.3f));
 
   Intersection isect;
   ASSERT_TRUE(scene->intersect(Ray{{0, 0, 5}, {0, 0, -1}}, isect));
@@ -88,6 +94,45 @@ TEST_F(RenderSceneBuild, ConvertsShapesMaterialsAndLights) {
   EXPECT_EQ(isect.material->diffuse, RGB(0, 0, 1));
   EXPECT_FALSE(scene->intersect(Ray{{0, 3, 5}, {0, 0, 1}}, isect));
   EXPECT_TRUE(scene->occluded(Ray{{5.2f, 0.2f, 1}, {0, 0, -1}}));
+}
+
+// The light set's order (delta before not, finite before infinite, the
+// description's order within a kind) fixes the light choice and the classic
+// integrator's sum, whatever order the description lists its lights in.
+TEST_F(RenderSceneBuild, LightsAreOrderedByKindEachStoredOnce) {
+  SceneDescription d = test::empty_scene(8, 8, {0, 0, 5}, {0, 0, 0}, {0, 1, 0});
+  MaterialDesc glow = test::diffuse_material(RGB(1));
+  glow.emission = RGB(2);
+  add_sphere(d, {0, 0, 0}, 1.0f, add_material(d, glow));
+  DirectionalLightDesc sun;
+  sun.direction = Vec3f(0, -1, 0);
+  sun.irradiance = RGB(1);
+  d.lights.emplace_back(sun);
+  test::add_point_light(d, {1, 2, 3}, RGB(4), RGB(4));
+  test::add_point_light(d, {3, 2, 1}, RGB(6), RGB(6));
+  d.render.background = RGB(0.5f);
+  auto scene = test::build(d, pool_);
+  ASSERT_TRUE(scene);
+  const LightSet& lights = scene->lights;
+  ASSERT_EQ(lights.size(), 5u);
+  EXPECT_EQ(lights.delta_lights().size(), 3u);
+  ASSERT_TRUE(std::holds_alternative<PointLight>(lights[0]));
+  EXPECT_EQ(std::get<PointLight>(lights[0]).intensity, RGB(4));
+  ASSERT_TRUE(std::holds_alternative<PointLight>(lights[1]));
+  EXPECT_EQ(std::get<PointLight>(lights[1]).intensity, RGB(6));
+  EXPECT_TRUE(std::holds_alternative<DirectionalLight>(lights[2]));
+  EXPECT_TRUE(std::holds_alternative<ShapeLight>(lights[3]));
+  EXPECT_EQ(lights.shape_light(0), 3);
+  EXPECT_TRUE(std::holds_alternative<UniformEnvironment>(lights[4]));
+  EXPECT_EQ(lights.environment(), 4);
+  // Every light answers the one interface; delta lights have no density.
+  LightSample s;
+  ASSERT_TRUE(sample_light(lights[2], Vec3f(0, 3, 0), Vec2f(0.5f, 0.5f), s));
+  EXPECT_TRUE(s.delta && s.infinite);
+  EXPECT_EQ(light_pdf(lights[2], Vec3f(0, 3, 0), s.wi, Vec3f(), Vec3f()), 0.0f);
+  ASSERT_TRUE(sample_light(lights[4], Vec3f(0, 3, 0), Vec2f(0.5f, 0.5f), s));
+  EXPECT_TRUE(!s.delta && s.infinite);
+  EXPECT_EQ(light_pdf(lights[4], Vec3f(0, 3, 0), s.wi, Vec3f(), Vec3f()), s.pdf);
 }
 
 TEST_F(RenderSceneBuild, ResolutionOverrides) {
@@ -160,6 +205,36 @@ TEST_F(RenderSceneBuild, MeshWithOutOfRangeIndexIsAnError) {
   Diagnostics diag;
   EXPECT_EQ(build_render_scene(d, {}, pool_, diag), nullptr);
   EXPECT_TRUE(diag.has_errors());
+}
+
+// The material's kind is decided once, when the scene is built: every
+// dielectric is Glass (a refractive Phong too, but not a refractive Lambert or
+// mirror, whose type says what they are), and the physical types carry their
+// classic meaning in the course fields.
+TEST(MakeMaterial, DecidesTheKindOnce) {
+  MaterialDesc d;
+  d.refractive = true;
+  d.ior = 1.3f;
+  Material m = make_material(d, nullptr);
+  EXPECT_TRUE(m.glass());
+  EXPECT_EQ(m.albedo_at(Vec2f()), RGB(1.0f));
+  d.type = MaterialType::Lambert;
+  d.kd = 0.5f;
+  d.diffuse = RGB(0.2f, 0.4f, 0.6f);
+  m = make_material(d, nullptr);
+  EXPECT_FALSE(m.glass());
+  EXPECT_EQ(m.ks, 0.0f);
+  EXPECT_EQ(m.albedo_at(Vec2f()), RGB(0.2f, 0.4f, 0.6f) * 0.5f);
+  d.type = MaterialType::Mirror;
+  d.specular = RGB(0.9f, 0.8f, 0.7f);
+  m = make_material(d, nullptr);
+  EXPECT_FALSE(m.glass());
+  EXPECT_EQ(m.reflectivity, 1.0f);
+  EXPECT_EQ(m.kd, 0.0f);
+  EXPECT_EQ(m.albedo_at(Vec2f()), RGB(0.9f, 0.8f, 0.7f));
+  d.type = MaterialType::Glass;
+  d.refractive = false;
+  EXPECT_TRUE(make_material(d, nullptr).glass());
 }
 
 }  // namespace

@@ -113,11 +113,10 @@ class PathTracer {
     const int env = lights_.environment();
     if (specular || env < 0 || strategy_ == LightStrategy::BsdfOnly) return 1.0f;
     if (strategy_ == LightStrategy::LightOnly) return 0.0f;
-    const Light& light = lights_[static_cast<std::size_t>(env)];
-    const float light_pdf = lights_.pmf(env) * (std::holds_alternative<EnvironmentLight>(light)
-                                                    ? std::get<EnvironmentLight>(light).map->pdf(dir)
-                                                    : std::get<UniformEnvironment>(light).pdf());
-    return power_heuristic(prev_pdf, light_pdf);
+    // An infinite light reads only the direction.
+    const Vec3f none;
+    const float pdf = lights_.pmf(env) * light_pdf(lights_[static_cast<std::size_t>(env)], none, dir, none, none);
+    return power_heuristic(prev_pdf, pdf);
   }
 
   // MIS weight of an emitter hit through a BSDF-sampled direction.
@@ -125,9 +124,9 @@ class PathTracer {
     const int index = lights_.shape_light(isect.hit.shape);
     if (specular || index < 0 || strategy_ == LightStrategy::BsdfOnly) return 1.0f;
     if (strategy_ == LightStrategy::LightOnly) return 0.0f;
-    const auto& light = std::get<ShapeLight>(lights_[static_cast<std::size_t>(index)]);
-    const float light_pdf = lights_.pmf(index) * light.pdf(prev_p, dir, isect.geo.p, isect.geo.ng);
-    return power_heuristic(prev_pdf, light_pdf);
+    const Light& light = lights_[static_cast<std::size_t>(index)];
+    const float pdf = lights_.pmf(index) * light_pdf(light, prev_p, dir, isect.geo.p, isect.geo.ng);
+    return power_heuristic(prev_pdf, pdf);
   }
 
   // Next-event estimation: one light, chosen by power, sampled at one point.

@@ -47,7 +47,7 @@ class PathAovRecorder {
     bsdf_ = &bsdf;
     mixed_ = false;
     all_diffuse_ = m.type == MaterialType::Lambert;
-    if (m.type != MaterialType::Phong || m.refractive || m.kd <= 0.0f) return;
+    if (m.type != MaterialType::Phong || m.kd <= 0.0f) return;
     // Phong: the same material without its glossy lobe, with kd scaled as the
     // BSDF scales kd Cd + ks Cs (render/materials/bsdf.cpp), has exactly the
     // full BSDF's Lambert lobe.

@@ -13,18 +13,6 @@
 
 namespace pt {
 
-namespace {
-
-// The albedo AOV: the diffuse colour kd * Cd (texture applied) of Phong and
-// Lambert materials, the tint of a mirror, white for glass.
-RGB surface_albedo(const Material& m, const SurfaceGeometry& geo) {
-  if (m.type == MaterialType::Glass || (m.type == MaterialType::Phong && m.refractive)) return RGB(1.0f);
-  if (m.type == MaterialType::Mirror) return m.specular;
-  return m.diffuse_at(geo.uv) * m.kd;
-}
-
-}  // namespace
-
 Vec2f sample_position(int x, int y, int index, int spp, uint64_t seed, uint64_t pixel_index) {
   StratifiedPixelSampler sampler(spp, seed, 1);
   sampler.start(pixel_index, index);
@@ -35,7 +23,7 @@ void first_hit_aovs(const RenderScene& scene, const Ray& ray, AovSample& aov) {
   Intersection isect;
   if (!scene.intersect(ray, isect)) return;
   aov.hit = true;
-  aov.albedo = surface_albedo(*isect.material, isect.geo);
+  aov.albedo = isect.material->albedo_at(isect.geo.uv);
   const Vec3f wo = -ray.dir;
   const bool front = dot(isect.geo.ng, wo) >= 0.0f;
   aov.normal = front ? isect.geo.ns : -isect.geo.ns;

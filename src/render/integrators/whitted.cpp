@@ -15,20 +15,26 @@ namespace pt {
 
 namespace {
 
-// Direct light from every point light: ambient-free Blinn-Phong with hard shadows.
+// The classic shading of each delta light at one surface point: ambient-free
+// Blinn-Phong with hard shadows, added to `result`. Lights that are not delta
+// (area lights, the environment) are not shaded: the integrator's rays see
+// them (a material's emission, the escaped radiance).
 // `n` is the shading normal facing the viewer, `wo` the unit direction to the viewer.
-RGB direct_lighting(const RenderScene& scene, const Intersection& isect, Vec3f n, Vec3f wo) {
-  const Material& m = *isect.material;
-  const SurfaceGeometry& geo = isect.geo;
-  RGB result;
-  for (const PointLight& light : scene.point_lights) {
+struct ClassicShading {
+  const RenderScene& scene;
+  const Material& m;
+  const SurfaceGeometry& geo;
+  Vec3f n, wo;
+  RGB& result;
+
+  void operator()(const PointLight& light) const {
     const Vec3f to_light = light.position - geo.p;
     const float r2 = length_squared(to_light);
-    if (!(r2 > 0.0f)) continue;
+    if (!(r2 > 0.0f)) return;
     const Vec3f l = to_light / std::sqrt(r2);
     const float cos_theta = dot(n, l);
-    if (cos_theta <= 0.0f) continue;
-    if (scene.occluded(spawn_ray_to(geo, light.position))) continue;
+    if (cos_theta <= 0.0f) return;
+    if (scene.occluded(spawn_ray_to(geo, light.position))) return;
     const float falloff = light.falloff(r2);
     result += m.kd * cos_theta * falloff * (m.diffuse_at(geo.uv) * light.intensity);
     if (m.ks > 0.0f) {
@@ -37,13 +43,14 @@ RGB direct_lighting(const RenderScene& scene, const Intersection& isect, Vec3f n
       result += m.ks * spec * falloff * (m.specular * light.specular_intensity);
     }
   }
+
   // Directional lights deliver irradiance E; in the classic units above (where a
   // point light's I / r^2 is irradiance / pi) that is E / pi.
-  for (const DirectionalLight& light : scene.directional_lights) {
+  void operator()(const DirectionalLight& light) const {
     const Vec3f l = -light.direction;
     const float cos_theta = dot(n, l);
-    if (cos_theta <= 0.0f) continue;
-    if (scene.occluded(spawn_ray(geo, l))) continue;
+    if (cos_theta <= 0.0f) return;
+    if (scene.occluded(spawn_ray(geo, l))) return;
     const RGB e = light.irradiance * kInvPi;
     result += m.kd * cos_theta * (m.diffuse_at(geo.uv) * e);
     if (m.ks > 0.0f) {
@@ -51,6 +58,19 @@ RGB direct_lighting(const RenderScene& scene, const Intersection& isect, Vec3f n
       result += m.ks * spec * (m.specular * e);
     }
   }
+
+  // Not reached: direct_lighting() visits only the delta lights.
+  template <class L>
+    requires(!L::delta)
+  void operator()(const L&) const {}
+};
+
+// Direct light from every delta light (the light set keeps point lights
+// before directional ones: the sum's order is fixed).
+RGB direct_lighting(const RenderScene& scene, const Intersection& isect, Vec3f n, Vec3f wo) {
+  RGB result;
+  const ClassicShading shade{scene, *isect.material, isect.geo, n, wo, result};
+  for (const Light& light : scene.lights.delta_lights()) std::visit(shade, light);
   return result;
 }
 
@@ -68,7 +88,7 @@ class Whitted {
     Intersection isect;
     if (!scene_.intersect(ray, isect)) return scene_.escaped_radiance(ray.dir);
     const Material& m = *isect.material;
-    if (m.refractive) return dielectric(ray, isect, depth);
+    if (m.glass()) return dielectric(ray, isect, depth);
 
     // Both normals flipped to the viewer's side of the surface.
     const Vec3f wo = -ray.dir;

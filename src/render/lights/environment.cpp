@@ -79,8 +79,6 @@ bool EnvironmentMap::sample(Vec2f u, LightSample& s) const {
   s.wi = uv_to_direction(uv);
   s.pdf = pdf_uv / (2.0f * kPi * kPi * sin_theta);
   s.L = texel(uv) * intensity_;
-  s.delta = false;
-  s.infinite = true;
   return true;
 }
 

@@ -53,9 +53,17 @@ class EnvironmentMap {
   float mean_luminance_ = 0.0f;
 };
 
-// The environment as a light in the light list.
+// The environment map as a light in the light list (RenderScene owns the map).
 struct EnvironmentLight {
+  static constexpr bool delta = false;
+  static constexpr bool infinite = true;
+
   const EnvironmentMap* map;
+
+  bool sample(Vec3f, Vec2f u, LightSample& s) const { return map->sample(u, s); }
+  float pdf(Vec3f, Vec3f wi, Vec3f, Vec3f) const { return map->pdf(wi); }
+  float power(float scene_radius) const { return map->power(scene_radius); }
+  RGB radiance(Vec3f dir) const { return map->radiance(dir); }
 };
 
 }  // namespace pt

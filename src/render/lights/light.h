@@ -7,6 +7,21 @@
 //    that irradiance. CGR lights have no distance falloff (inverse_square false).
 //  - Directional lights: irradiance E (W/m^2) on a surface facing them.
 //  - Area lights and environments: emitted radiance (W/(m^2 sr)).
+//
+// Every light kind has the same members (the LightKind concept in
+// light_set.h checks them; LightSet and the integrators reach lights only
+// through them, with std::visit):
+//   static constexpr bool delta;     // a point or a direction: only sampling finds it
+//   static constexpr bool infinite;  // at infinity: its shadow rays have no end
+//   bool sample(Vec3f p, Vec2f u, LightSample& s) const;  // a direction from p towards it
+//   float pdf(Vec3f p, Vec3f wi, Vec3f q, Vec3f n) const; // sample()'s solid-angle density
+//       of wi from p, the ray reaching the light at q with normal n (infinite
+//       lights read only wi; delta lights: 0, no ray can find them)
+//   float power(float scene_radius) const;  // for choosing among lights (infinite
+//       lights estimate it from the scene's bounding sphere)
+// Lights that rays can find (not delta) also say where: an infinite one its
+//   RGB radiance(Vec3f dir) const;  // seen by a ray escaping along dir
+// a finite one the shape it sits on: uint32_t shape_id() const.
 #pragma once
 
 #include "core/color.h"
@@ -21,6 +36,7 @@ struct LightSample {
   float pdf = 0.0f;    // solid-angle density of wi (delta lights: 1)
   Vec3f p_light;       // the point on a finite light (the shadow ray's target)
   Vec3f n_light;       // the light's surface normal there (area lights)
+  // The light kind's flags (see above), set by sample_light().
   bool delta = false;     // point or directional light: no other strategy can find it
   bool infinite = false;  // directional light or environment: the shadow ray has no end
 };
@@ -28,6 +44,9 @@ struct LightSample {
 // Isotropic point light (units above). For a delta light, LightSample::L is
 // what multiplies f cos: pi I / r^2 (or pi I without falloff).
 struct PointLight {
+  static constexpr bool delta = true;
+  static constexpr bool infinite = false;
+
   Vec3f position;
   RGB intensity;
   RGB specular_intensity;  // the classic integrator's specular lobe only
@@ -35,26 +54,35 @@ struct PointLight {
 
   // The distance factor applied to both intensities at squared distance r2.
   float falloff(float r2) const { return inverse_square ? 1.0f / r2 : 1.0f; }
-  bool sample(Vec3f p, LightSample& s) const;
-  // Total emitted power (for light selection); pi I over the sphere.
-  float power() const;
+  bool sample(Vec3f p, Vec2f u, LightSample& s) const;
+  float pdf(Vec3f, Vec3f, Vec3f, Vec3f) const { return 0.0f; }
+  // Total emitted power: pi I over the sphere.
+  float power(float scene_radius) const;
 };
 
 struct DirectionalLight {
+  static constexpr bool delta = true;
+  static constexpr bool infinite = true;
+
   Vec3f direction;  // unit, the direction the light travels
   RGB irradiance;
 
-  bool sample(LightSample& s) const;
+  bool sample(Vec3f p, Vec2f u, LightSample& s) const;
+  float pdf(Vec3f, Vec3f, Vec3f, Vec3f) const { return 0.0f; }
   float power(float scene_radius) const;
 };
 
 // The scene's background colour as a light: uniform radiance from every direction.
 struct UniformEnvironment {
-  RGB radiance;
+  static constexpr bool delta = false;
+  static constexpr bool infinite = true;
 
-  bool sample(Vec2f u, LightSample& s) const;
-  float pdf() const;
+  RGB colour;
+
+  bool sample(Vec3f p, Vec2f u, LightSample& s) const;
+  float pdf(Vec3f p, Vec3f wi, Vec3f q, Vec3f n) const;
   float power(float scene_radius) const;
+  RGB radiance(Vec3f) const { return colour; }
 };
 
 }  // namespace pt

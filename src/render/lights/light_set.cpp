@@ -1,39 +1,62 @@
 #include "render/lights/light_set.h"
 
+#include <algorithm>
+#include <type_traits>
 #include <utility>
 
 namespace pt {
 
+namespace {
+
+template <class L>
+using KindOf = std::decay_t<L>;
+
+// The place of a light kind in the set's order (see the constructor).
+int order(const Light& light) {
+  return std::visit(
+      [](const auto& l) {
+        using L = KindOf<decltype(l)>;
+        return (L::delta ? 0 : 2) + (L::infinite ? 1 : 0);
+      },
+      light);
+}
+
+}  // namespace
+
 bool sample_light(const Light& light, Vec3f p, Vec2f u, LightSample& s) {
-  switch (light.index()) {
-    case 0: return std::get<PointLight>(light).sample(p, s);
-    case 1: return std::get<DirectionalLight>(light).sample(s);
-    case 2: return std::get<ShapeLight>(light).sample(p, u, s);
-    case 3: return std::get<EnvironmentLight>(light).map->sample(u, s);
-    default: return std::get<UniformEnvironment>(light).sample(u, s);
-  }
+  return std::visit(
+      [&](const auto& l) {
+        using L = KindOf<decltype(l)>;
+        s.delta = L::delta;
+        s.infinite = L::infinite;
+        return l.sample(p, u, s);
+      },
+      light);
+}
+
+float light_pdf(const Light& light, Vec3f p, Vec3f wi, Vec3f q, Vec3f n) {
+  return std::visit([&](const auto& l) { return l.pdf(p, wi, q, n); }, light);
 }
 
 LightSet::LightSet(std::vector<Light> lights, std::size_t shape_count, float scene_radius)
     : lights_(std::move(lights)) {
+  std::stable_sort(lights_.begin(), lights_.end(), [](const Light& a, const Light& b) { return order(a) < order(b); });
   std::vector<float> power(lights_.size());
   for (std::size_t i = 0; i < lights_.size(); ++i) {
-    const Light& l = lights_[i];
-    if (const auto* p = std::get_if<PointLight>(&l)) {
-      power[i] = p->power();
-    } else if (const auto* d = std::get_if<DirectionalLight>(&l)) {
-      power[i] = d->power(scene_radius);
-    } else if (const auto* a = std::get_if<ShapeLight>(&l)) {
-      power[i] = a->power();
-      if (shape_light_.empty()) shape_light_.assign(shape_count, -1);
-      if (a->shape_id() < shape_count) shape_light_[a->shape_id()] = static_cast<int>(i);
-    } else if (const auto* e = std::get_if<EnvironmentLight>(&l)) {
-      power[i] = e->map->power(scene_radius);
-      environment_ = static_cast<int>(i);
-    } else {
-      power[i] = std::get<UniformEnvironment>(l).power(scene_radius);
-      environment_ = static_cast<int>(i);
-    }
+    power[i] = std::visit(
+        [&](const auto& l) {
+          using L = KindOf<decltype(l)>;
+          if constexpr (L::delta) {
+            ++delta_count_;
+          } else if constexpr (L::infinite) {
+            environment_ = static_cast<int>(i);
+          } else if constexpr (!L::delta) {
+            if (shape_light_.empty()) shape_light_.assign(shape_count, -1);
+            if (l.shape_id() < shape_count) shape_light_[l.shape_id()] = static_cast<int>(i);
+          }
+          return l.power(scene_radius);
+        },
+        lights_[i]);
   }
   selection_ = Distribution1D(power);
   int positive = 0;
@@ -56,6 +79,20 @@ int LightSet::choose(float u, float& pmf) const {
     return only_;
   }
   return static_cast<int>(selection_.sample_discrete(u, &pmf));
+}
+
+RGB LightSet::escaped_radiance(Vec3f dir, RGB none) const {
+  if (environment_ < 0) return none;
+  return std::visit(
+      [&](const auto& l) -> RGB {
+        using L = KindOf<decltype(l)>;
+        if constexpr (!L::delta && L::infinite) {
+          return l.radiance(dir);
+        } else {
+          return none;  // not reached: environment_ is such a light
+        }
+      },
+      lights_[static_cast<std::size_t>(environment_)]);
 }
 
 }  // namespace pt

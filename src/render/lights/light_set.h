@@ -1,12 +1,15 @@
-// The lights of a render scene as the path integrator sees them: point and
-// directional lights, area lights (every emissive shape), and the environment
-// (an image map, or the background colour as a uniform environment when it is
-// not black). One light is chosen per next-event estimate, in proportion to
-// its power (an estimate for infinite lights, from the scene's bounding
-// sphere; docs/path-tracing.md).
+// The lights of a render scene, each stored once: point and directional
+// lights, area lights (every emissive shape), and the environment (an image
+// map, or the background colour as a uniform environment when it is not
+// black). The path integrator chooses one light per next-event estimate, in
+// proportion to its power (an estimate for infinite lights, from the scene's
+// bounding sphere; docs/path-tracing.md); the classic integrator shades the
+// delta lights.
 #pragma once
 
+#include <concepts>
 #include <cstdint>
+#include <span>
 #include <variant>
 #include <vector>
 
@@ -17,20 +20,45 @@
 
 namespace pt {
 
-using Light = std::variant<PointLight, DirectionalLight, ShapeLight, EnvironmentLight, UniformEnvironment>;
+// The members every light kind has (render/lights/light.h).
+template <class L>
+concept LightKind = requires(const L& light, Vec3f v, Vec2f u, LightSample& s, float r) {
+  { L::delta } -> std::convertible_to<bool>;
+  { L::infinite } -> std::convertible_to<bool>;
+  { light.sample(v, u, s) } -> std::same_as<bool>;
+  { light.pdf(v, v, v, v) } -> std::same_as<float>;
+  { light.power(r) } -> std::same_as<float>;
+} && (L::delta || (L::infinite ? requires(const L& light, Vec3f d) { { light.radiance(d) } -> std::same_as<RGB>; }
+                                : requires(const L& light) { { light.shape_id() } -> std::same_as<uint32_t>; }));
 
-// Samples light `light` from point p.
+// Every light kind. Adding one: its struct (with the members above), this
+// list, and where it comes from (RenderScene's build, from a LightDesc).
+template <LightKind... Kinds>
+using LightVariant = std::variant<Kinds...>;
+using Light = LightVariant<PointLight, DirectionalLight, ShapeLight, EnvironmentLight, UniformEnvironment>;
+
+// Samples `light` from point p (and sets s.delta, s.infinite from its kind).
 bool sample_light(const Light& light, Vec3f p, Vec2f u, LightSample& s);
+// The density with which sample_light(light, p, ...) produces wi, reaching the light at q with normal n.
+float light_pdf(const Light& light, Vec3f p, Vec3f wi, Vec3f q, Vec3f n);
 
 class LightSet {
  public:
   LightSet() = default;
   // `shape_count`: the number of shapes (for the shape -> light table).
+  // The lights are kept in the order delta before not, finite before infinite
+  // (point, directional, area, environment), each kind in the order given:
+  // the choice among them and the classic integrator's sum over them follow
+  // this order, and images depend on it bit for bit.
   LightSet(std::vector<Light> lights, std::size_t shape_count, float scene_radius);
 
   bool empty() const { return lights_.empty(); }
   std::size_t size() const { return lights_.size(); }
   const Light& operator[](std::size_t i) const { return lights_[i]; }
+  auto begin() const { return lights_.begin(); }
+  auto end() const { return lights_.end(); }
+  // The delta lights (point, then directional): the first ones of the set.
+  std::span<const Light> delta_lights() const { return {lights_.data(), delta_count_}; }
 
   // Picks a light with probability proportional to its power; -1 if there is none.
   int choose(float u, float& pmf) const;
@@ -49,14 +77,18 @@ class LightSet {
   int shape_light(uint32_t shape) const {
     return shape < shape_light_.size() ? shape_light_[shape] : -1;
   }
-  // The environment's light index (map or uniform), or -1.
+  // The environment's light index (the infinite light that is not delta), or -1.
   int environment() const { return environment_; }
+  // Radiance arriving along a ray that leaves the scene in direction `dir`:
+  // the environment's, or `none` if there is no environment.
+  RGB escaped_radiance(Vec3f dir, RGB none) const;
 
  private:
   std::vector<Light> lights_;
   Distribution1D selection_;
   std::vector<int> shape_light_;  // empty when no shape emits
   int environment_ = -1;
+  std::size_t delta_count_ = 0;
   int only_ = -1;  // the one light with positive power when exactly one has it, else -1
 };
 

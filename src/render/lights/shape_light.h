@@ -30,6 +30,10 @@ inline constexpr float kMinSphericalRectangle = 1e-3f;
 
 class ShapeLight {
  public:
+  // The light interface's flags (render/lights/light.h).
+  static constexpr bool delta = false;
+  static constexpr bool infinite = false;
+
   ShapeLight(const Shape& shape, uint32_t shape_id, const Material& material, bool solid_angle_rectangles = false);
 
   uint32_t shape_id() const { return shape_id_; }
@@ -40,6 +44,7 @@ class ShapeLight {
   // reaching the light at point q with geometric normal n.
   float pdf(Vec3f p, Vec3f wi, Vec3f q, Vec3f n) const;
   float power() const;
+  float power(float /*scene_radius*/) const { return power(); }  // the light interface's signature
   // Whether the shape is a planar parallelogram sampled as one (see above).
   bool sampled_as_parallelogram() const { return parallelogram_; }
   bool sampled_by_solid_angle_as_rectangle() const { return rectangle_; }

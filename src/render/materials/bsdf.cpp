@@ -12,7 +12,7 @@ float mean(RGB c) { return (c.r + c.g + c.b) * (1.0f / 3.0f); }
 
 Bsdf::Bsdf(const Material& m, const SurfaceGeometry& geo, Vec3f wo) {
   const bool above = dot(geo.ng, wo) > 0.0f;
-  if (m.type == MaterialType::Glass || (m.type == MaterialType::Phong && m.refractive)) {
+  if (m.glass()) {
     // The dielectric's frame keeps the shape's orientation (+z = outside).
     glass_ = true;
     dielectric_.ior = m.ior;
@@ -37,8 +37,9 @@ Bsdf::Bsdf(const Material& m, const SurfaceGeometry& geo, Vec3f wo) {
       rho = 1.0f;
       tint = m.specular;
       break;
+    case MaterialType::Glass:  // built above
+      break;
     case MaterialType::Phong:
-    case MaterialType::Glass:
       if (m.kd > 0.0f) kd_cd = m.diffuse_at(geo.uv) * m.kd;
       ks_cs = m.specular * m.ks;
       rho = std::clamp(m.reflectivity, 0.0f, 1.0f);

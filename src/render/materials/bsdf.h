@@ -34,6 +34,13 @@ class Bsdf {
   // The BSDF of `m` at `geo`, seen from direction `wo` (unit, pointing away from the surface).
   Bsdf(const Material& m, const SurfaceGeometry& geo, Vec3f wo);
 
+  // Glass (Material::glass(), decided when the scene was built) is a
+  // dielectric; the facts below are per hit for reflective materials, because
+  // the lobes present at a hit depend on it: a texture can make the diffuse
+  // lobe black at one texel (and the kd Cd + ks Cs scaling depends on the
+  // texel). Deciding them per material would spend a sample dimension where
+  // the hit has no choice (or none where it has) and change images.
+
   // True if every lobe is a delta lobe (mirror, glass): f() and pdf() are 0
   // everywhere and next-event estimation is pointless.
   bool delta_only() const { return p_diffuse_ + p_glossy_ == 0.0f; }
@@ -41,8 +48,9 @@ class Bsdf {
   bool black() const { return !glass_ && p_diffuse_ + p_glossy_ + p_mirror_ == 0.0f; }
 
   // True if sample() chooses between lobes (glass between reflection and
-  // transmission): otherwise its `u_lobe` is not read and the caller need not
-  // spend a sample dimension on it.
+  // transmission, a reflective material between the lobes with weight at this
+  // hit): otherwise its `u_lobe` is not read and the caller need not spend a
+  // sample dimension on it.
   bool needs_lobe_choice() const {
     return glass_ || (p_diffuse_ > 0.0f) + (p_glossy_ > 0.0f) + (p_mirror_ > 0.0f) > 1;
   }
