@@ -164,8 +164,7 @@ std::optional<Job> prepare(const Options& o, double& parse_s, int& status) {
     return std::nullopt;
   }
   // Sizes beyond the builder's limits get its message (naming the limits) instead.
-  const bool within_limits = job.width <= resolution.max_resolution && job.height <= resolution.max_resolution &&
-                             static_cast<long long>(job.width) * job.height <= resolution.max_pixels;
+  const bool within_limits = resolution.limits.admits(job.width, job.height);
   if (const std::string why = check_memory(job.memory, limit, physical_memory_bytes());
       within_limits && !why.empty()) {
     std::cerr << "error: " << why << '\n';

@@ -10,6 +10,7 @@
 #include "app/versions.h"
 #include "render/film/aov.h"
 #include "render/integrators/integrator.h"
+#include "scene/resolution_limits.h"
 
 namespace pt {
 namespace {
@@ -17,7 +18,7 @@ namespace {
 constexpr int kMaxThreads = 4096;
 constexpr int kMaxSpp = 1 << 20;
 constexpr int kMaxDepth = 1 << 16;
-constexpr int kMaxResolution = 32768;  // as pt::LoadOptions::max_resolution
+constexpr int kMaxResolution = ResolutionLimits{}.max_resolution;
 constexpr double kMaxSeconds = 1e7;
 
 }  // namespace
