@@ -4,15 +4,20 @@
 #include <cmath>
 #include <cstdint>
 #include <iomanip>
-#include <iostream>
+#include <sstream>
 #include <string>
 
 #include "app/options.h"
 #include "io/image_io.h"
 
 namespace pt {
+namespace {
 
-bool film_aovs(const Options& o, std::vector<AovRequest>& out, ChannelType& beauty) {
+std::string frame(int width, int height) { return std::to_string(width) + "x" + std::to_string(height) + " frame"; }
+
+}  // namespace
+
+bool film_aovs(const Options& o, std::vector<AovRequest>& out, ChannelType& beauty, std::string& error) {
   out.clear();
   beauty = ChannelType::Float;
   if (o.replaying()) {  // a replay reports every AOV of its one sample (they draw no random numbers)
@@ -20,26 +25,26 @@ bool film_aovs(const Options& o, std::vector<AovRequest>& out, ChannelType& beau
     return true;
   }
   if (std::string why; !o.aov.empty() && !parse_aov_list(o.aov, out, beauty, why)) {
-    std::cerr << "error: --aov: " << why << '\n';
+    error = "--aov: " + why;
     return false;
   }
   return true;
 }
 
-bool crop_window(const Options& o, int width, int height, PixelRect& out) {
+bool crop_window(const Options& o, int width, int height, PixelRect& out, std::string& error) {
   out = {0, 0, width, height};
   if (o.replaying()) {
     const int x = o.replay[0], y = o.replay[1];
     if (x < 0 || y < 0 || x >= width || y >= height) {
-      std::cerr << "error: " << o.replay_option << ": pixel (" << x << ", " << y << ") is not inside the " << width
-                << "x" << height << " frame\n";
+      error = o.replay_option + ": pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is not inside the " +
+              frame(width, height);
       return false;
     }
     out = {x, y, x + 1, y + 1};
   } else if (!o.crop.empty()) {
     const std::vector<double>& c = o.crop;
     if (!(0.0 <= c[0] && c[0] < c[2] && c[2] <= 1.0 && 0.0 <= c[1] && c[1] < c[3] && c[3] <= 1.0)) {
-      std::cerr << "error: --crop: need 0 <= X0 < X1 <= 1 and 0 <= Y0 < Y1 <= 1\n";
+      error = "--crop: need 0 <= X0 < X1 <= 1 and 0 <= Y0 < Y1 <= 1";
       return false;
     }
     out = {static_cast<int>(std::floor(c[0] * width)), static_cast<int>(std::floor(c[1] * height)),
@@ -47,16 +52,15 @@ bool crop_window(const Options& o, int width, int height, PixelRect& out) {
   } else if (!o.crop_px.empty()) {
     const std::vector<int>& c = o.crop_px;
     if (c[0] > width || c[1] > height || c[2] > width || c[3] > height) {  // also keeps X + W from overflowing
-      std::cerr << "error: --crop-px: " << c[2] << "x" << c[3] << " at (" << c[0] << ", " << c[1]
-                << ") is not inside the " << width << "x" << height << " frame\n";
+      error = "--crop-px: " + std::to_string(c[2]) + "x" + std::to_string(c[3]) + " at (" + std::to_string(c[0]) +
+              ", " + std::to_string(c[1]) + ") is not inside the " + frame(width, height);
       return false;
     }
     out = {c[0], c[1], c[0] + c[2], c[1] + c[3]};
   }
   if (out.x0 < 0 || out.y0 < 0 || out.empty() || out.x1 > width || out.y1 > height) {
-    std::cerr << "error: the crop [" << out.x0 << ", "
-              << out.x1 << ") x [" << out.y0 << ", " << out.y1 << ") is not inside the " << width << "x" << height
-              << " frame\n";
+    error = "the crop [" + std::to_string(out.x0) + ", " + std::to_string(out.x1) + ") x [" + std::to_string(out.y0) +
+            ", " + std::to_string(out.y1) + ") is not inside the " + frame(width, height);
     return false;
   }
   return true;
@@ -82,9 +86,9 @@ std::size_t output_bytes_per_pixel(const std::vector<AovRequest>& aovs, const st
 }
 
 bool estimate_render_memory(const Options& o, const SceneDescription& scene, int width, int height,
-                            const std::vector<AovRequest>& aovs, MemoryEstimate& out) {
+                            const std::vector<AovRequest>& aovs, MemoryEstimate& out, std::string& error) {
   PixelRect crop;
-  if (!crop_window(o, width, height, crop)) return false;
+  if (!crop_window(o, width, height, crop, error)) return false;
   const uint64_t pixels = static_cast<uint64_t>(crop.width()) * static_cast<uint64_t>(crop.height());
   out = estimate_memory(scene, pixels, {film_bytes_per_pixel(aovs), output_bytes_per_pixel(aovs, o.outputs)},
                         o.resume.empty() ? 1 : 2);
@@ -97,19 +101,21 @@ std::string replay_hint(const NonFiniteReport& report) {
          std::to_string(report.y) + " --sample " + std::to_string(report.sample);
 }
 
-void print_replay(const Film& film, int x, int y, int sample) {
+std::string replay_text(const Film& film, int x, int y, int sample) {
   const NonFiniteReport& non_finite = film.non_finite();
   const RGB v = non_finite.total() > 0 ? non_finite.value : film.sum(x, y).value();
-  std::cout << std::setprecision(9) << "replay pixel (" << x << ", " << y << ") sample " << sample << ": radiance "
-            << v.r << " " << v.g << " " << v.b << '\n';
+  std::ostringstream out;
+  out << std::setprecision(9) << "replay pixel (" << x << ", " << y << ") sample " << sample << ": radiance " << v.r
+      << " " << v.g << " " << v.b << '\n';
   // The pixel is the mean of its samples weighted by this (1 for the box filter).
-  std::cout << "  filter weight: " << film.sum(x, y).weight << '\n';
+  out << "  filter weight: " << film.sum(x, y).weight << '\n';
   for (const AovRequest& r : film.aovs()) {
     if (r.type == AovType::Samples || r.type == AovType::Variance) continue;
-    std::cout << "  " << aov_info(r.type).name << ":";
-    for (float c : film.aov_value(r.type, x, y)) std::cout << ' ' << c;
-    std::cout << '\n';
+    out << "  " << aov_info(r.type).name << ":";
+    for (float c : film.aov_value(r.type, x, y)) out << ' ' << c;
+    out << '\n';
   }
+  return out.str();
 }
 
 }  // namespace pt

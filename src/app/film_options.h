@@ -17,13 +17,13 @@ struct Options;
 struct SceneDescription;
 
 // The requested AOVs and the beauty's pixel type ("--aov beauty:half"); a
-// replay reports every AOV of its one sample. Returns false after printing why
-// (an unknown name: the valid ones are listed).
-bool film_aovs(const Options& o, std::vector<AovRequest>& out, ChannelType& beauty);
+// replay reports every AOV of its one sample. Returns false with `error` (an
+// unknown name: the valid ones are listed).
+bool film_aovs(const Options& o, std::vector<AovRequest>& out, ChannelType& beauty, std::string& error);
 
 // The region to render, in pixels of a width x height frame: the crop, the
-// replayed pixel, or the whole frame. Returns false after printing why.
-bool crop_window(const Options& o, int width, int height, PixelRect& out);
+// replayed pixel, or the whole frame. Returns false with `error`.
+bool crop_window(const Options& o, int width, int height, PixelRect& out, std::string& error);
 
 // Bytes the film stores per pixel for these AOVs (the memory pre-flight).
 std::size_t film_bytes_per_pixel(const std::vector<AovRequest>& aovs);
@@ -39,16 +39,17 @@ std::size_t output_bytes_per_pixel(const std::vector<AovRequest>& aovs, const st
 // The pre-flight memory estimate of the render `o` asks for in a width x
 // height frame: the film and output buffers of its crop window (crop_window()),
 // a second film while --resume reads a checkpoint, the textures and the
-// geometry of `scene`. Returns false after printing why (a bad crop).
+// geometry of `scene`. Returns false with `error` (a bad crop).
 bool estimate_render_memory(const Options& o, const SceneDescription& scene, int width, int height,
-                            const std::vector<AovRequest>& aovs, MemoryEstimate& out);
+                            const std::vector<AovRequest>& aovs, MemoryEstimate& out, std::string& error);
 
 // How to replay the report's first offender: "; to replay the first, run this
 // command again with --pixel X,Y --sample N" (the same options give the same
 // pass plan, so the same sample); empty without an offender.
 std::string replay_hint(const NonFiniteReport& report);
 
-// Prints the replayed sample of pixel (x, y): its radiance, filter weight and AOVs.
-void print_replay(const Film& film, int x, int y, int sample);
+// The report of the replayed sample of pixel (x, y), for standard output: its
+// radiance, filter weight and AOVs.
+std::string replay_text(const Film& film, int x, int y, int sample);
 
 }  // namespace pt

@@ -10,6 +10,7 @@
 #include "app/versions.h"
 #include "render/film/aov.h"
 #include "render/integrators/integrator.h"
+#include "scene/resolution_limits.h"
 
 namespace pt {
 namespace {
@@ -17,7 +18,7 @@ namespace {
 constexpr int kMaxThreads = 4096;
 constexpr int kMaxSpp = 1 << 20;
 constexpr int kMaxDepth = 1 << 16;
-constexpr int kMaxResolution = 32768;  // as pt::LoadOptions::max_resolution
+constexpr int kMaxResolution = ResolutionLimits{}.max_resolution;
 constexpr double kMaxSeconds = 1e7;
 
 }  // namespace
@@ -36,7 +37,10 @@ std::string version_text() {
   return os.str();
 }
 
-void add_options(CLI::App& app, Options& o) {
+namespace {
+
+// The scene, the outputs and the render's settings.
+void add_render_options(CLI::App& app, Options& o) {
   app.add_option("scene", o.scene, "Scene file (native, Path of Light or CGR JSON)")->required();
   app.add_option("-o,--output", o.outputs,
                  "Output image (.exr, .png, .jpg, .ppm); repeat to write several formats from one render "
@@ -74,6 +78,10 @@ void add_options(CLI::App& app, Options& o) {
   app.add_flag("--quiet", o.quiet, "Print errors only (no progress)");
   app.add_option("--report", o.report,
                  "Write a run record (JSON: settings, versions, time per phase, speed, memory, spp reached)");
+}
+
+// Display images, long renders and memory.
+void add_output_options(CLI::App& app, Options& o) {
   app.add_option("--exposure", o.exposure, "Display images: exposure in stops (default: the scene's)");
   app.add_option("--view", o.view,
                  "Display images: 'standard' (sRGB) or 'aces' (ACES 1.0 SDR video), or a view of the OCIO config");
@@ -97,6 +105,10 @@ void add_options(CLI::App& app, Options& o) {
       ->capture_default_str();
   app.add_option("--max-memory", o.max_memory,
                  "Refuse renders estimated to need more memory than this (e.g. 4G, 512M)");
+}
+
+// AOVs, crops and the replay of one sample (docs/output.md).
+void add_film_options(CLI::App& app, Options& o) {
   app.add_option("--aov", o.aov,
                  "Extra EXR layers, comma-separated, each optionally ':half' or ':float' (docs/output.md): " +
                      join(aov_names(), ", ") + "; 'beauty:half' writes the beauty (R, G, B, A; float by default) as half");
@@ -128,6 +140,14 @@ void add_options(CLI::App& app, Options& o) {
       o.replay_option = "--replay";
     }
   });
+}
+
+}  // namespace
+
+void add_options(CLI::App& app, Options& o) {
+  add_render_options(app, o);
+  add_output_options(app, o);
+  add_film_options(app, o);
   app.set_version_flag("--version", [] { return version_text(); });
 }
 

@@ -1,7 +1,6 @@
 #include "app/outputs.h"
 
 #include <cstdlib>
-#include <iostream>
 #include <set>
 
 #include "app/options.h"
@@ -17,16 +16,16 @@ std::string join(const std::vector<std::string>& items, const char* sep) {
   return s;
 }
 
-bool check_outputs(const std::vector<std::string>& outputs) {
+bool check_outputs(const std::vector<std::string>& outputs, std::string& error) {
   std::set<std::string> seen;
   for (const std::string& path : outputs) {
     if (!is_supported_image_path(path)) {
-      std::cerr << "error: cannot write '" << path << "': unsupported image extension (supported: "
-                << join(supported_image_extensions(), ", ") << ")\n";
+      error = "cannot write '" + path + "': unsupported image extension (supported: " +
+              join(supported_image_extensions(), ", ") + ")";
       return false;
     }
     if (!seen.insert(path).second) {
-      std::cerr << "error: output '" << path << "' is given more than once\n";
+      error = "output '" + path + "' is given more than once";
       return false;
     }
   }
@@ -48,14 +47,9 @@ DisplaySettings display_settings(const Options& o, const FilmDesc& film) {
 }
 
 bool write_outputs(const std::vector<std::string>& outputs, const LayeredImage& image, const DisplaySettings& display,
-                   const ImageMetadata& metadata) {
-  std::string error;
-  for (const std::string& path : outputs) {
-    if (!write_layered_image(path, image, display, error, metadata)) {
-      std::cerr << "error: " << error << '\n';
-      return false;
-    }
-  }
+                   const ImageMetadata& metadata, std::string& error) {
+  for (const std::string& path : outputs)
+    if (!write_layered_image(path, image, display, error, metadata)) return false;
   return true;
 }
 

@@ -14,8 +14,8 @@ struct FilmDesc;
 struct LayeredImage;
 struct Options;
 
-// Checks every output path before any work is done. Returns false after printing why.
-bool check_outputs(const std::vector<std::string>& outputs);
+// Checks every output path before any work is done. Returns false with `error`.
+bool check_outputs(const std::vector<std::string>& outputs, std::string& error);
 
 // The display pipeline for PNG/JPEG/PPM outputs: the scene's transform and
 // exposure, overridden from the command line; $OCIO names a config when
@@ -25,9 +25,9 @@ DisplaySettings display_settings(const Options& o, const FilmDesc& film);
 // Writes `image` (the beauty and any AOV layers; display images take the
 // beauty) to every output with `metadata` (io/image_metadata.h: RenderStamp
 // says what the render reached, "pathtracer:partial" = 1 when a signal stopped
-// it). Returns false after printing the first error.
+// it). Returns false with the first error.
 bool write_outputs(const std::vector<std::string>& outputs, const LayeredImage& image, const DisplaySettings& display,
-                   const ImageMetadata& metadata);
+                   const ImageMetadata& metadata, std::string& error);
 
 std::string join(const std::vector<std::string>& items, const char* sep);
 

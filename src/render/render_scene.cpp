@@ -202,12 +202,11 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDescription& desc, co
   // The loader bounds the file's resolution; overrides (and the aspect ratio
   // that fills in a missing one) are bounded here, before any buffer exists.
   const long long pixels = static_cast<long long>(scene->width) * scene->height;
-  if (scene->width > options.max_resolution || scene->height > options.max_resolution ||
-      pixels > options.max_pixels) {
+  if (!options.limits.admits(scene->width, scene->height)) {
     diag.error(SourceLocation{}, "the image would be " + std::to_string(scene->width) + "x" +
                                      std::to_string(scene->height) + " = " + std::to_string(pixels) +
-                                     " pixels; at most " + std::to_string(options.max_resolution) +
-                                     " per side and " + std::to_string(options.max_pixels) + " in all");
+                                     " pixels; at most " + std::to_string(options.limits.max_resolution) +
+                                     " per side and " + std::to_string(options.limits.max_pixels) + " in all");
     return nullptr;
   }
   scene->camera = Camera(desc.camera, scene->width, scene->height);

@@ -17,6 +17,7 @@
 #include "render/lights/light_set.h"
 #include "render/materials/material.h"
 #include "render/textures/texture.h"
+#include "scene/resolution_limits.h"
 #include "scene/scene_description.h"
 
 namespace pt {
@@ -73,8 +74,7 @@ struct BuildOptions {
   AccelKind accel = AccelKind::Bvh;  // as the command line's default
   int width_override = 0;   // > 0 replaces the description's resolution
   int height_override = 0;
-  int max_resolution = 32768;       // per side, as LoadOptions
-  long long max_pixels = 1LL << 28;  // width * height, as LoadOptions
+  ResolutionLimits limits;           // the image after the overrides, as LoadOptions
   TextureLimits textures;            // every texture and environment map, checked before decoding
 };
 

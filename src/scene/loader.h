@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/diagnostics.h"
+#include "scene/resolution_limits.h"
 #include "scene/scene_description.h"
 
 namespace pt {
@@ -16,11 +17,8 @@ namespace pt {
 struct LoadOptions {
   // Legacy formats: unknown keys become errors instead of warnings.
   bool strict = false;
-  // Largest accepted width or height.
-  int max_resolution = 32768;
-  // Largest accepted width x height (16384^2): the film alone then takes 3 GiB;
-  // beyond it a scene is refused with a message instead of failing to allocate.
-  long long max_pixels = 1LL << 28;
+  // Largest accepted film (width, height, width x height).
+  ResolutionLimits limits;
   // `--set key=value` overrides applied to the file's text before it is
   // imported (scene/overrides.h), in order.
   std::vector<std::string> overrides;

@@ -38,11 +38,11 @@ class Validator {
     resolution(film.width, "width");
     resolution(film.height, "height");
     const long long pixels = static_cast<long long>(film.width.value) * film.height.value;
-    if (film.width.value >= 1 && film.height.value >= 1 && pixels > options_.max_pixels) {
+    if (film.width.value >= 1 && film.height.value >= 1 && pixels > options_.limits.max_pixels) {
       diag_.error(film.width.where.valid() ? film.width.where : film.height.where,
                   "the film has " + std::to_string(film.width.value) + "x" + std::to_string(film.height.value) +
-                      " = " + std::to_string(pixels) + " pixels; at most " + std::to_string(options_.max_pixels) +
-                      " are accepted");
+                      " = " + std::to_string(pixels) + " pixels; at most " +
+                      std::to_string(options_.limits.max_pixels) + " are accepted");
     }
   }
 
@@ -90,9 +90,9 @@ class Validator {
 
  private:
   void resolution(const Sourced<int>& v, const char* name) {
-    if (v.value < 1 || v.value > options_.max_resolution)
-      diag_.error(v.where, std::string(name) + " must be between 1 and " + std::to_string(options_.max_resolution) +
-                               ", got " + std::to_string(v.value));
+    if (v.value < 1 || v.value > options_.limits.max_resolution)
+      diag_.error(v.where, std::string(name) + " must be between 1 and " +
+                               std::to_string(options_.limits.max_resolution) + ", got " + std::to_string(v.value));
   }
 
   void non_negative(const Sourced<float>& v, const char* name) {

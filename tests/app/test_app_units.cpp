@@ -17,14 +17,121 @@
 #include "app/memory_estimate.h"
 #include "app/progress.h"
 #include "app/render_driver.h"
+#include "app/render_settings.h"
 #include "app/signals.h"
 #include "core/parallel.h"
 #include "render/film/film.h"
+#include "io/image_metadata.h"
+#include "io/run_record.h"
 #include "render/render_scene.h"
+#include "scene/loader.h"
 #include "scene/scene_description.h"
 
 namespace pt {
 namespace {
+
+// ---------------------------------------------------------------- settings
+
+SceneDescription cornell_box() {  // path, max_depth 64, box filter, 256x256
+  Diagnostics diag;
+  std::optional<SceneDescription> desc = load_scene(PT_SCENES_DIR "/cornell-box.json", LoadOptions{}, diag);
+  EXPECT_TRUE(desc) << diag.format();
+  return desc ? std::move(*desc) : SceneDescription{};
+}
+
+TEST(RenderSettings, TheSceneDecidesWhatTheCommandLineLeavesUnset) {
+  const SceneDescription desc = cornell_box();
+  RenderSettings s;
+  Diagnostics diag;
+  ASSERT_TRUE(resolve_render_settings(desc, SettingsOverrides{}, s, diag));
+  EXPECT_EQ(s.integrator_name(), "path");
+  EXPECT_EQ(s.integration.max_depth, 64);
+  EXPECT_EQ(s.integration.filter, PixelFilterType::Box);
+  EXPECT_EQ(s.integration.sampler, IntegratorSettings{}.sampler);
+  EXPECT_EQ(s.width, 256);
+  EXPECT_EQ(s.height, 256);
+}
+
+TEST(RenderSettings, EveryDerivedViewHoldsTheResolvedValues) {
+  const SceneDescription desc = cornell_box();
+  SettingsOverrides o;
+  o.max_depth = 3;
+  o.seed = 7;
+  o.filter = "gaussian";
+  o.sampler = SamplerType::Jittered;
+  o.clamp = 2.0f;
+  o.width = 100;  // alone: keeps the square aspect ratio
+  RenderSettings s;
+  Diagnostics diag;
+  ASSERT_TRUE(resolve_render_settings(desc, o, s, diag));
+  EXPECT_EQ(s.height, 100);
+  const BuildOptions build = s.build_options(AccelKind::Embree);
+  EXPECT_EQ(build.accel, AccelKind::Embree);
+  int w = 0, h = 0;
+  resolve_resolution(desc.film, build, w, h);
+  EXPECT_EQ(w, 100);
+  EXPECT_EQ(h, 100);
+  const RenderStamp stamp = s.stamp();
+  EXPECT_EQ(stamp.integrator, "path");
+  EXPECT_EQ(stamp.sampler, "jittered");
+  EXPECT_EQ(stamp.filter, "gaussian");
+  EXPECT_EQ(stamp.seed, 7u);
+  EXPECT_EQ(stamp.max_depth, 3);
+  EXPECT_EQ(stamp.clamp, 2.0f);
+  RunRecord record;
+  s.describe(record);
+  EXPECT_EQ(record.sampler, "jittered");
+  EXPECT_EQ(record.width, 100);
+  EXPECT_EQ(s.identity().dump(), R"({"integrator":"path","width":100,"height":100,"max_depth":3,"seed":7,)"
+                                 R"("sampler":"jittered","filter":"gaussian","clamp":2.0})");
+  EXPECT_TRUE(s.equal_passes());  // jittered stratifies over each pass
+}
+
+TEST(RenderSettings, ClassicIntegratorsSampleThePixelGridWithABox) {
+  const SceneDescription desc = cornell_box();
+  SettingsOverrides o;
+  o.integrator = "whitted";
+  o.filter = "mitchell";
+  o.sampler = SamplerType::Sobol;
+  RenderSettings s;
+  Diagnostics diag;
+  ASSERT_TRUE(resolve_render_settings(desc, o, s, diag));
+  EXPECT_STREQ(s.sampler_name(), "pixel-grid");
+  EXPECT_STREQ(s.filter_name(), "box");
+  EXPECT_TRUE(s.equal_passes());
+  // The checkpoint identity keeps the configured names (as every checkpoint so far).
+  EXPECT_EQ(s.identity()["sampler"], "sobol");
+  EXPECT_EQ(s.identity()["filter"], "mitchell");
+}
+
+TEST(RenderSettings, AnUnknownIntegratorIsAnErrorListingTheNames) {
+  const SceneDescription desc = cornell_box();
+  SettingsOverrides o;
+  o.integrator = "nope";
+  RenderSettings s;
+  Diagnostics diag;
+  EXPECT_FALSE(resolve_render_settings(desc, o, s, diag));
+  ASSERT_EQ(diag.error_count(), 1);
+  EXPECT_EQ(diag.all()[0].message.rfind("unknown integrator 'nope'; valid names are: whitted path", 0), 0u)
+      << diag.all()[0].message;
+}
+
+TEST(IntegratorRegistry, OnlyThePathIntegratorsJitteredSamplerNeedsEqualPasses) {
+  std::string error;
+  const IntegratorInfo* path = find_integrator("path", error);
+  ASSERT_NE(path, nullptr);
+  EXPECT_TRUE(path->configurable_sampling);
+  EXPECT_TRUE(path->equal_passes(SamplerType::Jittered));
+  EXPECT_FALSE(path->equal_passes(SamplerType::Sobol));
+  EXPECT_FALSE(path->equal_passes(SamplerType::Random));
+  for (const std::string& name : integrator_names()) {
+    const IntegratorInfo* info = find_integrator(name, error);
+    ASSERT_NE(info, nullptr) << name;
+    EXPECT_EQ(info->configurable_sampling, name == "path") << name;
+    EXPECT_NE(info->make(IntegratorSettings{}), nullptr) << name;
+  }
+  EXPECT_EQ(find_integrator("nope", error), nullptr);
+}
 
 TEST(PassPlan, FixedSizes) {
   PassPlan p;

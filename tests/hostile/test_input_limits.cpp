@@ -41,7 +41,7 @@ TEST(InputLimits, FilmPixelCountIsBounded) {
   EXPECT_EQ(diag.all()[0].where.line, 3);
   EXPECT_EQ(diag.all()[0].message, "the film has 20000x20000 = 400000000 pixels; at most 268435456 are accepted");
   LoadOptions larger;
-  larger.max_pixels = 400000000;
+  larger.limits.max_pixels = 400000000;
   Diagnostics fine;
   EXPECT_TRUE(load_scene_from_string("film.json", scene, larger, fine)) << fine.format();
 }

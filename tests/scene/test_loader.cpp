@@ -360,7 +360,7 @@ TEST(Loader, ResolutionLimitComesFromTheOptions) {
   Diagnostics ok;
   EXPECT_TRUE(load_text("m.json", text, ok));
   LoadOptions small;
-  small.max_resolution = 1024;
+  small.limits.max_resolution = 1024;
   Diagnostics diag;
   EXPECT_FALSE(load_text("m.json", text, diag, small));
   ASSERT_EQ(diag.error_count(), 1);

@@ -46,6 +46,113 @@ std::string describe_aovs(const std::vector<AovRequest>& aovs) {
   return s;
 }
 
+// The AOV list of `count` entries; false with `error` unless it is `expected`.
+bool read_aov_list(std::istream& in, uint32_t count, const std::vector<AovRequest>& expected, std::string& error) {
+  if (count > aov_catalogue().size()) {
+    error = "film state lists " + std::to_string(count) + " AOVs (corrupt)";
+    return false;
+  }
+  std::vector<AovRequest> aovs;
+  for (uint32_t i = 0; i < count; ++i) {
+    uint8_t type = 0, channel_type = 0;
+    if (!get(in, type) || !get(in, channel_type)) {
+      error = "truncated film state header";
+      return false;
+    }
+    if (type >= aov_catalogue().size() || channel_type > 1) {
+      error = "film state lists an unknown AOV (corrupt)";
+      return false;
+    }
+    aovs.push_back({static_cast<AovType>(type), static_cast<ChannelType>(channel_type)});
+  }
+  const auto same = [](const AovRequest& a, const AovRequest& b) {
+    return a.type == b.type && a.channel_type == b.channel_type;
+  };
+  if (!std::equal(aovs.begin(), aovs.end(), expected.begin(), expected.end(), same)) {
+    error = "film state has AOVs " + describe_aovs(aovs) + ", the render asks for " + describe_aovs(expected);
+    return false;
+  }
+  return true;
+}
+
+// The header up to the AOV list; false with `error` unless it describes a
+// film of this size, crop and AOVs.
+bool read_layout(std::istream& in, int width, int height, const PixelRect& crop,
+                 const std::vector<AovRequest>& expected, std::string& error) {
+  char magic[sizeof kMagic];
+  uint32_t version = 0, w = 0, h = 0;
+  if (!in.read(magic, sizeof magic) || std::memcmp(magic, kMagic, sizeof kMagic) != 0) {
+    error = "not a film state (bad magic)";
+    return false;
+  }
+  if (!get(in, version) || version != kStateVersion) {
+    error = "unsupported film state version " + std::to_string(version) + " (expected " +
+            std::to_string(kStateVersion) + ")";
+    return false;
+  }
+  int32_t c[4];
+  uint32_t count = 0;
+  if (!get(in, w) || !get(in, h) || !get(in, c[0]) || !get(in, c[1]) || !get(in, c[2]) || !get(in, c[3]) ||
+      !get(in, count)) {
+    error = "truncated film state header";
+    return false;
+  }
+  if (static_cast<int64_t>(w) != width || static_cast<int64_t>(h) != height) {
+    error = "film state is " + std::to_string(w) + "x" + std::to_string(h) + ", the render is " +
+            std::to_string(width) + "x" + std::to_string(height);
+    return false;
+  }
+  if (PixelRect{c[0], c[1], c[2], c[3]} != crop) {
+    error = "film state covers pixels [" + std::to_string(c[0]) + "," + std::to_string(c[2]) + ")x[" +
+            std::to_string(c[1]) + "," + std::to_string(c[3]) + "), the render's crop is [" +
+            std::to_string(crop.x0) + "," + std::to_string(crop.x1) + ")x[" + std::to_string(crop.y0) + "," +
+            std::to_string(crop.y1) + ")";
+    return false;
+  }
+  return read_aov_list(in, count, expected, error);
+}
+
+bool read_non_finite(std::istream& in, NonFiniteReport& nf, std::string& error) {
+  uint8_t has_first = 0;
+  int32_t fx = 0, fy = 0, fs = 0;
+  if (!get(in, nf.nan) || !get(in, nf.pos_inf) || !get(in, nf.neg_inf) || !get(in, has_first) || !get(in, fx) ||
+      !get(in, fy) || !get(in, fs) || !get(in, nf.value.r) || !get(in, nf.value.g) || !get(in, nf.value.b)) {
+    error = "truncated film state header";
+    return false;
+  }
+  if (has_first > 1) {  // written as 0 or 1: anything else is corruption (found by fuzz_film_state)
+    error = "corrupt film state (non-finite report flag " + std::to_string(has_first) + ")";
+    return false;
+  }
+  nf.has_first = has_first == 1;
+  nf.x = fx;
+  nf.y = fy;
+  nf.sample = fs;
+  return true;
+}
+
+// The sums of every pixel of `crop` (`pixels` has its size).
+bool read_pixel_sums(std::istream& in, const PixelRect& crop, std::vector<PixelSum>& pixels, std::string& error) {
+  for (PixelSum& p : pixels) {
+    if (!get(in, p.r) || !get(in, p.g) || !get(in, p.b) || !get(in, p.weight) || !get(in, p.samples)) {
+      error = "truncated film state";
+      return false;
+    }
+  }
+  // The render loop adds non-finite samples as black, so a film's sums are
+  // always finite: anything else is corruption, which would reach the image.
+  for (std::size_t i = 0; i < pixels.size(); ++i) {
+    const PixelSum& p = pixels[i];
+    if (!std::isfinite(p.r) || !std::isfinite(p.g) || !std::isfinite(p.b) || !std::isfinite(p.weight)) {
+      const std::size_t row = static_cast<std::size_t>(crop.width());
+      error = "corrupt film state (pixel (" + std::to_string(crop.x0 + static_cast<int>(i % row)) + ", " +
+              std::to_string(crop.y0 + static_cast<int>(i / row)) + ") holds a non-finite sum)";
+      return false;
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 bool Film::write_state(std::ostream& out) const {
@@ -80,94 +187,11 @@ bool Film::write_state(std::ostream& out) const {
 }
 
 bool Film::read_state(std::istream& in, std::string& error) {
-  char magic[sizeof kMagic];
-  uint32_t version = 0, w = 0, h = 0;
-  if (!in.read(magic, sizeof magic) || std::memcmp(magic, kMagic, sizeof kMagic) != 0) {
-    error = "not a film state (bad magic)";
-    return false;
-  }
-  if (!get(in, version) || version != kStateVersion) {
-    error = "unsupported film state version " + std::to_string(version) + " (expected " +
-            std::to_string(kStateVersion) + ")";
-    return false;
-  }
-  int32_t c[4];
-  uint32_t count = 0;
-  if (!get(in, w) || !get(in, h) || !get(in, c[0]) || !get(in, c[1]) || !get(in, c[2]) || !get(in, c[3]) ||
-      !get(in, count)) {
-    error = "truncated film state header";
-    return false;
-  }
-  if (static_cast<int64_t>(w) != width_ || static_cast<int64_t>(h) != height_) {
-    error = "film state is " + std::to_string(w) + "x" + std::to_string(h) + ", the render is " +
-            std::to_string(width_) + "x" + std::to_string(height_);
-    return false;
-  }
-  if (PixelRect{c[0], c[1], c[2], c[3]} != crop_) {
-    error = "film state covers pixels [" + std::to_string(c[0]) + "," + std::to_string(c[2]) + ")x[" +
-            std::to_string(c[1]) + "," + std::to_string(c[3]) + "), the render's crop is [" +
-            std::to_string(crop_.x0) + "," + std::to_string(crop_.x1) + ")x[" + std::to_string(crop_.y0) + "," +
-            std::to_string(crop_.y1) + ")";
-    return false;
-  }
-  if (count > aov_catalogue().size()) {
-    error = "film state lists " + std::to_string(count) + " AOVs (corrupt)";
-    return false;
-  }
-  std::vector<AovRequest> aovs;
-  for (uint32_t i = 0; i < count; ++i) {
-    uint8_t type = 0, channel_type = 0;
-    if (!get(in, type) || !get(in, channel_type)) {
-      error = "truncated film state header";
-      return false;
-    }
-    if (type >= aov_catalogue().size() || channel_type > 1) {
-      error = "film state lists an unknown AOV (corrupt)";
-      return false;
-    }
-    aovs.push_back({static_cast<AovType>(type), static_cast<ChannelType>(channel_type)});
-  }
-  const auto same = [](const AovRequest& a, const AovRequest& b) {
-    return a.type == b.type && a.channel_type == b.channel_type;
-  };
-  if (!std::equal(aovs.begin(), aovs.end(), aovs_.begin(), aovs_.end(), same)) {
-    error = "film state has AOVs " + describe_aovs(aovs) + ", the render asks for " + describe_aovs(aovs_);
-    return false;
-  }
+  if (!read_layout(in, width_, height_, crop_, aovs_, error)) return false;
   NonFiniteReport nf;
-  uint8_t has_first = 0;
-  int32_t fx = 0, fy = 0, fs = 0;
-  if (!get(in, nf.nan) || !get(in, nf.pos_inf) || !get(in, nf.neg_inf) || !get(in, has_first) || !get(in, fx) ||
-      !get(in, fy) || !get(in, fs) || !get(in, nf.value.r) || !get(in, nf.value.g) || !get(in, nf.value.b)) {
-    error = "truncated film state header";
-    return false;
-  }
-  if (has_first > 1) {  // written as 0 or 1: anything else is corruption (found by fuzz_film_state)
-    error = "corrupt film state (non-finite report flag " + std::to_string(has_first) + ")";
-    return false;
-  }
-  nf.has_first = has_first == 1;
-  nf.x = fx;
-  nf.y = fy;
-  nf.sample = fs;
+  if (!read_non_finite(in, nf, error)) return false;
   std::vector<PixelSum> pixels(pixels_.size());
-  for (PixelSum& p : pixels) {
-    if (!get(in, p.r) || !get(in, p.g) || !get(in, p.b) || !get(in, p.weight) || !get(in, p.samples)) {
-      error = "truncated film state";
-      return false;
-    }
-  }
-  // The render loop adds non-finite samples as black, so a film's sums are
-  // always finite: anything else is corruption, which would reach the image.
-  for (std::size_t i = 0; i < pixels.size(); ++i) {
-    const PixelSum& p = pixels[i];
-    if (!std::isfinite(p.r) || !std::isfinite(p.g) || !std::isfinite(p.b) || !std::isfinite(p.weight)) {
-      const std::size_t row = static_cast<std::size_t>(crop_.width());
-      error = "corrupt film state (pixel (" + std::to_string(crop_.x0 + static_cast<int>(i % row)) + ", " +
-              std::to_string(crop_.y0 + static_cast<int>(i / row)) + ") holds a non-finite sum)";
-      return false;
-    }
-  }
+  if (!read_pixel_sums(in, crop_, pixels, error)) return false;
   std::vector<double> aov_data(aov_data_.size());
   if (!aov_data.empty() && !in.read(reinterpret_cast<char*>(aov_data.data()),
                                     static_cast<std::streamsize>(aov_data.size() * sizeof(double)))) {

@@ -83,6 +83,29 @@ class Integrator {
   }
 };
 
+using IntegratorFactory = std::unique_ptr<Integrator> (*)(const IntegratorSettings& settings);
+
+// A registry entry: the integrator's name, its factory, and the facts the
+// command line needs before making one.
+struct IntegratorInfo {
+  const char* name;
+  IntegratorFactory make;
+  // true: samples come from settings.sampler and are weighted by
+  // settings.filter (path); false: the classic pixel grid, stratified over each
+  // pass's sample count, and the box filter.
+  bool configurable_sampling;
+
+  // What takes the samples with `sampler` and `filter` (the EXR stamp, the run
+  // record): the configured ones, or "pixel-grid" and "box".
+  const char* sampler_name(SamplerType sampler) const;
+  const char* filter_name(PixelFilterType filter) const;
+  // Whether every pass must have the same size (a divisor of the target): the
+  // sampler stratifies over the pass's sample count (jittered, the pixel grid).
+  bool equal_passes(SamplerType sampler) const;
+};
+
+// The entry named `name`; nullptr with `error` (listing the valid names) if none.
+const IntegratorInfo* find_integrator(const std::string& name, std::string& error);
 // Returns nullptr and sets `error` (listing the valid names) for an unknown name.
 std::unique_ptr<Integrator> make_integrator(const std::string& name, const IntegratorSettings& settings,
                                             std::string& error);

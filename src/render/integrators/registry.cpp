@@ -2,43 +2,58 @@
 #include <array>
 
 #include "render/integrators/builtin.h"
+#include "render/film/filter.h"
 #include "render/integrators/integrator.h"
+#include "render/samplers/sampler.h"
 
 namespace pt {
 
 namespace {
 
-struct Entry {
-  const char* name;
-  std::unique_ptr<Integrator> (*make)(const IntegratorSettings&);
-};
-
-// A plain array: adding a row needs no count.
-constexpr Entry kIntegrators[] = {
-    {"whitted", make_whitted_integrator},
-    {"path", make_path_integrator},
-    {"binary", make_binary_integrator},
-    {"normal", make_normal_integrator},
-    {"depth", make_depth_integrator},
-    {"signature", make_signature_integrator},
-    {"bvh-cost", make_bvh_cost_integrator},
+// A plain array: adding a row needs no count. The columns: name, factory,
+// configurable sampling (IntegratorInfo).
+constexpr IntegratorInfo kIntegrators[] = {
+    {"whitted", make_whitted_integrator, false},
+    {"path", make_path_integrator, true},
+    {"binary", make_binary_integrator, false},
+    {"normal", make_normal_integrator, false},
+    {"depth", make_depth_integrator, false},
+    {"signature", make_signature_integrator, false},
+    {"bvh-cost", make_bvh_cost_integrator, false},
 };
 
 }  // namespace
 
+const char* IntegratorInfo::sampler_name(SamplerType sampler) const {
+  return configurable_sampling ? sampler_type_name(sampler) : "pixel-grid";
+}
+
+const char* IntegratorInfo::filter_name(PixelFilterType filter) const {
+  return configurable_sampling ? pixel_filter_name(filter) : "box";
+}
+
+bool IntegratorInfo::equal_passes(SamplerType sampler) const {
+  return !configurable_sampling || sampler == SamplerType::Jittered;
+}
+
 std::vector<std::string> integrator_names() {
   std::vector<std::string> names;
-  for (const Entry& e : kIntegrators) names.emplace_back(e.name);
+  for (const IntegratorInfo& e : kIntegrators) names.emplace_back(e.name);
   return names;
+}
+
+const IntegratorInfo* find_integrator(const std::string& name, std::string& error) {
+  for (const IntegratorInfo& e : kIntegrators)
+    if (name == e.name) return &e;
+  error = "unknown integrator '" + name + "'; valid names are:";
+  for (const IntegratorInfo& e : kIntegrators) error += std::string(" ") + e.name;
+  return nullptr;
 }
 
 std::unique_ptr<Integrator> make_integrator(const std::string& name, const IntegratorSettings& settings,
                                             std::string& error) {
-  for (const Entry& e : kIntegrators)
-    if (name == e.name) return e.make(settings);
-  error = "unknown integrator '" + name + "'; valid names are:";
-  for (const Entry& e : kIntegrators) error += std::string(" ") + e.name;
-  return nullptr;
+  const IntegratorInfo* info = find_integrator(name, error);
+  return info != nullptr ? info->make(settings) : nullptr;
 }
 
 }  // namespace pt

@@ -8,7 +8,8 @@
 
 namespace pt::bench {
 
-std::optional<LoadedScene> load(const std::string& path, AccelKind accel, WorkerPool& pool) {
+std::optional<LoadedScene> load(const std::string& path, AccelKind accel, const SettingsOverrides& overrides,
+                                WorkerPool& pool) {
   LoadedScene out;
   Diagnostics diag;
   auto t = Clock::now();
@@ -19,10 +20,12 @@ std::optional<LoadedScene> load(const std::string& path, AccelKind accel, Worker
   }
   out.load_seconds = seconds_since(t);
   out.desc = std::move(*desc);
+  if (!resolve_render_settings(out.desc, overrides, out.settings, diag)) {
+    std::cerr << diag.format();
+    return std::nullopt;
+  }
   t = Clock::now();
-  BuildOptions options;
-  options.accel = accel;
-  out.scene = build_render_scene(out.desc, options, pool, diag);
+  out.scene = build_render_scene(out.desc, out.settings.build_options(accel), pool, diag);
   if (!out.scene) {
     std::cerr << diag.format();
     return std::nullopt;
@@ -32,14 +35,7 @@ std::optional<LoadedScene> load(const std::string& path, AccelKind accel, Worker
 }
 
 IntegratorSettings settings_for(const LoadedScene& scene, int spp, int first_sample, uint64_t seed) {
-  const SceneDescription& desc = scene.desc;
-  IntegratorSettings s;
-  s.sampler = scene.sampler;
-  s.roulette_depth = scene.roulette_depth;
-  s.roulette_threshold = scene.roulette_threshold;
-  s.max_depth = desc.render.max_depth;
-  s.filter = desc.render.filter;
-  s.clamp = desc.render.clamp;
+  IntegratorSettings s = scene.settings.integration;
   s.spp = spp;
   s.first_sample = first_sample;
   s.seed = seed;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "accel/accelerator.h"
+#include "app/render_settings.h"
 #include "core/image.h"
 #include "core/parallel.h"
 #include "core/stopwatch.h"
@@ -22,19 +23,20 @@ namespace pt::bench {
 
 struct LoadedScene {
   SceneDescription desc;
+  // The scene's settings (integrator, max depth, filter, clamp) with the
+  // tool's sampler and Russian roulette (--sampler, --rr-depth, --rr-threshold):
+  // resolved as the pathtracer resolves its own (app/render_settings.h).
+  RenderSettings settings;
   std::unique_ptr<RenderScene> scene;
   double load_seconds = 0, build_seconds = 0;
-  SamplerType sampler = IntegratorSettings{}.sampler;  // the path integrator's sampler (--sampler)
-  int roulette_depth = IntegratorSettings{}.roulette_depth;            // --rr-depth
-  float roulette_threshold = IntegratorSettings{}.roulette_threshold;  // --rr-threshold
 };
 
-// Loads and builds `path` on backend `accel` inside `pool`; nullopt after
-// printing the diagnostics to stderr.
-std::optional<LoadedScene> load(const std::string& path, AccelKind accel, WorkerPool& pool);
+// Loads `path`, resolves its settings under `overrides` and builds it on
+// backend `accel` inside `pool`; nullopt after printing the diagnostics to stderr.
+std::optional<LoadedScene> load(const std::string& path, AccelKind accel, const SettingsOverrides& overrides,
+                                WorkerPool& pool);
 
-// The scene's own integrator settings (max depth, filter, clamp) and the
-// chosen sampler, with `spp` samples starting at `first_sample`.
+// The scene's integrator settings with `spp` samples starting at `first_sample`.
 IntegratorSettings settings_for(const LoadedScene& s, int spp, int first_sample, uint64_t seed);
 
 // Error metrics over all pixels and the three channels, linear values.

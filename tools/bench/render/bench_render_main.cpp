@@ -39,19 +39,14 @@ struct Common {
   int runs = 3;
   std::string json;
   std::string sampler = sampler_type_name(IntegratorSettings{}.sampler);
-  int roulette_depth = IntegratorSettings{}.roulette_depth;
-  float roulette_threshold = IntegratorSettings{}.roulette_threshold;
+  SettingsOverrides overrides;  // Russian roulette (--rr-depth, --rr-threshold) and the sampler
 };
 
-// Loads the scene with the sampler of `c`; nullopt after printing why.
+// Loads the scene with the sampler and Russian roulette of `c`; nullopt after printing why.
 std::optional<LoadedScene> load_for(const Common& c, AccelKind accel, WorkerPool& pool) {
-  auto s = load(c.scene, accel, pool);
-  if (s) {
-    s->sampler = parse_sampler_type(c.sampler).value_or(s->sampler);
-    s->roulette_depth = c.roulette_depth;
-    s->roulette_threshold = c.roulette_threshold;
-  }
-  return s;
+  SettingsOverrides overrides = c.overrides;
+  overrides.sampler = parse_sampler_type(c.sampler).value_or(overrides.sampler);
+  return load(c.scene, accel, overrides, pool);
 }
 
 double median(std::vector<double> v) {
@@ -75,12 +70,12 @@ ordered_json scene_json(const LoadedScene& s, AccelKind accel) {
   return {{"scene", s.desc.source_path},
           {"width", s.scene->width},
           {"height", s.scene->height},
-          {"max_depth", s.desc.render.max_depth.value},
+          {"max_depth", s.settings.integration.max_depth},
           {"accel", accel_kind_name(accel)},
           {"backend", stats.backend},
-          {"sampler", sampler_type_name(s.sampler)},
-          {"roulette_depth", s.roulette_depth},
-          {"roulette_threshold", s.roulette_threshold},
+          {"sampler", sampler_type_name(s.settings.integration.sampler)},
+          {"roulette_depth", s.settings.integration.roulette_depth},
+          {"roulette_threshold", s.settings.integration.roulette_threshold},
           {"primitives", stats.primitive_count},
           {"load_seconds", s.load_seconds},
           {"build_seconds", s.build_seconds}};
@@ -255,9 +250,10 @@ void add_common(CLI::App& app, Common& c) {
   app.add_option("--json", c.json, "Write the result here (default: standard output)");
   app.add_option("--sampler", c.sampler, "Sampler of the path integrator (docs/samplers.md)")
       ->check(CLI::IsMember(sampler_type_names()));
-  app.add_option("--rr-depth", c.roulette_depth, "Russian roulette: first bounce it applies to (path integrator)")
+  app.add_option("--rr-depth", c.overrides.roulette_depth,
+                 "Russian roulette: first bounce it applies to (path integrator)")
       ->check(CLI::Range(1, 1 << 20));
-  app.add_option("--rr-threshold", c.roulette_threshold,
+  app.add_option("--rr-threshold", c.overrides.roulette_threshold,
                  "Russian roulette: throughput below which paths may end (path integrator)")
       ->check(CLI::Range(1e-6f, 1e6f));
 }

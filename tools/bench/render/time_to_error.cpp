@@ -14,9 +14,8 @@ TimeToError time_to_error(const LoadedScene& s, const Image& reference, WorkerPo
   Film film(s.scene->width, s.scene->height);
   double render_seconds = 0;
   int spp = 0;
-  std::string error;
   while (render_seconds < max_seconds && (out.seconds_to_rmse < 0 || out.seconds_to_relmse < 0)) {
-    const auto integrator = make_integrator(s.desc.render.integrator, settings_for(s, pass_spp, spp, seed), error);
+    const auto integrator = s.settings.make_integrator(settings_for(s, pass_spp, spp, seed));
     const auto t = Clock::now();
     integrator->render(*s.scene, film, pool);
     render_seconds += seconds_since(t);
@@ -43,7 +42,7 @@ ImageError converge(const LoadedScene& s, const Image& reference, WorkerPool& po
   *seconds = 0;
   for (int first = 0; first < spp; first += pass_spp) {
     const int n = std::min(pass_spp, spp - first);
-    const auto integrator = make_integrator(s.desc.render.integrator, settings_for(s, n, first, seed), error);
+    const auto integrator = s.settings.make_integrator(settings_for(s, n, first, seed));
     const auto t = Clock::now();
     integrator->render(*s.scene, film, pool);
     *seconds += seconds_since(t);
@@ -57,8 +56,7 @@ ImageError converge(const LoadedScene& s, const Image& reference, WorkerPool& po
 
 Throughput throughput(const LoadedScene& s, WorkerPool& pool, int spp, uint64_t seed) {
   Throughput out;
-  std::string error;
-  const auto integrator = make_integrator(s.desc.render.integrator, settings_for(s, spp, 0, seed), error);
+  const auto integrator = s.settings.make_integrator(settings_for(s, spp, 0, seed));
   Film film(s.scene->width, s.scene->height);
   const auto t = Clock::now();
   integrator->render(*s.scene, film, pool);

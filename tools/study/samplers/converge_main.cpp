@@ -31,6 +31,7 @@
 #include <CLI/CLI.hpp>
 
 #include "accel/accelerator.h"
+#include "app/render_settings.h"
 #include "core/parallel.h"
 #include "core/stopwatch.h"
 #include "io/atomic_file.h"
@@ -82,10 +83,12 @@ struct Row {
 };
 
 // The rows of one seed; false (with `error`) if the error cannot be computed.
-bool run_seed(const pt::RenderScene& scene, pt::IntegratorSettings settings, const std::vector<int>& checkpoints,
-              const pt::Image& reference, const std::optional<pt::ImageRect>& rect, double max_seconds,
-              pt::WorkerPool& pool, std::vector<Row>& rows, std::string& error) {
-  const bool restart = settings.sampler == pt::SamplerType::Jittered;
+bool run_seed(const pt::RenderScene& scene, const pt::RenderSettings& render, uint64_t seed,
+              const std::vector<int>& checkpoints, const pt::Image& reference, const std::optional<pt::ImageRect>& rect,
+              double max_seconds, pt::WorkerPool& pool, std::vector<Row>& rows, std::string& error) {
+  pt::IntegratorSettings settings = render.integration;
+  settings.seed = seed;
+  const bool restart = render.equal_passes();  // jittered stratifies over a pass's sample count
   pt::Film film(scene.width, scene.height);
   double elapsed = 0.0;
   int done = 0;
@@ -99,8 +102,7 @@ bool run_seed(const pt::RenderScene& scene, pt::IntegratorSettings settings, con
       settings.first_sample = done;
       settings.spp = n - done;
     }
-    const std::unique_ptr<pt::Integrator> integrator = pt::make_integrator("path", settings, error);
-    if (!integrator) return false;
+    const std::unique_ptr<pt::Integrator> integrator = render.make_integrator(settings);
     const auto t = Clock::now();
     integrator->render(scene, film, pool);
     elapsed += seconds_since(t);
@@ -171,12 +173,18 @@ int run(const Options& o) {
     std::cerr << diag.format();
     return kExitFailure;
   }
+  // The path integrator with the scene's filter and clamp, as the pathtracer resolves them.
+  pt::SettingsOverrides overrides;
+  overrides.integrator = "path";
+  overrides.max_depth = o.max_depth;
+  overrides.sampler = sampler;
+  overrides.width = o.width;
+  overrides.height = o.height;
+  pt::RenderSettings settings;
+  pt::resolve_render_settings(*desc, overrides, settings, diag);  // "path" is registered
   pt::WorkerPool pool(o.threads);
-  pt::BuildOptions build;
-  build.accel = accel;
-  build.width_override = o.width;
-  build.height_override = o.height;
-  const std::unique_ptr<pt::RenderScene> scene = pt::build_render_scene(*desc, build, pool, diag);
+  const std::unique_ptr<pt::RenderScene> scene =
+      pt::build_render_scene(*desc, settings.build_options(accel), pool, diag);
   if (!scene) {
     std::cerr << diag.format();
     return kExitFailure;
@@ -192,15 +200,10 @@ int run(const Options& o) {
     return kExitFailure;
   }
 
-  pt::IntegratorSettings settings;
-  settings.max_depth = o.max_depth >= 0 ? o.max_depth : desc->render.max_depth.value;
-  settings.filter = desc->render.filter;
-  settings.clamp = desc->render.clamp.value;
-  settings.sampler = sampler;
   std::vector<Row> rows;
   for (const long long seed : seed_values) {
-    settings.seed = static_cast<uint64_t>(seed);
-    if (!run_seed(*scene, settings, checkpoints, reference, rect, o.max_seconds, pool, rows, error)) {
+    if (!run_seed(*scene, settings, static_cast<uint64_t>(seed), checkpoints, reference, rect, o.max_seconds, pool,
+                  rows, error)) {
       std::cerr << "error: " << o.scene << " vs " << o.reference << ": " << error << "\n";
       return kExitFailure;
     }
@@ -226,8 +229,9 @@ int main(int argc, char** argv) {
   app.add_option("--sampler", o.sampler, "Sampler")->check(CLI::IsMember(pt::sampler_type_names()));
   app.add_option("--seeds", o.seeds, "Seeds S1,S2,... (one run per seed)");
   app.add_option("--threads", o.threads, "Worker threads (default: all)")->check(CLI::NonNegativeNumber);
-  app.add_option("--width", o.width, "Image width override")->check(CLI::Range(1, 32768));
-  app.add_option("--height", o.height, "Image height override")->check(CLI::Range(1, 32768));
+  const int max_side = pt::ResolutionLimits{}.max_resolution;
+  app.add_option("--width", o.width, "Image width override")->check(CLI::Range(1, max_side));
+  app.add_option("--height", o.height, "Image height override")->check(CLI::Range(1, max_side));
   app.add_option("--max-depth", o.max_depth, "Path length limit (default: the scene's)")->check(CLI::Range(0, 1024));
   app.add_option("--max-seconds", o.max_seconds, "Stop a seed after the checkpoint that passes T seconds")
       ->check(CLI::NonNegativeNumber);

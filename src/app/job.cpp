@@ -1,0 +1,180 @@
+#include "app/job.h"
+
+#include "app/film_options.h"
+#include "app/options.h"
+#include "app/outputs.h"
+#include "core/diagnostics.h"
+#include "scene/loader.h"
+
+namespace pt {
+namespace {
+
+// Pass size when checkpointing a render with a sample target and no
+// --pass-spp: checkpoints are written at pass boundaries only.
+constexpr int kCheckpointPassSpp = 16;
+
+SettingsOverrides settings_overrides(const Options& o) {
+  SettingsOverrides s;
+  s.integrator = o.integrator;
+  s.max_depth = o.max_depth;
+  s.seed = o.seed;
+  s.filter = o.filter;
+  s.sampler = parse_sampler_type(o.sampler).value_or(SamplerType::Sobol);
+  s.clamp = o.clamp;
+  s.width = o.width;
+  s.height = o.height;
+  return s;
+}
+
+// The scene (with --set) and its settings.
+bool load_job(const Options& o, Job& job, Messages& m) {
+  const auto t0 = Clock::now();
+  Diagnostics diag;
+  diag.set_warnings_as_errors(o.strict);
+  LoadOptions load_options;
+  load_options.strict = o.strict;
+  load_options.overrides = o.overrides;
+  std::optional<SceneDescription> desc = load_scene(o.scene, load_options, diag);
+  m.add(diag, o.quiet);
+  if (!desc || diag.has_errors()) return false;
+  job.parse_s = seconds_since(t0);
+  job.desc = std::move(*desc);
+  Diagnostics settings_diag;
+  if (resolve_render_settings(job.desc, settings_overrides(o), job.settings, settings_diag)) return true;
+  m.text += settings_diag.format();
+  return false;
+}
+
+// Passes, AOVs, the replayed sample and the display images; false with the
+// usage status.
+bool plan_job(const Options& o, Job& job, Messages& m) {
+  // Passes: a time budget alone has no sample target (the scene's spp is ignored).
+  PassPlan& plan = job.plan;
+  plan.target_spp = o.spp > 0 ? o.spp : (o.time_budget > 0 ? 0 : job.desc.render.spp.value);
+  plan.time_budget_s = o.time_budget;
+  plan.pass_spp = o.pass_spp;
+  if (plan.pass_spp == 0 && plan.time_budget_s == 0 && !(o.checkpoint.empty() && o.resume.empty()))
+    plan.pass_spp = kCheckpointPassSpp;
+  std::string error;
+  if (!film_aovs(o, job.aovs, job.beauty_type, error)) {
+    m.error(error);
+    return false;
+  }
+  // A replay needs the render's pass plan (below), not its length: under a
+  // time budget without a sample target any sample index is accepted.
+  if (o.replaying() && (o.replay[2] < 0 || (plan.target_spp > 0 && o.replay[2] >= plan.target_spp))) {
+    m.error(std::string(o.sample_option()) + ": sample " + std::to_string(o.replay[2]) +
+            (o.replay[2] < 0 ? " is negative"
+                             : " is not one of the render's " + std::to_string(plan.target_spp) +
+                                   " samples per pixel"));
+    return false;
+  }
+  plan.equal_passes = job.settings.equal_passes();
+
+  job.display = display_settings(o, job.desc.film);
+  if (job.display.transform != DisplayTransform::Srgb && !(o.view.empty() && o.display.empty() && o.look.empty()))
+    m.warning("--view, --display and --look apply to native scenes; this scene's display images use its course's "
+              "documented curve (docs/rendering.md)");
+  if (!DisplayEncoder::create(job.display, error)) {
+    m.error("display images: " + error);
+    return false;
+  }
+  return true;
+}
+
+// The pre-flight memory estimate against --max-memory and the physical memory.
+bool check_job_memory(const Options& o, Job& job, Messages& m, int& status) {
+  status = kExitUsage;
+  uint64_t limit = 0;
+  if (!o.max_memory.empty()) {
+    const std::optional<uint64_t> parsed = parse_byte_size(o.max_memory);
+    if (!parsed || *parsed == 0) {
+      m.error("--max-memory: '" + o.max_memory + "' is not a size (e.g. 4G, 512M, 65536)");
+      return false;
+    }
+    limit = *parsed;
+  }
+  const int width = job.settings.width, height = job.settings.height;
+  if (std::string error; !estimate_render_memory(o, job.desc, width, height, job.aovs, job.memory, error)) {
+    m.error(error);  // a bad crop
+    return false;
+  }
+  status = kExitFailure;
+  // Sizes beyond the builder's limits get its message (naming the limits) instead.
+  const bool within_limits = ResolutionLimits{}.admits(width, height);
+  if (const std::string why = check_memory(job.memory, limit, physical_memory_bytes()); within_limits && !why.empty()) {
+    m.error(why);
+    return false;
+  }
+  return true;
+}
+
+// What a checkpoint must match, and where a resumed render starts.
+bool checkpoint_job(const Options& o, Job& job, Messages& m) {
+  if (o.checkpoint.empty() && o.resume.empty()) return true;
+  std::string extra, error;
+  for (const std::string& ov : o.overrides) extra += ov + '\n';
+  job.identity.scene = o.scene;
+  job.identity.scene_hash = scene_content_hash(o.scene, extra, error);
+  if (job.identity.scene_hash.empty()) {
+    m.error("checkpoint: " + error);
+    return false;
+  }
+  job.identity.settings = job.settings.identity();
+  const PassPlan& plan = job.plan;
+  const bool adaptive = plan.time_budget_s > 0 && plan.pass_spp <= 0 && !plan.equal_passes;
+  job.identity.settings["pass_spp"] = adaptive ? nlohmann::ordered_json("adaptive")
+                                               : nlohmann::ordered_json(fixed_pass_size(plan));
+  if (o.resume.empty()) return true;
+  CheckpointInfo saved;
+  if (!read_checkpoint_info(o.resume, saved, error)) {
+    m.error("--resume: " + error);
+    return false;
+  }
+  if (const std::string why = checkpoint_mismatch(saved, job.identity); !why.empty()) {
+    m.error("cannot resume from '" + o.resume + "': " + why);
+    return false;
+  }
+  job.plan.start_spp = saved.spp_done;
+  return true;
+}
+
+}  // namespace
+
+void Messages::add(const Diagnostics& diag, bool quiet) {
+  if (diag.all().empty() || (quiet && !diag.has_errors())) return;
+  text += diag.format();
+}
+
+int check_request(const Options& o, Messages& m) {
+  if (o.outputs.empty() && !o.replaying()) {
+    m.error("--output is required (except for a replay, --pixel or --replay)");
+    return kExitUsage;
+  }
+  if (std::string error; !check_outputs(o.outputs, error)) {
+    m.error(error);
+    return kExitUsage;
+  }
+  const bool replay = o.replaying();
+  if (o.time_budget > 0 && o.spp == 0 && !o.quiet && !replay)
+    m.note("--time-budget without --spp renders until the time is up (the scene's spp is ignored)");
+  if (replay && !o.quiet && !(o.outputs.empty() && o.checkpoint.empty() && o.report.empty()))
+    m.note("a replay writes no files (-o, --checkpoint and --report are ignored)");
+  return 0;
+}
+
+std::optional<Job> prepare_job(const Options& o, Messages& m, int& status) {
+  status = kExitFailure;
+  Job job;
+  if (!load_job(o, job, m)) return std::nullopt;
+  if (!plan_job(o, job, m)) {
+    status = kExitUsage;
+    return std::nullopt;
+  }
+  if (!check_job_memory(o, job, m, status)) return std::nullopt;
+  status = kExitFailure;
+  if (!checkpoint_job(o, job, m)) return std::nullopt;
+  return job;
+}
+
+}  // namespace pt

@@ -1,0 +1,83 @@
+#include "app/render_settings.h"
+
+#include "io/image_metadata.h"
+#include "io/run_record.h"
+#include "render/film/filter.h"
+#include "scene/scene_description.h"
+
+namespace pt {
+
+bool resolve_render_settings(const SceneDescription& desc, const SettingsOverrides& o, RenderSettings& out,
+                             Diagnostics& diag) {
+  const std::string name = o.integrator.empty() ? desc.render.integrator.value : o.integrator;
+  std::string error;
+  out.integrator = find_integrator(name, error);
+  if (out.integrator == nullptr) {
+    diag.error(o.integrator.empty() ? desc.render.integrator.where : SourceLocation{}, error);
+    return false;
+  }
+  IntegratorSettings& s = out.integration;
+  s = IntegratorSettings{};
+  s.max_depth = o.max_depth >= 0 ? o.max_depth : desc.render.max_depth.value;
+  s.seed = o.seed;
+  s.filter = desc.render.filter;
+  if (o.filter == "gaussian") s.filter = PixelFilterType::Gaussian;
+  if (o.filter == "mitchell") s.filter = PixelFilterType::Mitchell;
+  if (o.filter == "box") s.filter = PixelFilterType::Box;
+  s.sampler = o.sampler;
+  s.clamp = o.clamp >= 0.0f ? o.clamp : desc.render.clamp.value;
+  s.roulette_depth = o.roulette_depth;
+  s.roulette_threshold = o.roulette_threshold;
+  BuildOptions size;
+  size.width_override = o.width;
+  size.height_override = o.height;
+  resolve_resolution(desc.film, size, out.width, out.height);
+  return true;
+}
+
+BuildOptions RenderSettings::build_options(AccelKind accel) const {
+  BuildOptions options;
+  options.accel = accel;
+  // Both sides given: the resolved size exactly (resolve_resolution).
+  options.width_override = width;
+  options.height_override = height;
+  return options;
+}
+
+RenderStamp RenderSettings::stamp() const {
+  RenderStamp stamp;
+  stamp.seed = integration.seed;
+  stamp.integrator = integrator_name();
+  stamp.sampler = sampler_name();
+  stamp.filter = filter_name();
+  stamp.max_depth = integration.max_depth;
+  stamp.clamp = integration.clamp;
+  stamp.software_version = PT_VERSION;
+  return stamp;
+}
+
+void RenderSettings::describe(RunRecord& record) const {
+  record.integrator = integrator_name();
+  record.sampler = sampler_name();
+  record.width = width;
+  record.height = height;
+  record.max_depth = integration.max_depth;
+  record.seed = integration.seed;
+  record.filter = filter_name();
+  record.clamp = integration.clamp;
+}
+
+nlohmann::ordered_json RenderSettings::identity() const {
+  // The configured sampler and filter (not the registry's names): the keys
+  // every checkpoint written so far holds.
+  return {{"integrator", integrator_name()},
+          {"width", width},
+          {"height", height},
+          {"max_depth", integration.max_depth},
+          {"seed", integration.seed},
+          {"sampler", sampler_type_name(integration.sampler)},
+          {"filter", pixel_filter_name(integration.filter)},
+          {"clamp", integration.clamp}};
+}
+
+}  // namespace pt
