@@ -11,7 +11,7 @@
 // integrator's default) and --rr-depth / --rr-threshold (Russian roulette,
 // default: the integrator's), and records them in its JSON.
 //
-// tools/bench_render/run_benchmarks.py runs the set documented in
+// tools/bench/render/run_benchmarks.py runs the set documented in
 // docs/performance.md and writes docs/bench/cornell.* and docs/bench/render.*.
 #include <algorithm>
 #include <fstream>
