@@ -5,6 +5,14 @@
 
 namespace pt {
 
+std::string format_number(double d) {
+  std::ostringstream os;
+  os.precision(d == static_cast<float>(d) ? 7 : 17);
+  os << d;
+  return os.str();
+}
+
+
 std::string SourceFile::line_text(int line) const {
   if (line < 1) return {};
   std::size_t start = 0;

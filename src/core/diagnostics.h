@@ -17,6 +17,9 @@
 
 namespace pt {
 
+// A number as a short decimal ("0.5", "1e+20"), for messages.
+std::string format_number(double d);
+
 // The text of one input file, kept so that diagnostics can quote lines.
 struct SourceFile {
   std::string path;  // as given by the user (for messages)

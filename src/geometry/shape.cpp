@@ -1,48 +1,41 @@
 // Dispatch over the Shape variant (not on any per-ray path: backends call the
-// concrete routines directly).
-#include <type_traits>
+// shape's own routines directly).
+#include <utility>
 #include <variant>
 
-#include "geometry/float_util.h"
 #include "geometry/shapes.h"
 
 namespace pt {
 
+Bounds3f bounds(const Shape& s) {
+  return std::visit([](const auto& shape) { return bounds(shape); }, s);
+}
+
+uint32_t primitive_count(const Shape& s) {
+  return std::visit([](const auto& shape) { return primitive_count(shape); }, s);
+}
+
+SurfaceGeometry surface(const Shape& s, uint32_t prim, const Ray& ray, const PrimHit& hit) {
+  return std::visit([&](const auto& shape) { return surface_of_primitive(shape, prim, ray, hit); }, s);
+}
+
+void check(const Shape& s, ShapeChecker& c) {
+  std::visit([&](const auto& shape) { check(shape, c); }, s);
+}
+
 namespace {
 
-Bounds3f mesh_bounds(const TriangleMesh& m) {
-  Bounds3f b;
-  const std::size_t n = m.positions.size();
-  for (uint32_t idx : m.indices) {
-    if (idx < n) b.extend(m.positions[idx]);
-  }
-  return fp::pad(b);
+template <std::size_t... I>
+ShapeAreaSampler area_sampler(const Shape& s, std::index_sequence<I...>) {
+  ShapeAreaSampler out;
+  ((s.index() == I ? (out.emplace<I>(make_area_sampler(*std::get_if<I>(&s))), true) : false) || ...);
+  return out;
 }
 
 }  // namespace
 
-Bounds3f bounds(const Shape& s) {
-  return std::visit(
-      [](const auto& shape) -> Bounds3f {
-        if constexpr (std::is_same_v<std::decay_t<decltype(shape)>, TriangleMesh>) {
-          return mesh_bounds(shape);
-        } else {
-          return bounds(shape);
-        }
-      },
-      s);
-}
-
-SurfaceGeometry surface(const Shape& s, uint32_t prim, const Ray& ray, const PrimHit& hit) {
-  return std::visit(
-      [&](const auto& shape) -> SurfaceGeometry {
-        if constexpr (std::is_same_v<std::decay_t<decltype(shape)>, TriangleMesh>) {
-          return surface(shape, prim, ray, hit);
-        } else {
-          return surface(shape, ray, hit);
-        }
-      },
-      s);
+ShapeAreaSampler make_area_sampler(const Shape& s) {
+  return area_sampler(s, std::make_index_sequence<std::variant_size_v<Shape>>{});
 }
 
 }  // namespace pt

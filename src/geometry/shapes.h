@@ -1,8 +1,17 @@
-// Render-time shape data and the one place each shape's bounds, intersection
-// and surface evaluation are written. Both acceleration backends (Embree user
-// geometry and our own BVH) call exactly these routines.
+// The list of shapes. Each shape is defined once, in its own header under
+// geometry/shapes/, by its struct and the routines every other part of the
+// renderer finds by name (overloads on the shape type):
+//   Bounds3f bounds(const S&)                      conservative, never invalid
+//   uint32_t primitive_count(const S&)             1, or one per triangle of a mesh
+//   bool intersect(const S&, const Ray&, PrimHit&) (or, with several primitives,
+//        intersect(s, prim, ray, hit) and bounds(s, prim))
+//   SurfaceGeometry surface(const S&, const Ray&, const PrimHit&)   (or with prim)
+//   void check(const S&, ShapeChecker&)            the validation rule
+//   make_area_sampler(const S&)                    sampling by area, for area lights
+// Both acceleration backends, the area lights and scene validation work over
+// the Shape variant below; adding a shape is "Adding a shape" in docs/architecture.md.
 //
-// Contract for every intersect_*():
+// Contract for every intersect():
 //  - returns true and fills `hit` only for the nearest hit with
 //    ray.tmin < t < ray.tmax (strict on both ends); `ray.dir` need not be unit;
 //  - never returns true for NaN t; degenerate shapes (zero radius, zero-area
@@ -18,55 +27,13 @@
 #include <vector>
 
 #include "core/math.h"
+#include "geometry/shape_base.h"
+#include "geometry/shapes/cylinder.h"
+#include "geometry/shapes/mesh.h"
+#include "geometry/shapes/quad.h"
+#include "geometry/shapes/sphere.h"
 
 namespace pt {
-
-struct PrimHit {
-  float t = kInfinity;
-  // Shape-specific parameters:
-  //  triangle: barycentrics (b1, b2) of p1 and p2;
-  //  quad:     (u, v) of the two-triangle parameterisation (u >= v: triangle
-  //            v0 v1 v2, else v0 v2 v3; equals the bilinear (u, v) for parallelograms);
-  //  cylinder: (part, 0), part 0 = side, 1 = cap at p0, 2 = cap at p1;
-  //  sphere:   unused (0, 0); surface() reprojects ray.at(t).
-  Vec2f uv;
-};
-
-// Local geometry at a hit point.
-struct SurfaceGeometry {
-  Vec3f p;        // position
-  Vec3f ng;       // unit geometric normal (shape's outward side; NOT flipped towards the ray)
-  Vec3f ns;       // unit shading normal (interpolated for meshes with normals), same side as ng
-  Vec2f uv;       // texture coordinates
-  // Conservative per-component bound on the absolute error of `p` (and of the
-  // shape's own intersection routine near p); used by spawn_ray().
-  Vec3f p_error;
-};
-
-struct Sphere {
-  Vec3f center;
-  float radius = 1;
-  Vec3f pole{0, 1, 0};  // unit; texture-mapping axis
-};
-
-// Planar convex quad, corners in perimeter order.
-struct Quad {
-  Vec3f v[4];
-};
-
-// Capped cylinder between cap centres p0 and p1.
-struct Cylinder {
-  Vec3f p0, p1;
-  float radius = 1;
-};
-
-struct TriangleMesh {
-  std::vector<Vec3f> positions;
-  std::vector<uint32_t> indices;  // 3 per triangle
-  std::vector<Vec3f> normals;     // empty or one per vertex
-  std::vector<Vec2f> uvs;         // empty or one per vertex
-  std::size_t triangle_count() const { return indices.size() / 3; }
-};
 
 // One renderable object. Its index in SceneGeometry::shapes is its object id
 // (Embree geomID == object id; prim id is the triangle index for meshes, 0 otherwise).
@@ -76,29 +43,57 @@ struct SceneGeometry {
   std::vector<Shape> shapes;
 };
 
-// ---------------------------------------------------------------- per shape
-// Bounds are conservative (padded by a few ulps) and never invalid: a
-// degenerate shape gets a point box.
-Bounds3f bounds(const Sphere& s);
-Bounds3f bounds(const Quad& q);
-Bounds3f bounds(const Cylinder& c);
-Bounds3f triangle_bounds(const TriangleMesh& m, uint32_t tri);
+// ---------------------------------------------------------------- generic over shapes
+// A shape intersected as a whole (one primitive), as opposed to one made of
+// primitives addressed by index (a mesh's triangles).
+template <class S>
+concept WholeShape = requires(const S& s, const Ray& r, PrimHit& h) { intersect(s, r, h); };
 
-bool intersect(const Sphere& s, const Ray& ray, PrimHit& hit);
-bool intersect(const Quad& q, const Ray& ray, PrimHit& hit);
-bool intersect(const Cylinder& c, const Ray& ray, PrimHit& hit);
-// Watertight ray/triangle test (Woop, Benthin, Wald 2013). uv = barycentrics of v1, v2.
-bool intersect_triangle(Vec3f p0, Vec3f p1, Vec3f p2, const Ray& ray, PrimHit& hit);
-bool intersect(const TriangleMesh& m, uint32_t tri, const Ray& ray, PrimHit& hit);
+// Primitive `prim` of a shape (prim is 0 for a whole shape).
+template <class S>
+Bounds3f primitive_bounds(const S& s, uint32_t prim) {
+  if constexpr (WholeShape<S>) return bounds(s);
+  else return bounds(s, prim);
+}
 
-SurfaceGeometry surface(const Sphere& s, const Ray& ray, const PrimHit& hit);
-SurfaceGeometry surface(const Quad& q, const Ray& ray, const PrimHit& hit);
-SurfaceGeometry surface(const Cylinder& c, const Ray& ray, const PrimHit& hit);
-SurfaceGeometry surface(const TriangleMesh& m, uint32_t tri, const Ray& ray, const PrimHit& hit);
+template <class S>
+bool intersect_primitive(const S& s, uint32_t prim, const Ray& ray, PrimHit& hit) {
+  if constexpr (WholeShape<S>) return intersect(s, ray, hit);
+  else return intersect(s, prim, ray, hit);
+}
 
-// Dispatch on the variant (prim is ignored for non-mesh shapes).
+template <class S>
+SurfaceGeometry surface_of_primitive(const S& s, uint32_t prim, const Ray& ray, const PrimHit& hit) {
+  if constexpr (WholeShape<S>) return surface(s, ray, hit);
+  else return surface(s, prim, ray, hit);
+}
+
+// A typed reference to one shape of a SceneGeometry (one pointer per
+// alternative of Shape, generated from its list).
+template <class V>
+struct RefVariant;
+template <class... S>
+struct RefVariant<std::variant<S...>> {
+  using type = std::variant<const S*...>;
+};
+using ShapeRef = RefVariant<Shape>::type;
+
+// The by-area sampler of each alternative of Shape (duplicates allowed:
+// quads and meshes share TriangleAreaSampler; construct by index).
+template <class V>
+struct AreaSamplerVariant;
+template <class... S>
+struct AreaSamplerVariant<std::variant<S...>> {
+  using type = std::variant<decltype(make_area_sampler(std::declval<const S&>()))...>;
+};
+using ShapeAreaSampler = AreaSamplerVariant<Shape>::type;
+ShapeAreaSampler make_area_sampler(const Shape& s);
+
+// Dispatch on the variant (prim is ignored for whole shapes).
 Bounds3f bounds(const Shape& s);
+uint32_t primitive_count(const Shape& s);
 SurfaceGeometry surface(const Shape& s, uint32_t prim, const Ray& ray, const PrimHit& hit);
+void check(const Shape& s, ShapeChecker& c);
 
 // ---------------------------------------------------------------- self-intersection
 // Shadow rays built by spawn_ray_to() end at t = 1 - kShadowEpsilon (target at t = 1).

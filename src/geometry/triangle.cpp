@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "geometry/float_util.h"
-#include "geometry/shapes.h"
+#include "geometry/shapes/mesh.h"
 
 namespace pt {
 
@@ -99,7 +99,16 @@ bool intersect_triangle(Vec3f p0, Vec3f p1, Vec3f p2, const Ray& ray, PrimHit& h
   return true;
 }
 
-Bounds3f triangle_bounds(const TriangleMesh& m, uint32_t tri) {
+Bounds3f bounds(const TriangleMesh& m) {
+  Bounds3f b;
+  const std::size_t n = m.positions.size();
+  for (uint32_t idx : m.indices) {
+    if (idx < n) b.extend(m.positions[idx]);
+  }
+  return fp::pad(b);
+}
+
+Bounds3f bounds(const TriangleMesh& m, uint32_t tri) {
   const uint32_t* idx = &m.indices[3 * static_cast<std::size_t>(tri)];
   Bounds3f b;
   b.extend(m.positions[idx[0]]);
@@ -145,6 +154,30 @@ SurfaceGeometry surface(const TriangleMesh& m, uint32_t tri, const Ray& /*ray*/,
     sg.uv = {b1, b2};
   }
   return sg;
+}
+
+void check(const TriangleMesh&, ShapeChecker&) {
+  // Meshes are checked by src/scene/validate.cpp on the description (MeshDesc),
+  // without copying their data.
+}
+
+TriangleAreaSampler make_area_sampler(const TriangleMesh& m) {
+  TriangleAreaSampler s;
+  std::vector<float> areas(m.triangle_count());
+  s.triangles.reserve(areas.size());
+  double total = 0.0;
+  for (std::size_t t = 0; t < areas.size(); ++t) {
+    const uint32_t* idx = &m.indices[3 * t];
+    const Vec3f p0 = m.positions[idx[0]], p1 = m.positions[idx[1]], p2 = m.positions[idx[2]];
+    const Vec3f cr = cross(p1 - p0, p2 - p0);
+    const float len = length(cr);
+    areas[t] = 0.5f * len;
+    total += areas[t];
+    s.triangles.push_back({p0, p1 - p0, p2 - p0, len > 0.0f ? cr / len : Vec3f(0, 0, 1)});
+  }
+  s.area = static_cast<float>(total);
+  s.parts = Distribution1D(areas);
+  return s;
 }
 
 }  // namespace pt

@@ -70,13 +70,6 @@ bool numbers_of(ReadContext& ctx, const JsonValue& v, std::string_view label, st
 
 }  // namespace
 
-std::string format_number(double d) {
-  std::ostringstream os;
-  os.precision(d == static_cast<float>(d) ? 7 : 17);
-  os << d;
-  return os.str();
-}
-
 bool read_value(ReadContext& ctx, const JsonValue& v, std::string_view label, Sourced<float>& out) {
   double d = 0;
   if (!number_of(ctx, v, label, d)) return false;

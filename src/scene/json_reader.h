@@ -97,9 +97,6 @@ class ObjectReader {
   bool ok_ = true;
 };
 
-// A number as a short decimal ("0.5", "1e+20"), for messages.
-std::string format_number(double d);
-
 // A string key whose value must be one of `names` (error with "did you mean"
 // otherwise). Returns the index of the match, -1 if the key is absent, -2 if bad.
 int read_choice(ObjectReader& r, std::string_view key, const std::vector<std::string>& names,

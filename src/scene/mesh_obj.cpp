@@ -17,9 +17,8 @@ namespace {
 
 bool finite(const aiVector3D& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-}  // namespace
-
-bool load_obj(const std::string& path, MeshData& out, std::string& error) {
+// The file can be read and is not larger than kMaxObjFileBytes.
+bool check_obj_file(const std::string& path, std::string& error) {
   if (const std::string why = why_unreadable(path); !why.empty()) {
     error = "cannot read the file: " + why;
     return false;
@@ -35,6 +34,13 @@ bool load_obj(const std::string& path, MeshData& out, std::string& error) {
             " bytes are refused";
     return false;
   }
+  return true;
+}
+
+}  // namespace
+
+bool load_obj(const std::string& path, MeshData& out, std::string& error) {
+  if (!check_obj_file(path, error)) return false;
 
   Assimp::Importer importer;
   // SortByPType splits points and lines into meshes of their own, skipped below.

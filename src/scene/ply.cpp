@@ -95,6 +95,65 @@ bool fail(PlyError& error, std::string message, int line = 0) {
 }
 
 // ---------------------------------------------------------------- header
+// "format <type> <version>"
+bool parse_format_line(const std::vector<std::string_view>& w, int line_no, Header& h, PlyError& error) {
+  if (w.size() != 3) return fail(error, "expected 'format <type> <version>'", line_no);
+  if (w[1] == "ascii") {
+    h.format = Format::Ascii;
+  } else if (w[1] == "binary_little_endian") {
+    h.format = Format::BinaryLittleEndian;
+  } else if (w[1] == "binary_big_endian") {
+    h.format = Format::BinaryBigEndian;
+  } else {
+    return fail(error, "unknown format '" + std::string(w[1]) + "'", line_no);
+  }
+  if (w[2] != "1.0") return fail(error, "unsupported PLY version '" + std::string(w[2]) + "'", line_no);
+  return true;
+}
+
+// "element <name> <count>"
+bool parse_element_line(const std::vector<std::string_view>& w, int line_no, Header& h, PlyError& error) {
+  if (w.size() != 3) return fail(error, "expected 'element <name> <count>'", line_no);
+  Element e;
+  e.name = std::string(w[1]);
+  e.line = line_no;
+  const auto [end, ec] = std::from_chars(w[2].data(), w[2].data() + w[2].size(), e.count);
+  if (ec != std::errc() || end != w[2].data() + w[2].size()) {
+    return fail(error, "invalid element count '" + std::string(w[2]) + "'", line_no);
+  }
+  for (const Element& other : h.elements) {
+    if (other.name == e.name) return fail(error, "element '" + e.name + "' is declared twice", line_no);
+  }
+  h.elements.push_back(std::move(e));
+  return true;
+}
+
+// "property <type> <name>" or "property list <count type> <item type> <name>"
+bool parse_property_line(const std::vector<std::string_view>& w, int line_no, Header& h, PlyError& error) {
+  if (h.elements.empty()) return fail(error, "property before any element", line_no);
+  Property p;
+  if (w.size() >= 2 && w[1] == "list") {
+    if (w.size() != 5) return fail(error, "expected 'property list <count type> <item type> <name>'", line_no);
+    const auto ct = parse_type(w[2]);
+    const auto it = parse_type(w[3]);
+    if (!ct) return fail(error, "unknown type '" + std::string(w[2]) + "'", line_no);
+    if (!it) return fail(error, "unknown type '" + std::string(w[3]) + "'", line_no);
+    if (!is_integer(*ct)) return fail(error, "a list count must have an integer type", line_no);
+    p.is_list = true;
+    p.count_type = *ct;
+    p.type = *it;
+    p.name = std::string(w[4]);
+  } else {
+    if (w.size() != 3) return fail(error, "expected 'property <type> <name>'", line_no);
+    const auto t = parse_type(w[1]);
+    if (!t) return fail(error, "unknown type '" + std::string(w[1]) + "'", line_no);
+    p.type = *t;
+    p.name = std::string(w[2]);
+  }
+  h.elements.back().properties.push_back(std::move(p));
+  return true;
+}
+
 bool parse_header(std::string_view bytes, Header& h, PlyError& error) {
   std::size_t pos = 0;
   int line_no = 0;
@@ -125,57 +184,16 @@ bool parse_header(std::string_view bytes, Header& h, PlyError& error) {
       return true;
     }
     if (key == "format") {
-      if (w.size() != 3) return fail(error, "expected 'format <type> <version>'", line_no);
-      if (w[1] == "ascii") {
-        h.format = Format::Ascii;
-      } else if (w[1] == "binary_little_endian") {
-        h.format = Format::BinaryLittleEndian;
-      } else if (w[1] == "binary_big_endian") {
-        h.format = Format::BinaryBigEndian;
-      } else {
-        return fail(error, "unknown format '" + std::string(w[1]) + "'", line_no);
-      }
-      if (w[2] != "1.0") return fail(error, "unsupported PLY version '" + std::string(w[2]) + "'", line_no);
+      if (!parse_format_line(w, line_no, h, error)) return false;
       have_format = true;
       continue;
     }
     if (key == "element") {
-      if (w.size() != 3) return fail(error, "expected 'element <name> <count>'", line_no);
-      Element e;
-      e.name = std::string(w[1]);
-      e.line = line_no;
-      const auto [end, ec] = std::from_chars(w[2].data(), w[2].data() + w[2].size(), e.count);
-      if (ec != std::errc() || end != w[2].data() + w[2].size()) {
-        return fail(error, "invalid element count '" + std::string(w[2]) + "'", line_no);
-      }
-      for (const Element& other : h.elements) {
-        if (other.name == e.name) return fail(error, "element '" + e.name + "' is declared twice", line_no);
-      }
-      h.elements.push_back(std::move(e));
+      if (!parse_element_line(w, line_no, h, error)) return false;
       continue;
     }
     if (key == "property") {
-      if (h.elements.empty()) return fail(error, "property before any element", line_no);
-      Property p;
-      if (w.size() >= 2 && w[1] == "list") {
-        if (w.size() != 5) return fail(error, "expected 'property list <count type> <item type> <name>'", line_no);
-        const auto ct = parse_type(w[2]);
-        const auto it = parse_type(w[3]);
-        if (!ct) return fail(error, "unknown type '" + std::string(w[2]) + "'", line_no);
-        if (!it) return fail(error, "unknown type '" + std::string(w[3]) + "'", line_no);
-        if (!is_integer(*ct)) return fail(error, "a list count must have an integer type", line_no);
-        p.is_list = true;
-        p.count_type = *ct;
-        p.type = *it;
-        p.name = std::string(w[4]);
-      } else {
-        if (w.size() != 3) return fail(error, "expected 'property <type> <name>'", line_no);
-        const auto t = parse_type(w[1]);
-        if (!t) return fail(error, "unknown type '" + std::string(w[1]) + "'", line_no);
-        p.type = *t;
-        p.name = std::string(w[2]);
-      }
-      h.elements.back().properties.push_back(std::move(p));
+      if (!parse_property_line(w, line_no, h, error)) return false;
       continue;
     }
     return fail(error, "unexpected header line '" + std::string(line) + "'", line_no);

@@ -1,8 +1,11 @@
 #include "scene/validate.h"
 
 #include <cmath>
+#include <initializer_list>
 #include <string>
+#include <utility>
 
+#include "geometry/shapes.h"
 #include "scene/json_reader.h"
 
 namespace pt {
@@ -104,9 +107,25 @@ class Validator {
       diag_.error(c.where, std::string(name) + " must not be negative, got " + str(c.value));
   }
 
-  void geometry(const ShapeDesc&, const SphereDesc& s) {
-    if (!(s.radius.value > 0.0f)) diag_.error(s.radius.where, "radius must be > 0, got " + str(s.radius.value));
-    if (length(s.pole.value) == 0.0f) diag_.error(s.pole.where, "sphere pole must not be zero");
+  // The shape's own rule (geometry/shapes/*.h), its problems reported at the
+  // field they name (or at the shape).
+  template <class S>
+  void run_check(const ShapeDesc& shape, const S& geometry,
+                 std::initializer_list<std::pair<const char*, SourceLocation>> fields) {
+    ShapeChecker checker;
+    check(geometry, checker);
+    for (const ShapeProblem& p : checker.problems()) {
+      SourceLocation at = shape.where;
+      for (const auto& [name, where] : fields) {
+        if (p.field == name) at = where;
+      }
+      if (p.warning) diag_.warning(at, p.message);
+      else diag_.error(at, p.message);
+    }
+  }
+
+  void geometry(const ShapeDesc& shape, const SphereDesc& s) {
+    run_check(shape, Sphere{s.center, s.radius, s.pole}, {{"radius", s.radius.where}, {"pole", s.pole.where}});
   }
 
   void geometry(const ShapeDesc& shape, const TriangleDesc& t) {
@@ -116,44 +135,11 @@ class Validator {
   }
 
   void geometry(const ShapeDesc& shape, const QuadDesc& q) {
-    Vec3f v[4];
-    float size = 0.0f;
-    for (int i = 0; i < 4; ++i) v[i] = q.v[i].value;
-    for (int i = 0; i < 4; ++i) size = std::max(size, length(v[(i + 1) % 4] - v[i]));
-    // Reference normal: the largest corner cross product (a bow-tie's corners
-    // then disagree with it in sign, which the order check below catches).
-    Vec3f n(0.0f);
-    for (int i = 0; i < 4; ++i) {
-      const Vec3f c = cross(v[(i + 1) % 4] - v[i], v[(i + 3) % 4] - v[i]);
-      if (length(c) > length(n)) n = c;
-    }
-    if (size == 0.0f || length(n) <= 1e-7f * size * size) {
-      diag_.warning(shape.where, "quad is degenerate (zero area); it will not be visible");
-      return;
-    }
-    n = normalize(n);
-    const Vec3f centre = (v[0] + v[1] + v[2] + v[3]) * 0.25f;
-    float off_plane = 0.0f;
-    for (int i = 0; i < 4; ++i) off_plane = std::max(off_plane, std::fabs(dot(v[i] - centre, n)));
-    const float tolerance = 1e-3f * size;
-    if (off_plane > tolerance) {
-      diag_.error(shape.where, "quad is not planar: its corners are up to " + str(off_plane) +
-                                   " away from a common plane (tolerance " + str(tolerance) + ")");
-      return;
-    }
-    for (int i = 0; i < 4; ++i) {
-      const Vec3f c = cross(v[(i + 1) % 4] - v[i], v[(i + 3) % 4] - v[i]);
-      if (dot(c, n) < -1e-6f * size * size) {
-        diag_.error(shape.where, "quad corners are not in perimeter order, or the quad is not convex");
-        return;
-      }
-    }
+    run_check(shape, Quad{{q.v[0], q.v[1], q.v[2], q.v[3]}}, {});
   }
 
   void geometry(const ShapeDesc& shape, const CylinderDesc& c) {
-    if (!(c.radius.value > 0.0f)) diag_.error(c.radius.where, "radius must be > 0, got " + str(c.radius.value));
-    if (length(c.p1.value - c.p0.value) == 0.0f)
-      diag_.warning(shape.where, "cylinder has zero length; it will not be visible");
+    run_check(shape, Cylinder{c.p0, c.p1, c.radius}, {{"radius", c.radius.where}});
   }
 
   void geometry(const ShapeDesc& shape, const MeshDesc& m) {

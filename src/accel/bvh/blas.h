@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "accel/bvh/analytic.h"
 #include "accel/bvh/build.h"
 #include "accel/bvh/layout.h"
 #include "geometry/shapes.h"

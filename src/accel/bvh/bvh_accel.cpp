@@ -127,7 +127,8 @@ uint64_t BvhAccelerator::fingerprint() const {
     h.add_all(b.nodes);
     h.add_all(b.blocks);
     for (const AnalyticPrim& p : b.prims) {
-      h.add(&p.type, sizeof(p.type));
+      const auto type = static_cast<uint32_t>(p.shape.index());  // the alternative of Shape
+      h.add(&type, sizeof(type));
       h.add(&p.object, sizeof(p.object));
     }
     h.add(&b.root, sizeof(b.root));
@@ -150,11 +151,11 @@ bool choose_kernels(Isa isa, KernelTable& out, Diagnostics& diag) {
 bool check_sizes(const SceneGeometry& geometry, Diagnostics& diag) {
   bool ok = true;
   for (std::size_t i = 0; i < geometry.shapes.size(); ++i) {
-    const auto* m = std::get_if<TriangleMesh>(&geometry.shapes[i]);
-    if (m != nullptr && m->triangle_count() >= kMaxItems) {
-      diag.error(SourceLocation{}, "shape " + std::to_string(i) + " (triangle mesh): " +
-                                       std::to_string(m->triangle_count()) + " triangles; the bvh backend takes at most " +
-                                       std::to_string(kMaxItems - 1) + " per mesh");
+    const uint32_t n = primitive_count(geometry.shapes[i]);
+    if (n >= kMaxItems) {
+      diag.error(SourceLocation{}, "shape " + std::to_string(i) + " (triangle mesh): " + std::to_string(n) +
+                                       " triangles; the bvh backend takes at most " + std::to_string(kMaxItems - 1) +
+                                       " per mesh");
       ok = false;
     }
   }
@@ -180,17 +181,12 @@ bool BvhAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, Diag
     const auto object = static_cast<uint32_t>(i);
     std::visit(
         [&](const auto& shape) {
-          using S = std::decay_t<decltype(shape)>;
-          if constexpr (std::is_same_v<S, TriangleMesh>) {
-            primitives += shape.triangle_count();
-            if (shape.triangle_count() > 0) meshes.push_back(object);
-          } else {
-            constexpr AnalyticType type = std::is_same_v<S, Sphere> ? AnalyticType::Sphere
-                                          : std::is_same_v<S, Quad> ? AnalyticType::Quad
-                                                                    : AnalyticType::Cylinder;
-            primitives += 1;
-            analytic.push_back(AnalyticPrim{&shape, type, object});
+          primitives += primitive_count(shape);
+          if constexpr (WholeShape<std::decay_t<decltype(shape)>>) {
+            analytic.push_back(AnalyticPrim{ShapeRef(&shape), object});
             analytic_boxes.push_back(pt::bounds(shape));
+          } else if (primitive_count(shape) > 0) {
+            meshes.push_back(object);
           }
         },
         geometry.shapes[i]);

@@ -129,12 +129,12 @@ inline bool traverse_blas(const Ops& ops, const BlasData& b, RayQuery& q, HitRec
     });
   }
   return traverse<kAnyHit, kCount>(ops, b.nodes, b.root, q, counters, [&](uint32_t ref) {
-    const AnalyticPrim* prim = b.prims + (ref & kLeafIndexMask);
+    const uint32_t first = ref & kLeafIndexMask;
     const uint32_t count = item_count(ref);
     bool found = false;
     for (uint32_t i = 0; i < count; ++i) {
       if constexpr (kCount) ++counters->prims;
-      if (intersect_analytic(prim[i], q, hit)) {
+      if (intersect_analytic(b.prims, first + i, q, hit)) {
         found = true;
         if constexpr (kAnyHit) return true;
       }

@@ -32,6 +32,44 @@ inline __m128 difference_of_products(__m128 a, __m128 b, __m128 c, __m128 d) {
   return _mm_add_ps(dop, err);
 }
 
+// |x| per lane.
+inline __m128 abs4(__m128 x) { return _mm_and_ps(x, _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff))); }
+
+// The reference's bound on the error of t (geometry/triangle.cpp: delta_t),
+// from the lanes' largest |x|, |y|, |z| of the sheared vertices, largest |e|
+// and |det|.
+inline __m128 t_error_bound(__m128 max_xt, __m128 max_yt, __m128 max_zt, __m128 max_e, __m128 abs_det) {
+  const __m128 g2 = _mm_set1_ps(kGamma2), g3 = _mm_set1_ps(kGamma3), g5 = _mm_set1_ps(kGamma5);
+  const __m128 delta_z = _mm_mul_ps(g3, max_zt);
+  const __m128 delta_x = _mm_mul_ps(g5, _mm_add_ps(max_xt, max_zt));
+  const __m128 delta_y = _mm_mul_ps(g5, _mm_add_ps(max_yt, max_zt));
+  const __m128 delta_e = _mm_mul_ps(
+      _mm_set1_ps(2.0f), _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(g2, max_xt), max_yt), _mm_mul_ps(delta_y, max_xt)),
+                                    _mm_mul_ps(delta_x, max_yt)));
+  return _mm_div_ps(_mm_mul_ps(_mm_set1_ps(3.0f), _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(g3, max_e), max_zt),
+                                                                        _mm_mul_ps(delta_e, max_zt)),
+                                                             _mm_mul_ps(delta_z, max_e))),
+                    abs_det);
+}
+
+// Records the nearest of the hit lanes (the lowest one on a tie, as if the
+// lanes were tested one after the other).
+inline void nearest_lane(uint32_t hits, __m128 t, __m128 e1, __m128 e2, __m128 det, const uint32_t* prim,
+                         uint32_t object, RayQuery& q, HitRecord& hit) {
+  alignas(16) float tl[4], e1l[4], e2l[4], detl[4];
+  _mm_store_ps(tl, t);
+  _mm_store_ps(e1l, e1);
+  _mm_store_ps(e2l, e2);
+  _mm_store_ps(detl, det);
+  uint32_t best = static_cast<uint32_t>(__builtin_ctz(hits));
+  for (uint32_t rest = hits & (hits - 1); rest != 0; rest &= rest - 1) {
+    const uint32_t lane = static_cast<uint32_t>(__builtin_ctz(rest));
+    if (tl[lane] < tl[best]) best = lane;
+  }
+  q.tmax = tl[best];
+  hit = HitRecord{tl[best], object, prim[best], e1l[best] / detl[best], e2l[best] / detl[best]};
+}
+
 class Avx2Ops {
  public:
   explicit Avx2Ops(const RayQuery& q)
@@ -102,28 +140,13 @@ class Avx2Ops {
     // The reference's rejection of t that is not conservatively positive,
     // operation for operation (it removes the surface a ray starts on),
     // waived, as there, for a triangle entirely ahead of the origin.
-    const __m128 abs_mask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
-    auto abs = [&](__m128 x) { return _mm_and_ps(x, abs_mask); };
-    auto max3 = [&](__m128 a, __m128 b, __m128 c) { return _mm_max_ps(_mm_max_ps(abs(a), abs(b)), abs(c)); };
     const __m128 azs = _mm_mul_ps(az, shear_[2]), bzs = _mm_mul_ps(bz, shear_[2]), czs = _mm_mul_ps(cz, shear_[2]);
     const __m128 certainly_ahead =
         _mm_and_ps(_mm_and_ps(_mm_cmpgt_ps(azs, zero), _mm_cmpgt_ps(bzs, zero)), _mm_cmpgt_ps(czs, zero));
-    const __m128 max_zt = max3(azs, bzs, czs);
-    const __m128 max_xt = max3(ax, bx, cx);
-    const __m128 max_yt = max3(ay, by, cy);
-    const __m128 g2 = _mm_set1_ps(kGamma2), g3 = _mm_set1_ps(kGamma3), g5 = _mm_set1_ps(kGamma5);
-    const __m128 delta_z = _mm_mul_ps(g3, max_zt);
-    const __m128 delta_x = _mm_mul_ps(g5, _mm_add_ps(max_xt, max_zt));
-    const __m128 delta_y = _mm_mul_ps(g5, _mm_add_ps(max_yt, max_zt));
-    const __m128 delta_e = _mm_mul_ps(
-        _mm_set1_ps(2.0f), _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(g2, max_xt), max_yt), _mm_mul_ps(delta_y, max_xt)),
-                                      _mm_mul_ps(delta_x, max_yt)));
-    const __m128 max_e = max3(e0, e1, e2);
-    const __m128 delta_t = _mm_div_ps(
-        _mm_mul_ps(_mm_set1_ps(3.0f), _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(g3, max_e), max_zt),
-                                                            _mm_mul_ps(delta_e, max_zt)),
-                                                 _mm_mul_ps(delta_z, max_e))),
-        abs(det));
+    const __m128 delta_t = t_error_bound(_mm_max_ps(_mm_max_ps(abs4(ax), abs4(bx)), abs4(cx)),
+                                         _mm_max_ps(_mm_max_ps(abs4(ay), abs4(by)), abs4(cy)),
+                                         _mm_max_ps(_mm_max_ps(abs4(azs), abs4(bzs)), abs4(czs)),
+                                         _mm_max_ps(_mm_max_ps(abs4(e0), abs4(e1)), abs4(e2)), abs4(det));
     const uint32_t zero_lanes = static_cast<uint32_t>(_mm_movemask_ps(any_zero));
     const uint32_t hits = static_cast<uint32_t>(
         _mm_movemask_ps(_mm_and_ps(inside, _mm_or_ps(_mm_cmpgt_ps(t, delta_t), certainly_ahead))));
@@ -136,18 +159,7 @@ class Avx2Ops {
       if constexpr (kAnyHit) {
         return true;
       } else {
-        alignas(16) float tl[4], e1l[4], e2l[4], detl[4];
-        _mm_store_ps(tl, t);
-        _mm_store_ps(e1l, e1);
-        _mm_store_ps(e2l, e2);
-        _mm_store_ps(detl, det);
-        uint32_t best = static_cast<uint32_t>(__builtin_ctz(hits));
-        for (uint32_t rest = hits & (hits - 1); rest != 0; rest &= rest - 1) {
-          const uint32_t lane = static_cast<uint32_t>(__builtin_ctz(rest));
-          if (tl[lane] < tl[best]) best = lane;
-        }
-        q.tmax = tl[best];
-        hit = HitRecord{tl[best], object, block.prim[best], e1l[best] / detl[best], e2l[best] / detl[best]};
+        nearest_lane(hits, t, e1, e2, det, block.prim, object, q, hit);
         return true;
       }
     }

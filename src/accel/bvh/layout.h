@@ -47,13 +47,10 @@ struct alignas(16) TriangleBlock {
 };
 static_assert(sizeof(TriangleBlock) == 160);
 
-// An analytic shape (sphere, quad, cylinder) in a bottom-level leaf.
-enum class AnalyticType : uint32_t { Sphere, Quad, Cylinder };
-struct AnalyticPrim {
-  const void* shape;  // the Sphere / Quad / Cylinder in SceneGeometry
-  AnalyticType type;
-  uint32_t object;    // its object id
-};
+// An analytic shape in a bottom-level leaf (bvh/analytic.h: a typed reference
+// to the shape, generated from the Shape variant; declared only, as the
+// kernels merely pass the leaf's array and index on to intersect_analytic()).
+struct AnalyticPrim;
 
 enum class BlasKind : uint32_t { Triangles, Analytic };
 
@@ -109,6 +106,6 @@ struct Counters {
 // semantic authority; a SIMD kernel only ever filters candidates for them.
 // Each updates `hit` and q.tmax on a hit with q.tmin < t < q.tmax.
 bool intersect_block_lane(const TriangleBlock& block, uint32_t lane, uint32_t object, RayQuery& q, HitRecord& hit);
-bool intersect_analytic(const AnalyticPrim& prim, RayQuery& q, HitRecord& hit);
+bool intersect_analytic(const AnalyticPrim* prims, uint32_t index, RayQuery& q, HitRecord& hit);
 
 }  // namespace pt::bvh

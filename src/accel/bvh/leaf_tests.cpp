@@ -1,5 +1,9 @@
 // The leaf tests every kernel ends in: the src/geometry routines (the same
 // ones the Embree backend's user geometry calls), compiled for the baseline ISA.
+#include <type_traits>
+#include <variant>
+
+#include "accel/bvh/analytic.h"
 #include "accel/bvh/kernels.h"
 #include "accel/bvh/layout.h"
 #include "geometry/float_util.h"
@@ -31,14 +35,18 @@ bool intersect_block_lane(const TriangleBlock& block, uint32_t lane, uint32_t ob
   return record(h, object, block.prim[lane], q, hit);
 }
 
-bool intersect_analytic(const AnalyticPrim& prim, RayQuery& q, HitRecord& hit) {
+bool intersect_analytic(const AnalyticPrim* prims, uint32_t index, RayQuery& q, HitRecord& hit) {
+  const AnalyticPrim& prim = prims[index];
   PrimHit h;
-  bool found = false;
-  switch (prim.type) {
-    case AnalyticType::Sphere: found = intersect(*static_cast<const Sphere*>(prim.shape), to_ray(q), h); break;
-    case AnalyticType::Quad: found = intersect(*static_cast<const Quad*>(prim.shape), to_ray(q), h); break;
-    case AnalyticType::Cylinder: found = intersect(*static_cast<const Cylinder*>(prim.shape), to_ray(q), h); break;
-  }
+  const bool found = std::visit(
+      [&](const auto* shape) {
+        if constexpr (WholeShape<std::remove_cvref_t<decltype(*shape)>>) {
+          return intersect(*shape, to_ray(q), h);
+        } else {
+          return false;  // never in an analytic leaf (meshes have bottom levels of their own)
+        }
+      },
+      prim.shape);
   return found && record(h, prim.object, 0, q, hit);
 }
 

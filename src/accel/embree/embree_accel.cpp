@@ -11,7 +11,6 @@
 #include <cmath>
 #include <limits>
 #include <string>
-#include <type_traits>
 #include <variant>
 
 #include "accel/embree/embree_device.h"
@@ -149,17 +148,11 @@ bool EmbreeAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, D
 
   std::size_t primitives = 0;
   for (std::size_t i = 0; i < geometry.shapes.size(); ++i) {
-    RTCGeometry geom = std::visit(
-        [&](const auto& shape) -> RTCGeometry {
-          if constexpr (std::is_same_v<std::decay_t<decltype(shape)>, TriangleMesh>) {
-            primitives += shape.triangle_count();
-            if (meshes_ == MeshTriangles::Native) return native_triangles(device, shape);
-          } else {
-            primitives += 1;
-          }
-          return new_user_geometry(device, shape);
-        },
-        geometry.shapes[i]);
+    const Shape& shape = geometry.shapes[i];
+    primitives += primitive_count(shape);
+    const auto* mesh = std::get_if<TriangleMesh>(&shape);
+    RTCGeometry geom = mesh != nullptr && meshes_ == MeshTriangles::Native ? native_triangles(device, *mesh)
+                                                                          : new_user_geometry(device, shape);
     if (geom == nullptr) {
       if (!report_device_errors(device_, diag)) {
         diag.error(SourceLocation{}, "Embree: cannot create the geometry of shape " + std::to_string(i));

@@ -1,31 +1,12 @@
 #include "accel/embree/user_geometry.h"
 
+#include <variant>
+
 #include "geometry/float_util.h"
 
 namespace pt::embree {
 
 namespace {
-
-// One Embree primitive per analytic shape, one per triangle of a mesh.
-template <class S>
-unsigned primitive_count(const S&) {
-  return 1;
-}
-unsigned primitive_count(const TriangleMesh& m) { return static_cast<unsigned>(m.triangle_count()); }
-
-template <class S>
-Bounds3f primitive_bounds(const S& shape, unsigned /*prim*/) {
-  return bounds(shape);
-}
-Bounds3f primitive_bounds(const TriangleMesh& m, unsigned prim) { return triangle_bounds(m, prim); }
-
-template <class S>
-bool primitive_intersect(const S& shape, unsigned /*prim*/, const Ray& ray, PrimHit& hit) {
-  return intersect(shape, ray, hit);
-}
-bool primitive_intersect(const TriangleMesh& m, unsigned prim, const Ray& ray, PrimHit& hit) {
-  return intersect(m, prim, ray, hit);
-}
 
 template <class S>
 void bounds_callback(const RTCBoundsFunctionArguments* args) {
@@ -58,7 +39,7 @@ void intersect_callback(const RTCIntersectFunctionNArguments* args) {
   for (unsigned i = 0; i < n; ++i) {
     if (args->valid[i] != -1) continue;
     PrimHit hit;
-    if (!primitive_intersect(shape, args->primID, ray_from(rays, n, i), hit)) continue;
+    if (!intersect_primitive(shape, args->primID, ray_from(rays, n, i), hit)) continue;
     RTCRayN_tfar(rays, n, i) = hit.t;
     RTCHitN_Ng_x(hits, n, i) = 0.0f;  // unused by the renderer: surface() computes normals
     RTCHitN_Ng_y(hits, n, i) = 0.0f;
@@ -78,7 +59,7 @@ void occluded_callback(const RTCOccludedFunctionNArguments* args) {
   for (unsigned i = 0; i < n; ++i) {
     if (args->valid[i] != -1) continue;
     PrimHit hit;
-    if (primitive_intersect(shape, args->primID, ray_from(args->ray, n, i), hit)) {
+    if (intersect_primitive(shape, args->primID, ray_from(args->ray, n, i), hit)) {
       RTCRayN_tfar(args->ray, n, i) = -kInfinity;
     }
   }
@@ -100,9 +81,8 @@ RTCGeometry make(RTCDevice device, const S& shape) {
 
 }  // namespace
 
-RTCGeometry new_user_geometry(RTCDevice device, const Sphere& shape) { return make(device, shape); }
-RTCGeometry new_user_geometry(RTCDevice device, const Quad& shape) { return make(device, shape); }
-RTCGeometry new_user_geometry(RTCDevice device, const Cylinder& shape) { return make(device, shape); }
-RTCGeometry new_user_geometry(RTCDevice device, const TriangleMesh& shape) { return make(device, shape); }
+RTCGeometry new_user_geometry(RTCDevice device, const Shape& shape) {
+  return std::visit([&](const auto& s) { return make(device, s); }, shape);
+}
 
 }  // namespace pt::embree

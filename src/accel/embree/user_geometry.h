@@ -11,12 +11,9 @@
 
 namespace pt::embree {
 
-// A committed user geometry (one primitive, or one per triangle) whose user
-// data points at `shape` (which must outlive it). The caller attaches and
-// releases it.
-RTCGeometry new_user_geometry(RTCDevice device, const Sphere& shape);
-RTCGeometry new_user_geometry(RTCDevice device, const Quad& shape);
-RTCGeometry new_user_geometry(RTCDevice device, const Cylinder& shape);
-RTCGeometry new_user_geometry(RTCDevice device, const TriangleMesh& shape);
+// A committed user geometry (primitive_count(shape) primitives) whose user
+// data points at the alternative held by `shape` (which must outlive it). The
+// caller attaches and releases it.
+RTCGeometry new_user_geometry(RTCDevice device, const Shape& shape);
 
 }  // namespace pt::embree

@@ -1,6 +1,8 @@
 #include "render/lights/shape_light.h"
 
 #include <cmath>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 namespace pt {
@@ -10,50 +12,11 @@ namespace {
 // The threshold below which 1 - cos(theta_max) is computed from sin^2 / 2 (pbrt-v4).
 constexpr float kSmallSin2 = 0.00068523f;
 
-float triangle_area(Vec3f a, Vec3f b, Vec3f c) { return 0.5f * length(cross(b - a, c - a)); }
-
-// As geometry/quad.cpp: the orientation of cross(v1 - v0, v3 - v0).
-Vec3f quad_normal(const Quad& q) {
-  Vec3f n = cross(q.v[2] - q.v[0], q.v[3] - q.v[1]);
-  if (!(length(n) > 0.0f)) n = cross(q.v[1] - q.v[0], q.v[2] - q.v[0]);
-  const float len = length(n);
-  return len > 0.0f ? n / len : Vec3f(0, 0, 1);
-}
-
 }  // namespace
 
 ShapeLight::ShapeLight(const Shape& shape, uint32_t shape_id, const Material& material, bool solid_angle_rectangles)
-    : shape_(&shape), shape_id_(shape_id), material_(&material) {
-  if (const auto* s = std::get_if<Sphere>(&shape)) {
-    area_ = 4.0f * kPi * s->radius * s->radius;
-  } else if (const auto* q = std::get_if<Quad>(&shape)) {
-    const float a0 = triangle_area(q->v[0], q->v[1], q->v[2]), a1 = triangle_area(q->v[0], q->v[2], q->v[3]);
-    area_ = a0 + a1;
-    parts_ = Distribution1D({a0, a1});
-    const Vec3f n = quad_normal(*q);  // both halves share the quad's normal
-    triangles_.push_back({q->v[0], q->v[1] - q->v[0], q->v[2] - q->v[0], n});
-    triangles_.push_back({q->v[0], q->v[2] - q->v[0], q->v[3] - q->v[0], n});
-  } else if (const auto* m = std::get_if<TriangleMesh>(&shape)) {
-    std::vector<float> areas(m->triangle_count());
-    triangles_.reserve(areas.size());
-    double total = 0.0;
-    for (std::size_t t = 0; t < areas.size(); ++t) {
-      const uint32_t* idx = &m->indices[3 * t];
-      const Vec3f p0 = m->positions[idx[0]], p1 = m->positions[idx[1]], p2 = m->positions[idx[2]];
-      const Vec3f c = cross(p1 - p0, p2 - p0);
-      const float len = length(c);
-      areas[t] = 0.5f * len;
-      total += areas[t];
-      triangles_.push_back({p0, p1 - p0, p2 - p0, len > 0.0f ? c / len : Vec3f(0, 0, 1)});
-    }
-    area_ = static_cast<float>(total);
-    parts_ = Distribution1D(areas);
-  } else if (const auto* c = std::get_if<Cylinder>(&shape)) {
-    const float h = length(c->p1 - c->p0), cap = kPi * c->radius * c->radius;
-    const float side = 2.0f * kPi * c->radius * h;
-    area_ = side + 2.0f * cap;
-    parts_ = Distribution1D({side, cap, cap});
-  }
+    : shape_(&shape), shape_id_(shape_id), material_(&material), sampler_(make_area_sampler(shape)) {
+  area_ = std::visit([](const auto& sampler) { return sampler.area; }, sampler_);
   if (!(area_ > 0.0f) || !std::isfinite(area_)) area_ = 0.0f;
   if (area_ > 0.0f) detect_parallelogram();
   rectangle_ = solid_angle_rectangles && parallelogram_ &&
@@ -78,13 +41,24 @@ bool ShapeLight::make_parallelogram(Vec3f a, Vec3f b, Vec3f c, Vec3f d, Vec3f n,
 }
 
 void ShapeLight::detect_parallelogram() {
+  const auto* triangles = std::visit(
+      [](const auto& sampler) -> const std::vector<Triangle>* {
+        if constexpr (std::is_same_v<std::decay_t<decltype(sampler)>, TriangleAreaSampler>) {
+          return &sampler.triangles;
+        } else {
+          return nullptr;
+        }
+      },
+      sampler_);
+  if (triangles == nullptr) return;
+  const std::vector<Triangle>& tris = *triangles;
   if (const auto* q = std::get_if<Quad>(shape_)) {
-    parallelogram_ = make_parallelogram(q->v[0], q->v[1], q->v[2], q->v[3], triangles_[0].n, para_);
+    parallelogram_ = make_parallelogram(q->v[0], q->v[1], q->v[2], q->v[3], tris[0].n, para_);
     return;
   }
   const auto* m = std::get_if<TriangleMesh>(shape_);
   if (!m || m->triangle_count() != 2) return;
-  if (!(dot(triangles_[0].n, triangles_[1].n) > 0.9999f)) return;  // both halves face the same way
+  if (!(dot(tris[0].n, tris[1].n) > 0.9999f)) return;  // both halves face the same way
   const uint32_t* t0 = &m->indices[0];
   const uint32_t* t1 = &m->indices[3];
   // The corner of each triangle that the other lacks; the other two are shared.
@@ -102,7 +76,7 @@ void ShapeLight::detect_parallelogram() {
   const Vec3f c = m->positions[t1[own1]];
   const Vec3f d = m->positions[t0[(own0 + 2) % 3]];
   // Orient e1 x e2 along the triangles' normal.
-  const Vec3f n = triangles_[0].n;
+  const Vec3f n = tris[0].n;
   parallelogram_ = make_parallelogram(a, b, c, d, n, para_) || make_parallelogram(a, d, c, b, n, para_);
 }
 
@@ -117,36 +91,7 @@ void ShapeLight::sample_area(Vec2f u, Vec3f& q, Vec3f& n) const {
     n = para_.n;
     return;
   }
-  if (const auto* s = std::get_if<Sphere>(shape_)) {
-    n = sample_uniform_sphere(u);
-    q = s->center + n * s->radius;
-    return;
-  }
-  float pmf = 0.0f;
-  std::size_t part = 0;
-  const float x = parts_.sample_continuous(u.x, &pmf, &part);
-  // The position of u.x inside its cell, back in [0, 1).
-  const float n_parts = static_cast<float>(parts_.size());
-  const Vec2f v(std::min(x * n_parts - static_cast<float>(part), kOneMinusEpsilon), u.y);
-  if (!triangles_.empty()) {  // a mesh or a quad
-    const Triangle& t = triangles_[part];
-    const Vec3f b = sample_uniform_triangle(v);
-    q = t.p0 + t.e1 * b.y + t.e2 * b.z;
-    n = t.n;
-  } else if (const auto* c = std::get_if<Cylinder>(shape_)) {
-    const Vec3f axis = c->p1 - c->p0;
-    const Frame frame = Frame::from_normal(normalize(axis));
-    if (part == 0) {
-      const float phi = 2.0f * kPi * v.y;
-      n = frame.s * std::cos(phi) + frame.t * std::sin(phi);
-      q = c->p0 + axis * v.x + n * c->radius;
-    } else {
-      const Vec2f d = sample_uniform_disk_concentric(v);
-      const Vec3f centre = part == 1 ? c->p0 : c->p1;
-      q = centre + (frame.s * d.x + frame.t * d.y) * c->radius;
-      n = part == 1 ? -frame.n : frame.n;
-    }
-  }
+  std::visit([&](const auto& sampler) { sampler.sample(u, q, n); }, sampler_);
 }
 
 bool ShapeLight::sample_sphere_cone(const Sphere& s, Vec3f p, Vec2f u, LightSample& out) const {

@@ -55,9 +55,7 @@ class ShapeLight {
   bool sample_sphere_cone(const Sphere& s, Vec3f p, Vec2f u, LightSample& out) const;
 
   // A triangle ready to sample: a corner, its two edges and the unit normal.
-  struct Triangle {
-    Vec3f p0, e1, e2, n;
-  };
+  using Triangle = TriangleAreaSampler::Triangle;
   // A parallelogram with the given corners, if a, b, c, d (in order around
   // it) form one and both halves face the same way as `n`.
   static bool make_parallelogram(Vec3f a, Vec3f b, Vec3f c, Vec3f d, Vec3f n, Triangle& out);
@@ -74,8 +72,7 @@ class ShapeLight {
   uint32_t shape_id_;
   const Material* material_;
   float area_ = 0.0f;
-  Distribution1D parts_;  // meshes: triangles by area; quads: the two triangles; cylinders: side, caps
-  std::vector<Triangle> triangles_;  // meshes and quads
+  ShapeAreaSampler sampler_;  // the shape's own sampling by area (geometry/shapes/*.h)
 };
 
 }  // namespace pt

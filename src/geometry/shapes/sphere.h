@@ -1,25 +1,36 @@
-// Spheres: the numerically stable quadratic of Haines et al., "Precision
-// Improvements for Ray/Sphere Intersection" (Ray Tracing Gems, ch. 7), and a
-// longitude/latitude parameterisation about the sphere's pole.
+// The sphere: its data and every routine that follows from it. Intersection:
+// the numerically stable quadratic of Haines et al., "Precision Improvements
+// for Ray/Sphere Intersection" (Ray Tracing Gems, ch. 7); texture coordinates:
+// longitude/latitude about the sphere's pole.
+#pragma once
+
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <string>
 #include <utility>
 
 #include "geometry/float_util.h"
-#include "geometry/shapes.h"
+#include "geometry/shape_base.h"
 
 namespace pt {
 
-namespace {
+struct Sphere {
+  Vec3f center;
+  float radius = 1;
+  Vec3f pole{0, 1, 0};  // unit; texture-mapping axis
+};
 
-Vec3f unit_pole(Vec3f pole) {
+namespace sphere_detail {
+
+inline Vec3f unit_pole(Vec3f pole) {
   const float len = length(pole);
   return (len > 0.0f && std::isfinite(len)) ? pole / len : Vec3f(0, 1, 0);
 }
 
-}  // namespace
+}  // namespace sphere_detail
 
-Bounds3f bounds(const Sphere& s) {
+inline Bounds3f bounds(const Sphere& s) {
   Bounds3f b;
   const float r = s.radius > 0.0f ? s.radius : 0.0f;
   b.extend(s.center - Vec3f(r));
@@ -27,7 +38,7 @@ Bounds3f bounds(const Sphere& s) {
   return fp::pad(b);
 }
 
-bool intersect(const Sphere& s, const Ray& ray, PrimHit& hit) {
+inline bool intersect(const Sphere& s, const Ray& ray, PrimHit& hit) {
   const float r = s.radius;
   if (!(r > 0.0f)) return false;
   // In double: the float inputs convert exactly, and a sphere far smaller than
@@ -67,24 +78,47 @@ bool intersect(const Sphere& s, const Ray& ray, PrimHit& hit) {
   return true;
 }
 
-SurfaceGeometry surface(const Sphere& s, const Ray& ray, const PrimHit& hit) {
+inline SurfaceGeometry surface(const Sphere& s, const Ray& ray, const PrimHit& hit) {
   SurfaceGeometry sg;
   // Reproject the ray's point onto the sphere: the error of p then depends on
   // the sphere alone, not on the length of the ray that found it.
   const Vec3f d = ray.at(hit.t) - s.center;
   const float len = length(d);
-  const Vec3f n = (len > 0.0f && std::isfinite(len)) ? d / len : unit_pole(s.pole);
+  const Vec3f n = (len > 0.0f && std::isfinite(len)) ? d / len : sphere_detail::unit_pole(s.pole);
   sg.p = s.center + n * s.radius;
   sg.ng = n;
   sg.ns = n;
   sg.p_error = fp::gamma(8) * (abs(sg.p) + abs(s.center) + Vec3f(s.radius));
 
-  const Vec3f pole = unit_pole(s.pole);
+  const Vec3f pole = sphere_detail::unit_pole(s.pole);
   Vec3f e0, e1;
   fp::axis_frame(pole, e0, e1);
   const float cos_theta = std::clamp(dot(n, pole), -1.0f, 1.0f);
   sg.uv = {fp::longitude_fraction(dot(n, e0), dot(n, e1)), std::acos(cos_theta) * kInvPi};
   return sg;
+}
+
+inline uint32_t primitive_count(const Sphere&) { return 1; }
+
+// Validation (fields as the native format names them).
+inline void check(const Sphere& s, ShapeChecker& c) {
+  if (!(s.radius > 0.0f)) c.error("radius", "radius must be > 0, got " + format_number(s.radius));
+  if (length(s.pole) == 0.0f) c.error("pole", "sphere pole must not be zero");
+}
+
+// Sampling by area (the light samples points outside by solid angle itself).
+struct SphereAreaSampler {
+  Vec3f center;
+  float radius = 0.0f;
+  float area = 0.0f;
+  void sample(Vec2f u, Vec3f& q, Vec3f& n) const {
+    n = sample_uniform_sphere(u);
+    q = center + n * radius;
+  }
+};
+
+inline SphereAreaSampler make_area_sampler(const Sphere& s) {
+  return {s.center, s.radius, 4.0f * kPi * s.radius * s.radius};
 }
 
 }  // namespace pt

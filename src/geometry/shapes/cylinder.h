@@ -1,23 +1,35 @@
-// Capped cylinders. The solid is the intersection of an infinite cylinder and
-// the slab between the two cap planes; the ray's interval inside it is the
-// overlap of the two intervals (like a ray/box slab test), so side and caps
-// meet without a crack at the rims, and a ray starting inside finds its exit.
+// The capped cylinder between cap centres p0 and p1: its data and every
+// routine that follows from it. The solid is the intersection of an infinite
+// cylinder and the slab between the two cap planes; the ray's interval inside
+// it is the overlap of the two intervals (like a ray/box slab test), so side
+// and caps meet without a crack at the rims, and a ray starting inside finds
+// its exit.
+#pragma once
+
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <string>
 #include <utility>
 
 #include "geometry/float_util.h"
-#include "geometry/shapes.h"
+#include "geometry/shape_base.h"
 
 namespace pt {
 
-namespace {
+// Capped cylinder between cap centres p0 and p1.
+struct Cylinder {
+  Vec3f p0, p1;
+  float radius = 1;
+};
+
+namespace cylinder_detail {
 
 enum Part { kSide = 0, kCap0 = 1, kCap1 = 2 };
 
-}  // namespace
+}  // namespace cylinder_detail
 
-Bounds3f bounds(const Cylinder& c) {
+inline Bounds3f bounds(const Cylinder& c) {
   Bounds3f b;
   const Vec3f axis = c.p1 - c.p0;
   const float len = length(axis);
@@ -34,7 +46,7 @@ Bounds3f bounds(const Cylinder& c) {
   return fp::pad(b);
 }
 
-bool intersect(const Cylinder& cyl, const Ray& ray, PrimHit& hit) {
+inline bool intersect(const Cylinder& cyl, const Ray& ray, PrimHit& hit) {
   const float r = cyl.radius;
   const float len = length(cyl.p1 - cyl.p0);
   if (!(r > 0.0f) || !(len > 0.0f) || !std::isfinite(len)) return false;
@@ -46,7 +58,7 @@ bool intersect(const Cylinder& cyl, const Ray& ray, PrimHit& hit) {
 
   // Interval inside the slab 0 <= h <= len, and which cap bounds each end.
   float s_in = -kInfinity, s_out = kInfinity;
-  Part cap_in = kCap0, cap_out = kCap1;
+  cylinder_detail::Part cap_in = cylinder_detail::kCap0, cap_out = cylinder_detail::kCap1;
   if (da != 0.0f) {
     const float t0 = -fa / da;
     const float t1 = (len - fa) / da;
@@ -88,13 +100,13 @@ bool intersect(const Cylinder& cyl, const Ray& ray, PrimHit& hit) {
   const float t_enter = side_in ? c_in : s_in;
   const float t_exit = side_out ? c_out : s_out;
   if (!(t_enter <= t_exit)) return false;
-  Part part;
+  cylinder_detail::Part part;
   if (t_enter > ray.tmin && t_enter < ray.tmax) {
     hit.t = t_enter;
-    part = side_in ? kSide : cap_in;
+    part = side_in ? cylinder_detail::kSide : cap_in;
   } else if (t_exit > ray.tmin && t_exit < ray.tmax) {
     hit.t = t_exit;
-    part = side_out ? kSide : cap_out;
+    part = side_out ? cylinder_detail::kSide : cap_out;
   } else {
     return false;
   }
@@ -102,7 +114,7 @@ bool intersect(const Cylinder& cyl, const Ray& ray, PrimHit& hit) {
   return true;
 }
 
-SurfaceGeometry surface(const Cylinder& cyl, const Ray& ray, const PrimHit& hit) {
+inline SurfaceGeometry surface(const Cylinder& cyl, const Ray& ray, const PrimHit& hit) {
   const Vec3f axis = cyl.p1 - cyl.p0;
   const float len = length(axis);
   const Vec3f a = axis / len;
@@ -119,21 +131,60 @@ SurfaceGeometry surface(const Cylinder& cyl, const Ray& ray, const PrimHit& hit)
   SurfaceGeometry sg;
   const int part = static_cast<int>(hit.uv.x);
   float v;
-  if (part == kSide) {
+  if (part == cylinder_detail::kSide) {
     const float hc = std::clamp(h, 0.0f, len);
     sg.p = cyl.p0 + a * hc + dir * cyl.radius;
     sg.ng = dir;
     v = hc / len;
   } else {
     const float rc = std::min(rl, cyl.radius);
-    sg.p = (part == kCap0 ? cyl.p0 : cyl.p1) + dir * rc;
-    sg.ng = part == kCap0 ? -a : a;
-    v = part == kCap0 ? 0.0f : 1.0f;
+    sg.p = (part == cylinder_detail::kCap0 ? cyl.p0 : cyl.p1) + dir * rc;
+    sg.ng = part == cylinder_detail::kCap0 ? -a : a;
+    v = part == cylinder_detail::kCap0 ? 0.0f : 1.0f;
   }
   sg.ns = sg.ng;
   sg.uv = {fp::longitude_fraction(dot(dir, e0), dot(dir, e1)), v};
   sg.p_error = fp::gamma(8) * (abs(sg.p) + abs(cyl.p0) + Vec3f(len + cyl.radius));
   return sg;
+}
+
+inline uint32_t primitive_count(const Cylinder&) { return 1; }
+
+// Validation (fields as the native format names them).
+inline void check(const Cylinder& cyl, ShapeChecker& c) {
+  if (!(cyl.radius > 0.0f)) c.error("radius", "radius must be > 0, got " + format_number(cyl.radius));
+  if (length(cyl.p1 - cyl.p0) == 0.0f) c.warning("", "cylinder has zero length; it will not be visible");
+}
+
+// Sampling by area: the side or a cap in proportion to its area.
+struct CylinderAreaSampler {
+  Cylinder cylinder;
+  Distribution1D parts;  // side, cap at p0, cap at p1
+  float area = 0.0f;
+
+  void sample(Vec2f u, Vec3f& q, Vec3f& n) const {
+    std::size_t part = 0;
+    const Vec2f v = pick_part(parts, u, part);
+    const Cylinder* c = &cylinder;
+    const Vec3f axis = c->p1 - c->p0;
+    const Frame frame = Frame::from_normal(normalize(axis));
+    if (part == 0) {
+      const float phi = 2.0f * kPi * v.y;
+      n = frame.s * std::cos(phi) + frame.t * std::sin(phi);
+      q = c->p0 + axis * v.x + n * c->radius;
+    } else {
+      const Vec2f d = sample_uniform_disk_concentric(v);
+      const Vec3f centre = part == 1 ? c->p0 : c->p1;
+      q = centre + (frame.s * d.x + frame.t * d.y) * c->radius;
+      n = part == 1 ? -frame.n : frame.n;
+    }
+  }
+};
+
+inline CylinderAreaSampler make_area_sampler(const Cylinder& c) {
+  const float h = length(c.p1 - c.p0), cap = kPi * c.radius * c.radius;
+  const float side = 2.0f * kPi * c.radius * h;
+  return {c, Distribution1D({side, cap, cap}), side + 2.0f * cap};
 }
 
 }  // namespace pt

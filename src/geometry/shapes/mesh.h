@@ -1,0 +1,38 @@
+// The triangle mesh: its data and the routines that follow from it (in
+// geometry/triangle.cpp). One primitive per triangle: the per-primitive
+// routines take the triangle index.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "geometry/shape_base.h"
+
+namespace pt {
+
+struct TriangleMesh {
+  std::vector<Vec3f> positions;
+  std::vector<uint32_t> indices;  // 3 per triangle
+  std::vector<Vec3f> normals;     // empty or one per vertex
+  std::vector<Vec2f> uvs;         // empty or one per vertex
+  std::size_t triangle_count() const { return indices.size() / 3; }
+};
+
+// Watertight ray/triangle test (Woop, Benthin, Wald 2013). uv = barycentrics of p1, p2.
+bool intersect_triangle(Vec3f p0, Vec3f p1, Vec3f p2, const Ray& ray, PrimHit& hit);
+
+Bounds3f bounds(const TriangleMesh& m);                 // every referenced vertex
+Bounds3f bounds(const TriangleMesh& m, uint32_t tri);   // one triangle
+inline Bounds3f triangle_bounds(const TriangleMesh& m, uint32_t tri) { return bounds(m, tri); }
+bool intersect(const TriangleMesh& m, uint32_t tri, const Ray& ray, PrimHit& hit);
+SurfaceGeometry surface(const TriangleMesh& m, uint32_t tri, const Ray& ray, const PrimHit& hit);
+inline uint32_t primitive_count(const TriangleMesh& m) { return static_cast<uint32_t>(m.triangle_count()); }
+
+// Validation: none here yet (src/scene/validate.cpp checks MeshDesc).
+void check(const TriangleMesh& m, ShapeChecker& c);
+
+// Sampling by area: a triangle in proportion to its area.
+TriangleAreaSampler make_area_sampler(const TriangleMesh& m);
+
+}  // namespace pt
