@@ -1,5 +1,6 @@
 #include "app/options.h"
 
+#include <iterator>
 #include <limits>
 #include <sstream>
 
@@ -11,6 +12,7 @@
 #include "render/film/aov.h"
 #include "render/integrators/integrator.h"
 #include "scene/resolution_limits.h"
+#include "scene/scene_description.h"
 
 namespace pt {
 namespace {
@@ -59,7 +61,7 @@ void add_render_options(CLI::App& app, Options& o) {
   app.add_option("--max-depth", o.max_depth, "Bounces (path) or recursion depth (whitted) (default: the scene's)")
       ->check(CLI::Range(0, kMaxDepth));
   app.add_option("--filter", o.filter, "Pixel filter of the path integrator (default: the scene's, box)")
-      ->check(CLI::IsMember({"box", "gaussian", "mitchell"}));
+      ->check(CLI::IsMember(std::vector<std::string>(std::begin(kPixelFilterNames), std::end(kPixelFilterNames))));
   app.add_option("--sampler", o.sampler, "Sampler of the path integrator (docs/samplers.md)")
       ->check(CLI::IsMember(sampler_type_names()))
       ->capture_default_str();

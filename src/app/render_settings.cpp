@@ -20,10 +20,7 @@ bool resolve_render_settings(const SceneDescription& desc, const SettingsOverrid
   s = IntegratorSettings{};
   s.max_depth = o.max_depth >= 0 ? o.max_depth : desc.render.max_depth.value;
   s.seed = o.seed;
-  s.filter = desc.render.filter;
-  if (o.filter == "gaussian") s.filter = PixelFilterType::Gaussian;
-  if (o.filter == "mitchell") s.filter = PixelFilterType::Mitchell;
-  if (o.filter == "box") s.filter = PixelFilterType::Box;
+  s.filter = parse_pixel_filter(o.filter).value_or(desc.render.filter);
   s.sampler = o.sampler;
   s.clamp = o.clamp >= 0.0f ? o.clamp : desc.render.clamp.value;
   s.roulette_depth = o.roulette_depth;

@@ -29,7 +29,7 @@ struct SettingsOverrides {
   std::string integrator;    // empty: the scene's
   int max_depth = -1;        // < 0: the scene's
   uint64_t seed = 0;
-  std::string filter;        // "box", "gaussian", "mitchell"; empty: the scene's
+  std::string filter;        // one of kPixelFilterNames; empty: the scene's
   SamplerType sampler = IntegratorSettings{}.sampler;
   float clamp = -1.0f;       // < 0: the scene's
   int roulette_depth = IntegratorSettings{}.roulette_depth;

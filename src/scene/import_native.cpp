@@ -58,12 +58,8 @@ void read_render(ImportContext& ctx, const JsonValue& v) {
   r.read("spp", render.spp);
   r.read("background", render.background);
   SourceLocation filter_at;
-  const int filter = read_choice(r, "filter", {"box", "gaussian", "mitchell"}, &filter_at);
-  if (filter >= 0) {
-    constexpr PixelFilterType kFilters[] = {PixelFilterType::Box, PixelFilterType::Gaussian,
-                                            PixelFilterType::Mitchell};
-    render.filter = Sourced<PixelFilterType>(kFilters[filter], filter_at);
-  }
+  const int filter = read_choice(r, "filter", {std::begin(kPixelFilterNames), std::end(kPixelFilterNames)}, &filter_at);
+  if (filter >= 0) render.filter = Sourced<PixelFilterType>(static_cast<PixelFilterType>(filter), filter_at);
   r.read("clamp", render.clamp);
   r.finish();
 }

@@ -80,6 +80,8 @@ struct FilmDesc {
 // Pixel reconstruction filter (docs/path-tracing.md): a 1-pixel box, a
 // Gaussian (radius 1.5, sigma 0.5) or Mitchell-Netravali (radius 2, B = C = 1/3).
 enum class PixelFilterType { Box, Gaussian, Mitchell };
+// The names of the filters (scene files, --filter, the EXR header, run records), in enum order.
+inline constexpr const char* kPixelFilterNames[] = {"box", "gaussian", "mitchell"};
 
 struct RenderDesc {
   Sourced<std::string> integrator{std::string("whitted")};  // registry name, see render/integrators

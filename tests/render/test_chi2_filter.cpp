@@ -50,5 +50,18 @@ TEST(Filter, BoxIsTheIdentityOnThePixel) {
   EXPECT_EQ(s.weight, 1.0f);
 }
 
+TEST(Filter, EveryNameParsesBackToItsFilter) {
+  // One table of names (kPixelFilterNames) serves the scene files, --filter,
+  // the EXR header and the run record.
+  for (PixelFilterType type : {PixelFilterType::Box, PixelFilterType::Gaussian, PixelFilterType::Mitchell}) {
+    const std::optional<PixelFilterType> parsed = parse_pixel_filter(pixel_filter_name(type));
+    ASSERT_TRUE(parsed.has_value()) << pixel_filter_name(type);
+    EXPECT_EQ(*parsed, type);
+  }
+  EXPECT_STREQ(pixel_filter_name(PixelFilterType::Mitchell), "mitchell");
+  EXPECT_FALSE(parse_pixel_filter("").has_value());
+  EXPECT_FALSE(parse_pixel_filter("Gaussian").has_value());
+}
+
 }  // namespace
 }  // namespace pt

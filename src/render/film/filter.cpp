@@ -1,6 +1,7 @@
 #include "render/film/filter.h"
 
 #include <cmath>
+#include <iterator>
 #include <vector>
 
 namespace pt {
@@ -37,13 +38,12 @@ float radius_of(PixelFilterType type) {
 
 }  // namespace
 
-const char* pixel_filter_name(PixelFilterType type) {
-  switch (type) {
-    case PixelFilterType::Gaussian: return "gaussian";
-    case PixelFilterType::Mitchell: return "mitchell";
-    case PixelFilterType::Box: break;
-  }
-  return "box";
+const char* pixel_filter_name(PixelFilterType type) { return kPixelFilterNames[static_cast<int>(type)]; }
+
+std::optional<PixelFilterType> parse_pixel_filter(std::string_view name) {
+  for (std::size_t i = 0; i < std::size(kPixelFilterNames); ++i)
+    if (name == kPixelFilterNames[i]) return static_cast<PixelFilterType>(i);
+  return std::nullopt;
 }
 
 PixelFilter::PixelFilter(PixelFilterType type) : type_(type), radius_(radius_of(type)) {

@@ -12,6 +12,9 @@
 //  - mitchell: Mitchell-Netravali, radius 2, B = C = 1/3.
 #pragma once
 
+#include <optional>
+#include <string_view>
+
 #include "core/math.h"
 #include "core/sampling.h"
 #include "scene/scene_description.h"
@@ -48,5 +51,7 @@ class PixelFilter {
 };
 
 const char* pixel_filter_name(PixelFilterType type);
+// The filter named `name` (kPixelFilterNames), or nothing.
+std::optional<PixelFilterType> parse_pixel_filter(std::string_view name);
 
 }  // namespace pt
