@@ -82,7 +82,7 @@ MemoryEstimate estimate_memory(const SceneDescription& scene, uint64_t pixels, c
   e.textures = texture_bytes(scene);
   for (const ShapeDesc& shape : scene.shapes) {
     e.geometry += kBytesPerShape;
-    if (const auto* mesh = std::get_if<MeshDesc>(&shape.geometry))
+    if (const auto* mesh = std::get_if<TriangleMesh>(&shape.geometry))
       e.geometry += mesh->indices.size() / 3 * kBytesPerTriangle + mesh->positions.size() * kBytesPerVertex;
   }
   return e;

@@ -50,14 +50,18 @@ struct ShapeProblem {
 
 class ShapeChecker {
  public:
+  // `type`: the shape's type name in the scene file ("triangle"), if any;
   // `file`: the file the shape's data was read from ("bunny.ply"), if any.
-  explicit ShapeChecker(std::string file = {}) : file_(std::move(file)) {}
+  explicit ShapeChecker(std::string type = {}, std::string file = {})
+      : type_(std::move(type)), file_(std::move(file)) {}
+  const std::string& type() const { return type_; }
   const std::string& file() const { return file_; }
   void error(std::string field, std::string message) { problems_.push_back({std::move(field), std::move(message), false}); }
   void warning(std::string field, std::string message) { problems_.push_back({std::move(field), std::move(message), true}); }
   const std::vector<ShapeProblem>& problems() const { return problems_; }
 
  private:
+  std::string type_;
   std::string file_;
   std::vector<ShapeProblem> problems_;
 };

@@ -42,49 +42,10 @@ void resolve_resolution(const FilmDesc& film, const BuildOptions& options, int& 
 namespace {
 
 // ---------------------------------------------------------------- shapes
-Shape to_shape(const SphereDesc& d) {
-  Sphere s;
-  s.center = d.center;
-  s.radius = d.radius;
-  const Vec3f pole = d.pole;
-  s.pole = length(pole) > 0 ? normalize(pole) : Vec3f(0, 1, 0);
-  return s;
-}
-
-Shape to_shape(const QuadDesc& d) {
-  Quad q;
-  for (int i = 0; i < 4; ++i) q.v[i] = d.v[i];
-  return q;
-}
-
-Shape to_shape(const TriangleDesc& d) {
-  TriangleMesh m;
-  m.positions = {d.v[0], d.v[1], d.v[2]};
-  m.indices = {0, 1, 2};
-  return m;
-}
-
-Shape to_shape(const CylinderDesc& d) {
-  Cylinder c;
-  c.p0 = d.p0;
-  c.p1 = d.p1;
-  c.radius = d.radius;
-  return c;
-}
-
-Shape to_shape(const MeshDesc& d) {
-  TriangleMesh m;
-  m.positions = d.positions;
-  m.indices = d.indices;
-  m.normals = d.normals;
-  m.uvs = d.uvs;
-  return m;
-}
-
 // Meshes from files were checked by the loader; a mesh built in code is checked
 // here too, so that no accelerator ever sees an out-of-range index.
 bool check_shape(const ShapeDesc& shape, std::size_t index, Diagnostics& diag) {
-  const auto* mesh = std::get_if<MeshDesc>(&shape.geometry);
+  const auto* mesh = std::get_if<TriangleMesh>(&shape.geometry);
   if (mesh == nullptr) return true;
   const std::string what = "shape " + std::to_string(index) + (shape.name.empty() ? "" : " ('" + shape.name + "')");
   if (mesh->indices.size() % 3 != 0) {
@@ -239,7 +200,7 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDescription& desc, co
       ok = false;
       continue;
     }
-    scene->geometry.shapes.push_back(std::visit([](const auto& g) { return to_shape(g); }, s.geometry));
+    scene->geometry.shapes.push_back(s.geometry);
     scene->shape_material.push_back(material);
   }
 

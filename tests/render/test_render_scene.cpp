@@ -61,11 +61,7 @@ TEST_F(RenderSceneBuild, ConvertsShapesMaterialsAndLights) {
   add_material(d, test::diffuse_material(RGB(1, 0, 0)));
   const int blue = add_material(d, test::diffuse_material(RGB(0, 0, 1)));
   add_sphere(d, {0, 0, 0}, 1.0f, blue);
-  TriangleDesc tri;
-  tri.v[0] = Vec3f(5, 0, 0);
-  tri.v[1] = Vec3f(6, 0, 0);
-  tri.v[2] = Vec3f(5, 1, 0);
-  test::add_shape(d, tri, 0);
+  test::add_shape(d, make_triangle(Vec3f(5, 0, 0), Vec3f(6, 0, 0), Vec3f(5, 1, 0)), 0);
   test::add_point_light(d, {1, 2, 3}, RGB(4), RGB(5));
   auto scene = test::build(d, pool_);
   ASSERT_TRUE(scene);
@@ -198,7 +194,7 @@ TEST_F(RenderSceneBuild, BadMaterialIndexIsAnError) {
 
 TEST_F(RenderSceneBuild, MeshWithOutOfRangeIndexIsAnError) {
   SceneDescription d = test::empty_scene(8, 8, {0, 0, 5}, {0, 0, 0}, {0, 1, 0});
-  MeshDesc mesh;
+  TriangleMesh mesh;
   mesh.positions = {Vec3f(0, 0, 0), Vec3f(1, 0, 0), Vec3f(0, 1, 0)};
   mesh.indices = {0, 1, 3};
   test::add_shape(d, mesh, 0);

@@ -21,6 +21,12 @@ struct Sphere {
   Vec3f pole{0, 1, 0};  // unit; texture-mapping axis
 };
 
+// A sphere as a scene file gives it: the pole scaled to unit length (a zero
+// pole is kept as it is, for check() to report).
+inline Sphere make_sphere(Vec3f center, float radius, Vec3f pole) {
+  return Sphere{center, radius, length(pole) > 0 ? normalize(pole) : pole};
+}
+
 namespace sphere_detail {
 
 inline Vec3f unit_pole(Vec3f pole) {
