@@ -169,15 +169,15 @@ void check_triangle(const TriangleMesh& m, ShapeChecker& c) {
 void check_vertex_lists(const TriangleMesh& m, ShapeChecker& c, const std::string& what) {
   for (const Vec3f& p : m.positions) {
     if (!is_finite(p)) {
-      c.error("file", what + " has a vertex position that is not a finite number");
+      c.unusable("file", what + " has a vertex position that is not a finite number");
       break;
     }
   }
   if (!m.normals.empty() && m.normals.size() != m.positions.size())
-    c.error("file", what + " has " + std::to_string(m.normals.size()) + " normals for " +
+    c.unusable("file", what + " has " + std::to_string(m.normals.size()) + " normals for " +
                         std::to_string(m.positions.size()) + " vertices");
   if (!m.uvs.empty() && m.uvs.size() != m.positions.size())
-    c.error("file", what + " has " + std::to_string(m.uvs.size()) + " texture coordinates for " +
+    c.unusable("file", what + " has " + std::to_string(m.uvs.size()) + " texture coordinates for " +
                         std::to_string(m.positions.size()) + " vertices");
 }
 
@@ -187,7 +187,7 @@ void check(const TriangleMesh& m, ShapeChecker& c) {
   if (c.type() == "triangle") return check_triangle(m, c);
   const std::string what = c.file().empty() ? std::string("mesh") : "mesh '" + c.file() + "'";
   if (m.indices.size() % 3 != 0) {
-    c.error("file", what + " has " + std::to_string(m.indices.size()) + " indices, not a multiple of 3");
+    c.unusable("file", what + " has " + std::to_string(m.indices.size()) + " indices, not a multiple of 3");
     return;
   }
   std::size_t bad = 0;
@@ -196,7 +196,7 @@ void check(const TriangleMesh& m, ShapeChecker& c) {
     if (i >= m.positions.size() && bad++ == 0) first_bad = i;
   }
   if (bad > 0)
-    c.error("file", what + ": " + std::to_string(bad) + " vertex indices are out of range (e.g. " +
+    c.unusable("file", what + ": " + std::to_string(bad) + " vertex indices are out of range (e.g. " +
                         std::to_string(first_bad) + "; the mesh has " + std::to_string(m.positions.size()) +
                         " vertices)");
   check_vertex_lists(m, c, what);

@@ -129,4 +129,20 @@ void validate_scene(const SceneDescription& scene, const LoadOptions& options, D
   if (scene.environment) v.environment(*scene.environment);
 }
 
+bool check_shapes_usable(const SceneDescription& scene, Diagnostics& diag) {
+  bool ok = true;
+  for (std::size_t i = 0; i < scene.shapes.size(); ++i) {
+    const ShapeDesc& s = scene.shapes[i];
+    ShapeChecker checker(s.type, s.file);
+    check(s.geometry, checker);
+    for (const ShapeProblem& p : checker.problems()) {
+      if (!p.unusable) continue;
+      diag.error(s.at(p.field), "shape " + std::to_string(i) + (s.name.empty() ? "" : " ('" + s.name + "')") +
+                                    ": " + p.message);
+      ok = false;
+    }
+  }
+  return ok;
+}
+
 }  // namespace pt

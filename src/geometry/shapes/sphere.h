@@ -108,6 +108,7 @@ inline uint32_t primitive_count(const Sphere&) { return 1; }
 
 // Validation (fields as the native format names them).
 inline void check(const Sphere& s, ShapeChecker& c) {
+  if (!is_finite(s.center) || !std::isfinite(s.radius)) c.unusable("", "sphere has a non-finite centre or radius");
   if (!(s.radius > 0.0f)) c.error("radius", "radius must be > 0, got " + format_number(s.radius));
   if (length(s.pole) == 0.0f) c.error("pole", "sphere pole must not be zero");
 }
