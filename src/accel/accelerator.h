@@ -65,11 +65,11 @@ class Accelerator {
   }
 };
 
-// Checks what every backend needs before it builds: finite shape parameters,
-// index counts that are multiples of 3, indices within the vertex array.
-// Reports each problem ("shape 1 (triangle mesh): triangle 0 refers to vertex
-// 3 but the mesh has 3 vertices") and returns false if there was any.
-bool validate_geometry(const SceneGeometry& geometry, Diagnostics& diag);
+// Whether every shape passes the part of its validation rule that the backends
+// rely on (finite values, mesh indices in range: the `unusable` problems of
+// geometry/shape_base.h). The backends assert it in debug builds; scene
+// validation (src/scene/validate.h) refuses such shapes before they get here.
+bool geometry_usable(const SceneGeometry& geometry);
 
 // Builds the chosen backend over `geometry`, which must outlive the accelerator.
 // The build runs inside `pool`'s arena. On failure (invalid geometry, an Embree

@@ -82,7 +82,10 @@ MemoryEstimate estimate_memory(const SceneDescription& scene, uint64_t pixels, c
   e.textures = texture_bytes(scene);
   for (const ShapeDesc& shape : scene.shapes) {
     e.geometry += kBytesPerShape;
-    if (const auto* mesh = std::get_if<MeshDesc>(&shape.geometry))
+    // A file's "triangle" (a one-triangle mesh) counts as one shape, as it
+    // always has: run records keep their figures.
+    const auto* mesh = std::get_if<TriangleMesh>(&shape.geometry);
+    if (mesh && shape.type != "triangle")
       e.geometry += mesh->indices.size() / 3 * kBytesPerTriangle + mesh->positions.size() * kBytesPerVertex;
   }
   return e;

@@ -42,22 +42,37 @@ struct SurfaceGeometry {
 // is wrong with its values. `field` names the scene file's key the problem is
 // about ("radius"), or is empty for the shape as a whole; src/scene/validate.cpp
 // turns it into the key's file:line:col.
+// An `unusable` problem (an error) is one the later stages assume away: the
+// accelerators, intersection and area sampling rely on its absence (mesh
+// indices in range, finite values), so build_render_scene() refuses it even in
+// a description built in code (src/scene/validate.h).
 struct ShapeProblem {
   std::string field;
   std::string message;
   bool warning = false;
+  bool unusable = false;
 };
 
 class ShapeChecker {
  public:
+  // `type`: the shape's type name in the scene file ("triangle"), if any;
   // `file`: the file the shape's data was read from ("bunny.ply"), if any.
-  explicit ShapeChecker(std::string file = {}) : file_(std::move(file)) {}
+  explicit ShapeChecker(std::string type = {}, std::string file = {})
+      : type_(std::move(type)), file_(std::move(file)) {}
+  const std::string& type() const { return type_; }
   const std::string& file() const { return file_; }
   void error(std::string field, std::string message) { problems_.push_back({std::move(field), std::move(message), false}); }
   void warning(std::string field, std::string message) { problems_.push_back({std::move(field), std::move(message), true}); }
+  void unusable(std::string field, std::string message) {
+    problems_.push_back({std::move(field), std::move(message), false, true});
+  }
+  bool usable() const {
+    return std::none_of(problems_.begin(), problems_.end(), [](const ShapeProblem& p) { return p.unusable; });
+  }
   const std::vector<ShapeProblem>& problems() const { return problems_; }
 
  private:
+  std::string type_;
   std::string file_;
   std::vector<ShapeProblem> problems_;
 };

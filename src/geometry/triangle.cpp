@@ -3,6 +3,7 @@
 // surface evaluation.
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "geometry/float_util.h"
 #include "geometry/shapes/mesh.h"
@@ -156,9 +157,50 @@ SurfaceGeometry surface(const TriangleMesh& m, uint32_t tri, const Ray& /*ray*/,
   return sg;
 }
 
-void check(const TriangleMesh&, ShapeChecker&) {
-  // Meshes are checked by src/scene/validate.cpp on the description (MeshDesc),
-  // without copying their data.
+namespace {
+
+void check_triangle(const TriangleMesh& m, ShapeChecker& c) {
+  if (m.positions.size() != 3) return;
+  const Vec3f n = cross(m.positions[1] - m.positions[0], m.positions[2] - m.positions[0]);
+  if (length(n) == 0.0f) c.warning("", "triangle is degenerate (zero area, corners in a line); it will not be visible");
+}
+
+// Each mismatch of a per-vertex list.
+void check_vertex_lists(const TriangleMesh& m, ShapeChecker& c, const std::string& what) {
+  for (const Vec3f& p : m.positions) {
+    if (!is_finite(p)) {
+      c.unusable("file", what + " has a vertex position that is not a finite number");
+      break;
+    }
+  }
+  if (!m.normals.empty() && m.normals.size() != m.positions.size())
+    c.unusable("file", what + " has " + std::to_string(m.normals.size()) + " normals for " +
+                        std::to_string(m.positions.size()) + " vertices");
+  if (!m.uvs.empty() && m.uvs.size() != m.positions.size())
+    c.unusable("file", what + " has " + std::to_string(m.uvs.size()) + " texture coordinates for " +
+                        std::to_string(m.positions.size()) + " vertices");
+}
+
+}  // namespace
+
+void check(const TriangleMesh& m, ShapeChecker& c) {
+  if (c.type() == "triangle") return check_triangle(m, c);
+  const std::string what = c.file().empty() ? std::string("mesh") : "mesh '" + c.file() + "'";
+  if (m.indices.size() % 3 != 0) {
+    c.unusable("file", what + " has " + std::to_string(m.indices.size()) + " indices, not a multiple of 3");
+    return;
+  }
+  std::size_t bad = 0;
+  uint32_t first_bad = 0;
+  for (uint32_t i : m.indices) {
+    if (i >= m.positions.size() && bad++ == 0) first_bad = i;
+  }
+  if (bad > 0)
+    c.unusable("file", what + ": " + std::to_string(bad) + " vertex indices are out of range (e.g. " +
+                        std::to_string(first_bad) + "; the mesh has " + std::to_string(m.positions.size()) +
+                        " vertices)");
+  check_vertex_lists(m, c, what);
+  if (m.indices.empty()) c.warning("file", what + " has no triangles; it will not be visible");
 }
 
 TriangleAreaSampler make_area_sampler(const TriangleMesh& m) {

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "core/stopwatch.h"
+#include "scene/validate.h"
 
 namespace pt {
 
@@ -42,77 +43,6 @@ void resolve_resolution(const FilmDesc& film, const BuildOptions& options, int& 
 namespace {
 
 // ---------------------------------------------------------------- shapes
-Shape to_shape(const SphereDesc& d) {
-  Sphere s;
-  s.center = d.center;
-  s.radius = d.radius;
-  const Vec3f pole = d.pole;
-  s.pole = length(pole) > 0 ? normalize(pole) : Vec3f(0, 1, 0);
-  return s;
-}
-
-Shape to_shape(const QuadDesc& d) {
-  Quad q;
-  for (int i = 0; i < 4; ++i) q.v[i] = d.v[i];
-  return q;
-}
-
-Shape to_shape(const TriangleDesc& d) {
-  TriangleMesh m;
-  m.positions = {d.v[0], d.v[1], d.v[2]};
-  m.indices = {0, 1, 2};
-  return m;
-}
-
-Shape to_shape(const CylinderDesc& d) {
-  Cylinder c;
-  c.p0 = d.p0;
-  c.p1 = d.p1;
-  c.radius = d.radius;
-  return c;
-}
-
-Shape to_shape(const MeshDesc& d) {
-  TriangleMesh m;
-  m.positions = d.positions;
-  m.indices = d.indices;
-  m.normals = d.normals;
-  m.uvs = d.uvs;
-  return m;
-}
-
-// Meshes from files were checked by the loader; a mesh built in code is checked
-// here too, so that no accelerator ever sees an out-of-range index.
-bool check_shape(const ShapeDesc& shape, std::size_t index, Diagnostics& diag) {
-  const auto* mesh = std::get_if<MeshDesc>(&shape.geometry);
-  if (mesh == nullptr) return true;
-  const std::string what = "shape " + std::to_string(index) + (shape.name.empty() ? "" : " ('" + shape.name + "')");
-  if (mesh->indices.size() % 3 != 0) {
-    diag.error(shape.where, what + ": mesh index count " + std::to_string(mesh->indices.size()) +
-                                " is not a multiple of 3");
-    return false;
-  }
-  for (uint32_t i : mesh->indices) {
-    if (i >= mesh->positions.size()) {
-      diag.error(shape.where, what + ": mesh index " + std::to_string(i) + " is out of range (" +
-                                  std::to_string(mesh->positions.size()) + " vertices)");
-      return false;
-    }
-  }
-  if (!mesh->normals.empty() && mesh->normals.size() != mesh->positions.size()) {
-    diag.error(shape.where, what + ": mesh has " + std::to_string(mesh->normals.size()) + " normals for " +
-                                std::to_string(mesh->positions.size()) + " vertices");
-    return false;
-  }
-  if (!mesh->uvs.empty() && mesh->uvs.size() != mesh->positions.size()) {
-    diag.error(shape.where, what + ": mesh has " + std::to_string(mesh->uvs.size()) +
-                                " texture coordinates for " + std::to_string(mesh->positions.size()) +
-                                " vertices");
-    return false;
-  }
-  return true;
-}
-
 // ---------------------------------------------------------------- textures and materials
 // Decodes each texture some material references, once. Unreferenced textures
 // are never read. Returns false if any referenced texture failed to decode.
@@ -222,14 +152,13 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDescription& desc, co
   const bool need_default = desc.materials.empty();
   if (need_default) scene->materials.emplace_back();
 
+  // Loaded scenes were validated; one built in code is checked here for what
+  // the accelerators and lights rely on.
+  if (!check_shapes_usable(desc, diag)) ok = false;
   scene->geometry.shapes.reserve(desc.shapes.size());
   scene->shape_material.reserve(desc.shapes.size());
   for (std::size_t i = 0; i < desc.shapes.size(); ++i) {
     const ShapeDesc& s = desc.shapes[i];
-    if (!check_shape(s, i, diag)) {
-      ok = false;
-      continue;
-    }
     int material = s.material;
     if (need_default) {
       material = 0;
@@ -239,7 +168,7 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDescription& desc, co
       ok = false;
       continue;
     }
-    scene->geometry.shapes.push_back(std::visit([](const auto& g) { return to_shape(g); }, s.geometry));
+    scene->geometry.shapes.push_back(s.geometry);
     scene->shape_material.push_back(material);
   }
 

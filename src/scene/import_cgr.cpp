@@ -79,27 +79,25 @@ int read_material(ImportContext& ctx, const JsonValue& v) {
 
 // "center", unit "axis", "radius", "height" = HALF the length: the cylinder
 // spans center +- height * axis.
-ShapeGeometry read_cylinder(ImportContext& ctx, ObjectReader& r) {
-  CylinderDesc c;
+void read_cylinder(ImportContext& ctx, ObjectReader& r, ShapeDesc& shape) {
   Sourced<Vec3f> center, axis;
+  Sourced<float> radius{1.0f};
   Sourced<float> half_height;
   const bool ok = r.read_required("center", center) & r.read_required("axis", axis) &
-                  r.read_required("radius", c.radius) & r.read_required("height", half_height);
-  if (!ok) return c;
+                  r.read_required("radius", radius) & r.read_required("height", half_height);
+  if (!ok) return;
   if (length(axis.value) == 0.0f) {
     ctx.diag().error(axis.where, "cylinder axis must not be zero");
     r.fail();
-    return c;
+    return;
   }
   if (half_height.value <= 0.0f) {
     ctx.diag().error(half_height.where, "cylinder height must be > 0, got " + format_number(half_height.value));
     r.fail();
-    return c;
+    return;
   }
   const Vec3f offset = normalize(axis.value) * half_height.value;
-  c.p0 = Sourced<Vec3f>(center.value - offset, center.where);
-  c.p1 = Sourced<Vec3f>(center.value + offset, center.where);
-  return c;
+  shape.geometry = Cylinder{center.value - offset, center.value + offset, shape.field("radius", radius)};
 }
 
 void read_shape(ImportContext& ctx, const JsonValue& v, std::size_t index) {
@@ -110,17 +108,19 @@ void read_shape(ImportContext& ctx, const JsonValue& v, std::size_t index) {
   r.set_what(type);
   ShapeDesc shape;
   shape.where = r.where();
+  shape.type = type;
   if (type == "sphere") {
-    SphereDesc s;  // texture pole +Y, the default
-    r.read_required("center", s.center);
-    r.read_required("radius", s.radius);
-    shape.geometry = s;
+    Sourced<Vec3f> center;
+    Sourced<float> radius{1.0f};
+    r.read_required("center", center);
+    r.read_required("radius", radius);
+    shape.geometry = make_sphere(center, shape.field("radius", radius), Vec3f(0, 1, 0));  // texture pole +Y
   } else if (type == "cylinder") {
-    shape.geometry = read_cylinder(ctx, r);
+    read_cylinder(ctx, r, shape);
   } else if (type == "triangle") {
-    TriangleDesc t;
-    read_corners(r, 3, t.v);
-    shape.geometry = t;
+    Sourced<Vec3f> c[3];
+    read_corners(r, 3, c);
+    shape.geometry = make_triangle(c[0], c[1], c[2]);
   } else {
     warn_unsupported_type(r, "shape", type, {"sphere", "cylinder", "triangle"});
     return;

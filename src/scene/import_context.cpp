@@ -53,8 +53,8 @@ std::optional<int> add_texture(ImportContext& ctx, const Sourced<std::string>& w
   return id;
 }
 
-bool load_mesh_file(ImportContext& ctx, const Sourced<std::string>& written, MeshDesc& mesh) {
-  mesh.file = written;
+bool load_mesh_file(ImportContext& ctx, const Sourced<std::string>& written, ShapeDesc& shape) {
+  shape.file = shape.field("file", written);
   const std::optional<std::string> resolved = resolve_scene_path(ctx.scene.source_path, written.value);
   if (!resolved) {
     ctx.diag().error(written.where, "mesh file '" + written.value + "' not found; " +
@@ -80,6 +80,7 @@ bool load_mesh_file(ImportContext& ctx, const Sourced<std::string>& written, Mes
     ctx.diag().error(written.where, "cannot read mesh '" + written.value + "': " + error);
     return false;
   }
+  TriangleMesh& mesh = shape.geometry.emplace<TriangleMesh>();
   mesh.positions = std::move(ply.positions);
   mesh.indices = std::move(ply.indices);
   mesh.normals = std::move(ply.normals);

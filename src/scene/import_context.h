@@ -29,10 +29,10 @@ struct ImportContext {
 // file is reported (saying where it was looked for) and gives std::nullopt.
 std::optional<int> add_texture(ImportContext& ctx, const Sourced<std::string>& written);
 
-// Resolves and reads a mesh file into `mesh` (positions, indices, normals,
-// uvs): OBJ for a .obj extension (any case), PLY otherwise. Problems are
-// reported at the path's location.
-bool load_mesh_file(ImportContext& ctx, const Sourced<std::string>& written, MeshDesc& mesh);
+// Resolves and reads a mesh file into shape.geometry (a TriangleMesh) and
+// records the file in shape.file and shape.fields ("file"): OBJ for a .obj
+// extension (any case), PLY otherwise. Problems are reported at the path's location.
+bool load_mesh_file(ImportContext& ctx, const Sourced<std::string>& written, ShapeDesc& shape);
 
 // The index of the material used by shapes that name none (added on first use).
 int default_material(ImportContext& ctx);

@@ -28,36 +28,41 @@ bool read_vertices(ObjectReader& r, std::size_t n, Sourced<Vec3f>* out) {
   return ok;
 }
 
-ShapeGeometry read_sphere(ObjectReader& r) {
-  SphereDesc s;
-  r.read_required("center", s.center);
-  r.read_required("radius", s.radius);
-  r.read("pole", s.pole);
-  return s;
+// Each reader fills shape.geometry, and shape.fields with the locations of the
+// fields the shape's check() names.
+void read_sphere(ObjectReader& r, ShapeDesc& shape) {
+  Sourced<Vec3f> center;
+  Sourced<float> radius{1.0f};
+  Sourced<Vec3f> pole{Vec3f(0, 1, 0)};
+  r.read_required("center", center);
+  r.read_required("radius", radius);
+  r.read("pole", pole);
+  shape.geometry = make_sphere(center, shape.field("radius", radius), shape.field("pole", pole));
 }
 
-ShapeGeometry read_quad(ObjectReader& r) {
-  QuadDesc q;
-  read_vertices(r, 4, q.v);
-  return q;
+void read_quad(ObjectReader& r, ShapeDesc& shape) {
+  Sourced<Vec3f> v[4];
+  read_vertices(r, 4, v);
+  shape.geometry = Quad{{v[0], v[1], v[2], v[3]}};
 }
 
-ShapeGeometry read_triangle(ObjectReader& r) {
-  TriangleDesc t;
-  read_vertices(r, 3, t.v);
-  return t;
+void read_triangle(ObjectReader& r, ShapeDesc& shape) {
+  Sourced<Vec3f> v[3];
+  read_vertices(r, 3, v);
+  shape.geometry = make_triangle(v[0], v[1], v[2]);
 }
 
-ShapeGeometry read_cylinder(ObjectReader& r) {
-  CylinderDesc c;
-  r.read_required("p0", c.p0);
-  r.read_required("p1", c.p1);
-  r.read_required("radius", c.radius);
-  return c;
+void read_cylinder(ObjectReader& r, ShapeDesc& shape) {
+  Sourced<Vec3f> p0, p1;
+  Sourced<float> radius{1.0f};
+  r.read_required("p0", p0);
+  r.read_required("p1", p1);
+  r.read_required("radius", radius);
+  shape.geometry = Cylinder{p0, p1, shape.field("radius", radius)};
 }
 
-ShapeGeometry read_mesh(ImportContext& ctx, ObjectReader& r) {
-  MeshDesc m;
+void read_mesh(ImportContext& ctx, ObjectReader& r, ShapeDesc& shape) {
+  TriangleMesh& m = shape.geometry.emplace<TriangleMesh>();
   const JsonValue* file = r.get("file");
   const JsonValue* positions = r.get("positions");
   const JsonValue* indices = r.get("indices");
@@ -66,17 +71,17 @@ ShapeGeometry read_mesh(ImportContext& ctx, ObjectReader& r) {
   if (file && (positions || indices || normals || uvs)) {
     ctx.diag().error(r.where(), "a mesh has either 'file' or inline 'positions' and 'indices', not both");
     r.fail();
-    return m;
+    return;
   }
   if (file) {
     Sourced<std::string> path;
-    if (!read_value(ctx.read, *file, "file", path) || !load_mesh_file(ctx, path, m)) r.fail();
-    return m;
+    if (!read_value(ctx.read, *file, "file", path) || !load_mesh_file(ctx, path, shape)) r.fail();
+    return;
   }
   if (!positions || !indices) {
     ctx.diag().error(r.where(), "a mesh needs 'file' (a PLY file) or inline 'positions' and 'indices'");
     r.fail();
-    return m;
+    return;
   }
   bool ok = read_vec3_list(ctx.read, *positions, "positions", m.positions);
   ok = ok && read_index_list(ctx.read, *indices, "indices", m.positions.size(), /*allow_flat=*/false, m.indices);
@@ -91,7 +96,6 @@ ShapeGeometry read_mesh(ImportContext& ctx, ObjectReader& r) {
     ok = false;
   }
   if (!ok) r.fail();
-  return m;
 }
 
 // The material a shape names: index into `materials`, -1 for none, -2 if unknown.
@@ -135,12 +139,13 @@ void read_native_shape(ImportContext& ctx, const JsonValue& v, std::size_t index
   r.read("name", name);
   shape.name = name.value;
   const int material = resolve_material(ctx, r, materials);
+  shape.type = kTypes[static_cast<std::size_t>(type)];
   switch (type) {
-    case 0: shape.geometry = read_sphere(r); break;
-    case 1: shape.geometry = read_quad(r); break;
-    case 2: shape.geometry = read_triangle(r); break;
-    case 3: shape.geometry = read_cylinder(r); break;
-    default: shape.geometry = read_mesh(ctx, r); break;
+    case 0: read_sphere(r, shape); break;
+    case 1: read_quad(r, shape); break;
+    case 2: read_triangle(r, shape); break;
+    case 3: read_cylinder(r, shape); break;
+    default: read_mesh(ctx, r, shape); break;
   }
   r.finish();
   if (!r.ok()) return;

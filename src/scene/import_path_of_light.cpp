@@ -101,13 +101,13 @@ int read_material(ImportContext& ctx, const JsonValue& v) {
 
 // "trimesh": inline "vertices" + "faces" (or "indices"), or a PLY path under
 // "mPath", "plyPath" or "filename" (keys seen in third-party files).
-ShapeGeometry read_trimesh(ImportContext& ctx, ObjectReader& r) {
-  MeshDesc m;
+void read_trimesh(ImportContext& ctx, ObjectReader& r, ShapeDesc& shape) {
+  TriangleMesh& m = shape.geometry.emplace<TriangleMesh>();
   for (const char* key : {"mPath", "plyPath", "filename"}) {
     if (const JsonValue* v = r.get(key)) {
       Sourced<std::string> path;
-      if (!read_value(ctx.read, *v, key, path) || !load_mesh_file(ctx, path, m)) r.fail();
-      return m;
+      if (!read_value(ctx.read, *v, key, path) || !load_mesh_file(ctx, path, shape)) r.fail();
+      return;
     }
   }
   const JsonValue* vertices = r.require("vertices");
@@ -121,12 +121,11 @@ ShapeGeometry read_trimesh(ImportContext& ctx, ObjectReader& r) {
     ctx.diag().error(r.where(), "a trimesh needs 'vertices' and 'faces' (or 'indices'), or a PLY file under "
                                 "'mPath', 'plyPath' or 'filename'");
     r.fail();
-    return m;
+    return;
   }
   if (!vertices || !read_vec3_list(ctx.read, *vertices, "vertices", m.positions) ||
       !read_index_list(ctx.read, *faces, faces_key, m.positions.size(), /*allow_flat=*/true, m.indices))
     r.fail();
-  return m;
 }
 
 void read_shape(ImportContext& ctx, const JsonValue& v, std::size_t index) {
@@ -137,22 +136,23 @@ void read_shape(ImportContext& ctx, const JsonValue& v, std::size_t index) {
   r.set_what(type);
   ShapeDesc shape;
   shape.where = r.where();
+  shape.type = type;
   if (type == "sphere") {
-    SphereDesc s;
-    r.read_required("center", s.center);
-    r.read_required("radius", s.radius);
-    s.pole = Vec3f(0, 0, 1);  // the course's world is Z-up
-    shape.geometry = s;
+    Sourced<Vec3f> center;
+    Sourced<float> radius{1.0f};
+    r.read_required("center", center);
+    r.read_required("radius", radius);
+    shape.geometry = make_sphere(center, shape.field("radius", radius), Vec3f(0, 0, 1));  // the course's world is Z-up
   } else if (type == "plane") {
-    QuadDesc q;  // a planar quad; corners looked up by name (key order is scrambled)
-    read_corners(r, 4, q.v);
-    shape.geometry = q;
+    Sourced<Vec3f> c[4];  // a planar quad; corners looked up by name (key order is scrambled)
+    read_corners(r, 4, c);
+    shape.geometry = Quad{{c[0], c[1], c[2], c[3]}};
   } else if (type == "triangle") {
-    TriangleDesc t;
-    read_corners(r, 3, t.v);
-    shape.geometry = t;
+    Sourced<Vec3f> c[3];
+    read_corners(r, 3, c);
+    shape.geometry = make_triangle(c[0], c[1], c[2]);
   } else if (type == "trimesh") {
-    shape.geometry = read_trimesh(ctx, r);
+    read_trimesh(ctx, r, shape);
   } else {
     warn_unsupported_type(r, "shape", type, {"sphere", "plane", "triangle", "trimesh"});
     return;

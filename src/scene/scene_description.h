@@ -23,6 +23,7 @@
 #include "core/color.h"
 #include "core/diagnostics.h"
 #include "core/math.h"
+#include "geometry/shapes.h"
 
 namespace pt {
 
@@ -162,47 +163,37 @@ struct EnvironmentDesc {
 };
 
 // ---------------------------------------------------------------- shapes
-// Texture mapping: longitude/latitude about `pole` (the world up axis of the
-// file's family: +Z for Path of Light, +Y for CGR and by default).
-struct SphereDesc {
-  Sourced<Vec3f> center;
-  Sourced<float> radius{1.0f};
-  Sourced<Vec3f> pole{Vec3f(0, 1, 0)};
+// The place in the file of one of a shape's fields, under the name the shape's
+// validation rule (check() in geometry/shapes/*.h) reports problems on.
+struct FieldLocation {
+  std::string field;
+  SourceLocation where;
 };
 
-// A planar convex quad with corners in perimeter order. Texture: the image's
-// top-left pixel at v0, u along v0->v1, image rows along v0->v3.
-struct QuadDesc {
-  Sourced<Vec3f> v[4];
-};
-
-struct TriangleDesc {
-  Sourced<Vec3f> v[3];
-};
-
-// A capped cylinder between the centres of its two caps.
-struct CylinderDesc {
-  Sourced<Vec3f> p0, p1;
-  Sourced<float> radius{1.0f};
-};
-
-// A triangle mesh, from inline lists or from a PLY file (loaded by the parser,
-// so the description always holds the data).
-struct MeshDesc {
-  Sourced<std::string> file;           // empty for inline meshes
-  std::vector<Vec3f> positions;
-  std::vector<uint32_t> indices;       // 3 per triangle
-  std::vector<Vec3f> normals;          // empty or one per vertex
-  std::vector<Vec2f> uvs;              // empty or one per vertex
-};
-
-using ShapeGeometry = std::variant<SphereDesc, QuadDesc, TriangleDesc, CylinderDesc, MeshDesc>;
-
+// One shape: its geometry (geometry/shapes.h; a file's "triangle" is a
+// one-triangle mesh, a sphere's pole is unit length) and where it was written.
 struct ShapeDesc {
   SourceLocation where;
   std::string name;   // optional label ("id" in Path of Light files)
-  ShapeGeometry geometry;
+  std::string type;   // the file's type name ("sphere", "triangle", ...); empty if built in code
+  std::string file;   // the mesh file as written; empty for inline data and other shapes
+  Shape geometry;
+  std::vector<FieldLocation> fields;  // filled by the importers
   int material = 0;   // index into SceneDescription::materials
+
+  // Records where `field` was written and returns its value.
+  template <class T>
+  const T& field(std::string name_in_rule, const Sourced<T>& v) {
+    fields.push_back({std::move(name_in_rule), v.where});
+    return v.value;
+  }
+  // Where `field` was written; the shape's own location for "" or a field not recorded.
+  const SourceLocation& at(const std::string& field_name) const {
+    for (const FieldLocation& f : fields) {
+      if (f.field == field_name && f.where.valid()) return f.where;
+    }
+    return where;
+  }
 };
 
 // ---------------------------------------------------------------- the scene

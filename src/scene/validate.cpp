@@ -1,9 +1,7 @@
 #include "scene/validate.h"
 
 #include <cmath>
-#include <initializer_list>
 #include <string>
-#include <utility>
 
 #include "geometry/shapes.h"
 #include "scene/json_reader.h"
@@ -87,8 +85,15 @@ class Validator {
     if (!(length(e.up.value) > 0.0f)) diag_.error(e.up.where, "environment up axis must not be zero");
   }
 
+  // The shape's own rule (geometry/shapes/*.h), each problem reported at the
+  // field it names (or at the shape).
   void shape(const ShapeDesc& s) {
-    std::visit([&](const auto& g) { geometry(s, g); }, s.geometry);
+    ShapeChecker checker(s.type, s.file);
+    check(s.geometry, checker);
+    for (const ShapeProblem& p : checker.problems()) {
+      if (p.warning) diag_.warning(s.at(p.field), p.message);
+      else diag_.error(s.at(p.field), p.message);
+    }
   }
 
  private:
@@ -107,72 +112,6 @@ class Validator {
       diag_.error(c.where, std::string(name) + " must not be negative, got " + str(c.value));
   }
 
-  // The shape's own rule (geometry/shapes/*.h), its problems reported at the
-  // field they name (or at the shape).
-  template <class S>
-  void run_check(const ShapeDesc& shape, const S& geometry,
-                 std::initializer_list<std::pair<const char*, SourceLocation>> fields) {
-    ShapeChecker checker;
-    check(geometry, checker);
-    for (const ShapeProblem& p : checker.problems()) {
-      SourceLocation at = shape.where;
-      for (const auto& [name, where] : fields) {
-        if (p.field == name) at = where;
-      }
-      if (p.warning) diag_.warning(at, p.message);
-      else diag_.error(at, p.message);
-    }
-  }
-
-  void geometry(const ShapeDesc& shape, const SphereDesc& s) {
-    run_check(shape, Sphere{s.center, s.radius, s.pole}, {{"radius", s.radius.where}, {"pole", s.pole.where}});
-  }
-
-  void geometry(const ShapeDesc& shape, const TriangleDesc& t) {
-    const Vec3f n = cross(t.v[1].value - t.v[0].value, t.v[2].value - t.v[0].value);
-    if (length(n) == 0.0f)
-      diag_.warning(shape.where, "triangle is degenerate (zero area, corners in a line); it will not be visible");
-  }
-
-  void geometry(const ShapeDesc& shape, const QuadDesc& q) {
-    run_check(shape, Quad{{q.v[0], q.v[1], q.v[2], q.v[3]}}, {});
-  }
-
-  void geometry(const ShapeDesc& shape, const CylinderDesc& c) {
-    run_check(shape, Cylinder{c.p0, c.p1, c.radius}, {{"radius", c.radius.where}});
-  }
-
-  void geometry(const ShapeDesc& shape, const MeshDesc& m) {
-    const SourceLocation& at = m.file.where.valid() ? m.file.where : shape.where;
-    const std::string what = m.file.value.empty() ? std::string("mesh") : "mesh '" + m.file.value + "'";
-    if (m.indices.size() % 3 != 0) {
-      diag_.error(at, what + " has " + std::to_string(m.indices.size()) + " indices, not a multiple of 3");
-      return;
-    }
-    std::size_t bad = 0;
-    uint32_t first_bad = 0;
-    for (uint32_t i : m.indices) {
-      if (i >= m.positions.size() && bad++ == 0) first_bad = i;
-    }
-    if (bad > 0)
-      diag_.error(at, what + ": " + std::to_string(bad) + " vertex indices are out of range (e.g. " +
-                          std::to_string(first_bad) + "; the mesh has " + std::to_string(m.positions.size()) +
-                          " vertices)");
-    for (const Vec3f& p : m.positions) {
-      if (!is_finite(p)) {
-        diag_.error(at, what + " has a vertex position that is not a finite number");
-        break;
-      }
-    }
-    if (!m.normals.empty() && m.normals.size() != m.positions.size())
-      diag_.error(at, what + " has " + std::to_string(m.normals.size()) + " normals for " +
-                          std::to_string(m.positions.size()) + " vertices");
-    if (!m.uvs.empty() && m.uvs.size() != m.positions.size())
-      diag_.error(at, what + " has " + std::to_string(m.uvs.size()) + " texture coordinates for " +
-                          std::to_string(m.positions.size()) + " vertices");
-    if (m.indices.empty()) diag_.warning(at, what + " has no triangles; it will not be visible");
-  }
-
   const LoadOptions& options_;
   Diagnostics& diag_;
 };
@@ -188,6 +127,22 @@ void validate_scene(const SceneDescription& scene, const LoadOptions& options, D
   for (const LightDesc& l : scene.lights) std::visit([&](const auto& light) { v.light(light); }, l);
   for (const ShapeDesc& s : scene.shapes) v.shape(s);
   if (scene.environment) v.environment(*scene.environment);
+}
+
+bool check_shapes_usable(const SceneDescription& scene, Diagnostics& diag) {
+  bool ok = true;
+  for (std::size_t i = 0; i < scene.shapes.size(); ++i) {
+    const ShapeDesc& s = scene.shapes[i];
+    ShapeChecker checker(s.type, s.file);
+    check(s.geometry, checker);
+    for (const ShapeProblem& p : checker.problems()) {
+      if (!p.unusable) continue;
+      diag.error(s.at(p.field), "shape " + std::to_string(i) + (s.name.empty() ? "" : " ('" + s.name + "')") +
+                                    ": " + p.message);
+      ok = false;
+    }
+  }
+  return ok;
 }
 
 }  // namespace pt

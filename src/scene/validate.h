@@ -12,4 +12,11 @@ namespace pt {
 
 void validate_scene(const SceneDescription& scene, const LoadOptions& options, Diagnostics& diag);
 
+// The part of the shapes' validation that the later stages rely on, for
+// descriptions built in code (a loaded one has passed validate_scene): each
+// shape's unusable problems (geometry/shape_base.h; a mesh index out of range,
+// a non-finite value), reported as errors "shape i: ..." at the field. Returns
+// false if there was any.
+bool check_shapes_usable(const SceneDescription& scene, Diagnostics& diag);
+
 }  // namespace pt

@@ -48,37 +48,6 @@ TEST(BuildAccelerator, BvhIsBuiltAndFillsStats) {
   EXPECT_FLOAT_EQ(hit.t, 4.0f);
 }
 
-TEST(BuildAccelerator, InvalidGeometryIsReportedNotCrashed) {
-  WorkerPool pool(2);
-  {
-    SceneGeometry g;
-    TriangleMesh m;
-    m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
-    m.indices = {0, 1, 3};
-    g.shapes.push_back(Sphere{{0, 0, 0}, 1.0f});
-    g.shapes.push_back(m);
-    Diagnostics diag;
-    EXPECT_EQ(build_accelerator(AccelKind::Embree, g, pool, diag), nullptr);
-    ASSERT_TRUE(diag.has_errors());
-    EXPECT_NE(diag.all()[0].message.find("shape 1 (triangle mesh): triangle 0 refers to vertex 3"),
-              std::string::npos)
-        << diag.all()[0].message;
-  }
-  {
-    SceneGeometry g;
-    TriangleMesh m;
-    m.positions = {{0, 0, 0}, {1, 0, 0}};
-    m.indices = {0, 1};
-    g.shapes.push_back(m);
-    g.shapes.push_back(Sphere{{std::numeric_limits<float>::quiet_NaN(), 0, 0}, 1.0f});
-    Diagnostics diag;
-    EXPECT_EQ(build_accelerator(AccelKind::Embree, g, pool, diag), nullptr);
-    ASSERT_EQ(diag.error_count(), 2);
-    EXPECT_NE(diag.all()[0].message.find("not a multiple of 3"), std::string::npos);
-    EXPECT_NE(diag.all()[1].message.find("shape 1 (sphere): non-finite"), std::string::npos);
-  }
-}
-
 TEST(BuildAccelerator, EmbreeFillsStats) {
   SceneGeometry g;
   g.shapes.push_back(Sphere{{0, 0, 0}, 1.0f});

@@ -361,21 +361,5 @@ TEST(Bvh, CountsTraversalWork) {
   EXPECT_EQ(untouched.primitives, 0u);
 }
 
-TEST(Bvh, InvalidGeometryIsReportedNotBuilt) {
-  SceneGeometry g;
-  TriangleMesh m;
-  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
-  m.indices = {0, 1, 3};
-  g.shapes.push_back(Sphere{{0, 0, 0}, 1.0f});
-  g.shapes.push_back(m);
-  g.shapes.push_back(Cylinder{{0, 0, 0}, {0, kInfinity, 0}, 1.0f});
-  WorkerPool pool(1);
-  Diagnostics diag;
-  EXPECT_EQ(build_accelerator(AccelKind::Bvh, g, pool, diag), nullptr);
-  ASSERT_EQ(diag.error_count(), 2);
-  EXPECT_EQ(diag.all()[0].message, "shape 1 (triangle mesh): triangle 0 refers to vertex 3 but the mesh has 3 vertices");
-  EXPECT_EQ(diag.all()[1].message, "shape 2 (cylinder): non-finite end point or radius");
-}
-
 }  // namespace
 }  // namespace pt

@@ -23,14 +23,14 @@ constexpr int kWidth = 96, kHeight = 64;
 SceneDescription two_halves() {
   SceneDescription d = test::empty_scene(kWidth, kHeight, {0, 0, 6}, {0, 0, 0}, {0, 1, 0}, 40.0f);
   const int m = test::add_material(d, test::diffuse_material(RGB(0.5f)));
-  QuadDesc q;
+  Quad q;
   q.v[0] = Vec3f(-4, -3, 0);
   q.v[1] = Vec3f(-0.2f, -3, 0);
   q.v[2] = Vec3f(-0.2f, 3, 0);
   q.v[3] = Vec3f(-4, 3, 0);
   test::add_shape(d, q, m);
   const TriangleMesh sphere = test::make_uv_sphere({1.4f, 0, 0}, 1.2f, 64, 128);
-  MeshDesc mesh;
+  TriangleMesh mesh;
   mesh.positions = sphere.positions;
   mesh.indices = sphere.indices;
   test::add_shape(d, mesh, m);

@@ -114,9 +114,9 @@ TEST_F(ObjFiles, NativeSceneReadsAnObjMesh) {
   const auto desc = load_scene(scene, LoadOptions{}, diag);
   ASSERT_TRUE(desc.has_value()) << diag.format();
   ASSERT_EQ(desc->shapes.size(), 1u);
-  const auto& mesh = std::get<MeshDesc>(desc->shapes[0].geometry);
+  const auto& mesh = std::get<TriangleMesh>(desc->shapes[0].geometry);
   EXPECT_EQ(mesh.indices.size(), 9u);
-  EXPECT_EQ(mesh.file.value, "part.OBJ");
+  EXPECT_EQ(desc->shapes[0].file, "part.OBJ");
 
   write("broken.obj", "# only points and lines\nv 0 0 0\nv 1 0 0\np 1\nl 1 2\n");
   const std::string bad = write("bad.json", R"({

@@ -286,7 +286,7 @@ TEST(MemoryEstimate, ScalesWithPixelsFilmBytesAndTriangles) {
   EXPECT_EQ(estimate_memory(scene, 100 * 100, {40, 32}, 2).film, 2 * small.film);
   EXPECT_EQ(estimate_memory(scene, 50 * 100, {40, 32}).images, small.images / 2);  // a crop of half the frame
   ShapeDesc mesh;
-  MeshDesc m;
+  TriangleMesh m;
   m.positions.resize(3000);
   m.indices.resize(3 * 1000);
   mesh.geometry = m;

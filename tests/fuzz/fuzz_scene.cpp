@@ -51,16 +51,14 @@ void check_description(const SceneDescription& s) {
   for (const ShapeDesc& shape : s.shapes) {
     require(shape.material >= 0 && static_cast<std::size_t>(shape.material) < s.materials.size(),
             "every shape has a material");
-    if (const auto* sp = std::get_if<SphereDesc>(&shape.geometry)) {
+    if (const auto* sp = std::get_if<Sphere>(&shape.geometry)) {
       require(is_finite(sp->center) && std::isfinite(sp->radius) && sp->radius > 0, "spheres are valid");
-    } else if (const auto* q = std::get_if<QuadDesc>(&shape.geometry)) {
+    } else if (const auto* q = std::get_if<Quad>(&shape.geometry)) {
       for (const auto& v : q->v) require(is_finite(v), "quad corners are finite");
-    } else if (const auto* t = std::get_if<TriangleDesc>(&shape.geometry)) {
-      for (const auto& v : t->v) require(is_finite(v), "triangle corners are finite");
-    } else if (const auto* c = std::get_if<CylinderDesc>(&shape.geometry)) {
+    } else if (const auto* c = std::get_if<Cylinder>(&shape.geometry)) {
       require(is_finite(c->p0) && is_finite(c->p1) && std::isfinite(c->radius) && c->radius > 0,
               "cylinders are valid");
-    } else if (const auto* m = std::get_if<MeshDesc>(&shape.geometry)) {
+    } else if (const auto* m = std::get_if<TriangleMesh>(&shape.geometry)) {
       require(m->indices.size() % 3 == 0, "mesh indices come in triangles");
       for (uint32_t i : m->indices) require(i < m->positions.size(), "mesh indices are in range");
       for (const Vec3f& p : m->positions) require(is_finite(p), "mesh positions are finite");

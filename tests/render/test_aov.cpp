@@ -162,7 +162,7 @@ std::unique_ptr<RenderScene> lighting_scene(WorkerPool& pool) {
   SceneDescription d = test::empty_scene(kW, kH, Vec3f(0, 1.5f, 6), Vec3f(0, 0.5f, 0), Vec3f(0, 1, 0), 55.0f);
   MaterialDesc floor = test::diffuse_material(RGB(0.6f, 0.5f, 0.4f));
   floor.type = MaterialType::Lambert;
-  QuadDesc q;
+  Quad q;
   q.v[0] = Vec3f(-5, 0, -5);
   q.v[1] = Vec3f(-5, 0, 5);
   q.v[2] = Vec3f(5, 0, 5);
@@ -176,7 +176,7 @@ std::unique_ptr<RenderScene> lighting_scene(WorkerPool& pool) {
   mirror.type = MaterialType::Mirror;
   mirror.specular = RGB(0.9f);
   test::add_sphere(d, Vec3f(0.9f, 0.6f, 0.5f), 0.6f, test::add_material(d, mirror));
-  QuadDesc light;  // facing down, seen from the camera at a grazing angle
+  Quad light;  // facing down, seen from the camera at a grazing angle
   light.v[0] = Vec3f(-1, 2.5f, -1);
   light.v[1] = Vec3f(1, 2.5f, -1);
   light.v[2] = Vec3f(1, 2.5f, 1);

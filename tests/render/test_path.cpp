@@ -210,7 +210,7 @@ TEST(PathLights, EmissionIsOneSidedUnlessTwoSided) {
     MaterialDesc e = test::emitter_material(RGB(2.0f, 1.0f, 0.5f));
     e.two_sided = two_sided;
     const int m = add_material(d, e);
-    QuadDesc front, back;
+    Quad front, back;
     front.v[0] = Vec3f(-2.0f, -1, 0);  // counter-clockwise seen from +z
     front.v[1] = Vec3f(-0.05f, -1, 0);
     front.v[2] = Vec3f(-0.05f, 1, 0);
@@ -270,7 +270,7 @@ TEST(PathGlass, SlabBeyondTheCriticalAngleReflectsEverything) {
     d.render.background = RGB(1.0f);
     const int m = add_material(d, glass(ior));
     const float w = 1000.0f;
-    QuadDesc top, bottom;
+    Quad top, bottom;
     top.v[0] = Vec3f(-w, 1, -w); top.v[1] = Vec3f(-w, 1, w); top.v[2] = Vec3f(w, 1, w); top.v[3] = Vec3f(w, 1, -w);
     bottom.v[0] = Vec3f(-w, 0, -w); bottom.v[1] = Vec3f(w, 0, -w); bottom.v[2] = Vec3f(w, 0, w); bottom.v[3] = Vec3f(-w, 0, w);
     add_shape(d, top, m);
@@ -292,7 +292,7 @@ TEST(PathGlass, SlabBeyondTheCriticalAngleReflectsEverything) {
 SceneDescription small_lit_scene() {
   SceneDescription d = test::empty_scene(21, 17, {0.3f, 1.0f, 4.0f}, {0, 0.4f, 0}, {0, 1, 0}, 45);
   d.render.background = RGB(0.1f, 0.12f, 0.2f);
-  QuadDesc floor;
+  Quad floor;
   floor.v[0] = Vec3f(-3, 0, -3); floor.v[1] = Vec3f(-3, 0, 3); floor.v[2] = Vec3f(3, 0, 3); floor.v[3] = Vec3f(3, 0, -3);
   add_shape(d, floor, add_material(d, lambert(RGB(0.6f, 0.6f, 0.5f))));
   add_sphere(d, {-0.6f, 0.5f, 0.3f}, 0.5f, add_material(d, blinn_phong(0.6f, 40.0f, 0.4f)));

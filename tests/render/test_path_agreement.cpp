@@ -93,7 +93,7 @@ SceneDescription mis_scene() {
   SceneDescription d = test::empty_scene(32, 32, {0, 1.0f, 4.0f}, {0, 0.6f, 0}, {0, 1, 0}, 45);
   d.render.background = RGB(0.15f, 0.2f, 0.3f);
   const int white = add_material(d, lambert(RGB(0.7f)));
-  QuadDesc floor, wall, light;
+  Quad floor, wall, light;
   floor.v[0] = Vec3f(-2, 0, -2); floor.v[1] = Vec3f(-2, 0, 2); floor.v[2] = Vec3f(2, 0, 2); floor.v[3] = Vec3f(2, 0, -2);
   wall.v[0] = Vec3f(-2, 0, -1); wall.v[1] = Vec3f(2, 0, -1); wall.v[2] = Vec3f(2, 2, -1); wall.v[3] = Vec3f(-2, 2, -1);
   light.v[0] = Vec3f(-0.5f, 2, -0.5f); light.v[1] = Vec3f(0.5f, 2, -0.5f); light.v[2] = Vec3f(0.5f, 2, 0.5f); light.v[3] = Vec3f(-0.5f, 2, 0.5f);

@@ -270,7 +270,7 @@ SceneDescription soft_shadow_scene() {
   MaterialDesc lambert;
   lambert.type = MaterialType::Lambert;
   lambert.diffuse = RGB(0.7f);
-  QuadDesc floor;
+  Quad floor;
   floor.v[0] = Vec3f(-3, 0, -3);
   floor.v[1] = Vec3f(-3, 0, 3);
   floor.v[2] = Vec3f(3, 0, 3);

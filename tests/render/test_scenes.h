@@ -47,7 +47,7 @@ inline int add_material(SceneDescription& d, const MaterialDesc& m) {
   return static_cast<int>(d.materials.size()) - 1;
 }
 
-inline void add_shape(SceneDescription& d, ShapeGeometry g, int material) {
+inline void add_shape(SceneDescription& d, Shape g, int material) {
   ShapeDesc s;
   s.geometry = std::move(g);
   s.material = material;
@@ -55,7 +55,7 @@ inline void add_shape(SceneDescription& d, ShapeGeometry g, int material) {
 }
 
 inline void add_sphere(SceneDescription& d, Vec3f centre, float radius, int material) {
-  SphereDesc s;
+  Sphere s;
   s.center = centre;
   s.radius = radius;
   add_shape(d, s, material);
@@ -63,7 +63,7 @@ inline void add_sphere(SceneDescription& d, Vec3f centre, float radius, int mate
 
 // Axis-aligned square in the plane z = height, corners counter-clockwise seen from +z.
 inline void add_z_square(SceneDescription& d, float height, float half, int material) {
-  QuadDesc q;
+  Quad q;
   q.v[0] = Vec3f(-half, -half, height);
   q.v[1] = Vec3f(half, -half, height);
   q.v[2] = Vec3f(half, half, height);

@@ -147,16 +147,16 @@ TEST(NativeFormat, EveryKeyIsRead) {
   EXPECT_FALSE(point_light(*s, 1).inverse_square.value);
   ASSERT_EQ(s->shapes.size(), 5u);
   EXPECT_EQ(s->shapes[0].name, "ball");
-  EXPECT_TRUE(near(geometry_of<SphereDesc>(*s, 0).pole, Vec3f(0, 0, 1)));
-  EXPECT_TRUE(near(geometry_of<QuadDesc>(*s, 1).v[2], Vec3f(1, 1, 0)));
-  EXPECT_TRUE(near(geometry_of<CylinderDesc>(*s, 3).p1, Vec3f(0, 2, 0)));
-  const MeshDesc& mesh = geometry_of<MeshDesc>(*s, 4);
+  EXPECT_TRUE(near(geometry_of<Sphere>(*s, 0).pole, Vec3f(0, 0, 1)));
+  EXPECT_TRUE(near(geometry_of<Quad>(*s, 1).v[2], Vec3f(1, 1, 0)));
+  EXPECT_TRUE(near(geometry_of<Cylinder>(*s, 3).p1, Vec3f(0, 2, 0)));
+  const TriangleMesh& mesh = geometry_of<TriangleMesh>(*s, 4);
   EXPECT_EQ(mesh.positions.size(), 4u);
   EXPECT_EQ(mesh.indices, (std::vector<uint32_t>{0, 1, 2, 2, 1, 3}));
   EXPECT_EQ(mesh.normals.size(), 4u);
   ASSERT_EQ(mesh.uvs.size(), 4u);
   EXPECT_EQ(mesh.uvs[3], Vec2f(1, 1));
-  EXPECT_TRUE(mesh.file.value.empty());
+  EXPECT_TRUE(s->shapes[4].file.empty());
 }
 
 TEST(NativeFormat, ValuesRememberWhereTheyWereWritten) {
@@ -166,8 +166,7 @@ TEST(NativeFormat, ValuesRememberWhereTheyWereWritten) {
     { "type": "sphere", "center": [0, 0, 0], "radius": 2 }
   ])"), diag);
   ASSERT_TRUE(s) << diag.format();
-  const SphereDesc& sphere = geometry_of<SphereDesc>(*s, 0);
-  EXPECT_EQ(sphere.radius.where.to_string(), "mem.json:5:56");
+  EXPECT_EQ(s->shapes[0].at("radius").to_string(), "mem.json:5:56");
   EXPECT_EQ(s->shapes[0].where.to_string(), "mem.json:5:5");
   EXPECT_EQ(s->camera.look_at.where.to_string(), "mem.json:3:49");
 }
@@ -263,11 +262,11 @@ TEST(CourseFormats, PathOfLightTrimeshInlineAndFromPly) {
   EXPECT_EQ(diag.all().size(), 0u) << diag.format();
   EXPECT_EQ(s->format, SceneFormat::PathOfLight);
   ASSERT_EQ(s->shapes.size(), 5u);
-  EXPECT_EQ(geometry_of<MeshDesc>(*s, 0).indices, (std::vector<uint32_t>{0, 1, 2, 2, 1, 3}));
-  EXPECT_EQ(geometry_of<MeshDesc>(*s, 1).indices, (std::vector<uint32_t>{0, 1, 2}));
+  EXPECT_EQ(geometry_of<TriangleMesh>(*s, 0).indices, (std::vector<uint32_t>{0, 1, 2, 2, 1, 3}));
+  EXPECT_EQ(geometry_of<TriangleMesh>(*s, 1).indices, (std::vector<uint32_t>{0, 1, 2}));
   for (std::size_t i = 2; i < 5; ++i) {
-    const MeshDesc& m = geometry_of<MeshDesc>(*s, i);
-    EXPECT_EQ(m.file.value, "meshes/tri.ply");
+    const TriangleMesh& m = geometry_of<TriangleMesh>(*s, i);
+    EXPECT_EQ(s->shapes[i].file, "meshes/tri.ply");
     EXPECT_EQ(m.positions.size(), 3u);
     EXPECT_EQ(m.indices.size(), 3u);
   }
@@ -419,11 +418,11 @@ TEST(ShippedScenes, ShowcaseExercisesEveryShapeAndItsAssets) {
   EXPECT_EQ(s->textures.size(), 2u);
   int spheres = 0, quads = 0, triangles = 0, cylinders = 0, meshes = 0, refractive = 0, mirrors = 0;
   for (const ShapeDesc& shape : s->shapes) {
-    spheres += std::holds_alternative<SphereDesc>(shape.geometry);
-    quads += std::holds_alternative<QuadDesc>(shape.geometry);
-    triangles += std::holds_alternative<TriangleDesc>(shape.geometry);
-    cylinders += std::holds_alternative<CylinderDesc>(shape.geometry);
-    if (const auto* mesh = std::get_if<MeshDesc>(&shape.geometry)) {
+    spheres += std::holds_alternative<Sphere>(shape.geometry);
+    quads += std::holds_alternative<Quad>(shape.geometry);
+    triangles += shape.type == "triangle";  // a one-triangle mesh
+    cylinders += std::holds_alternative<Cylinder>(shape.geometry);
+    if (const auto* mesh = std::get_if<TriangleMesh>(&shape.geometry); mesh && shape.type == "mesh") {
       ++meshes;
       EXPECT_GE(mesh->indices.size() / 3, 20000u);
       EXPECT_EQ(mesh->normals.size(), mesh->positions.size());

@@ -67,25 +67,26 @@ TEST_F(SeedScenes, PathOfLightConventions) {
   EXPECT_TRUE(near(light.position, Vec3f(0, 1, 1.5f)));
   // Shapes, in file order: textured sphere (pole +Z), back wall, floor, two triangles.
   ASSERT_EQ(s->shapes.size(), 5u);
-  const SphereDesc& sphere = geometry_of<SphereDesc>(*s, 0);
+  const Sphere& sphere = geometry_of<Sphere>(*s, 0);
   EXPECT_TRUE(near(sphere.center, Vec3f(0, 2.7f, 0.15f)));
-  EXPECT_EQ(sphere.radius.value, 0.5f);
+  EXPECT_EQ(sphere.radius, 0.5f);
   EXPECT_TRUE(near(sphere.pole, Vec3f(0, 0, 1)));
   // "plane" corners are looked up by name, whatever the key order in the file.
-  const QuadDesc& back = geometry_of<QuadDesc>(*s, 1);
+  const Quad& back = geometry_of<Quad>(*s, 1);
   EXPECT_EQ(s->shapes[1].name, "back wall");
   EXPECT_TRUE(near(back.v[0], Vec3f(2, 8, 0)));
   EXPECT_TRUE(near(back.v[1], Vec3f(-2, 8, 0)));
   EXPECT_TRUE(near(back.v[2], Vec3f(-2, 8, 5)));
   EXPECT_TRUE(near(back.v[3], Vec3f(2, 8, 5)));
-  const QuadDesc& floor = geometry_of<QuadDesc>(*s, 2);
+  const Quad& floor = geometry_of<Quad>(*s, 2);
   EXPECT_TRUE(near(floor.v[0], Vec3f(-2, 8, 0)));
   EXPECT_TRUE(near(floor.v[1], Vec3f(2, 8, 0)));
   EXPECT_TRUE(near(floor.v[2], Vec3f(2, 0, 0)));
   EXPECT_TRUE(near(floor.v[3], Vec3f(-2, 0, 0)));
-  const TriangleDesc& left = geometry_of<TriangleDesc>(*s, 3);
+  const TriangleMesh& left = geometry_of<TriangleMesh>(*s, 3);
   EXPECT_EQ(s->shapes[3].name, "left wall");
-  EXPECT_TRUE(near(left.v[1], Vec3f(-2, 8, 5)));
+  ASSERT_EQ(left.positions.size(), 3u);
+  EXPECT_TRUE(near(left.positions[1], Vec3f(-2, 8, 5)));
   // Materials: kr -> reflectivity; textures resolved from the scene's folder, each once.
   const MaterialDesc& floor_m = s->materials[static_cast<std::size_t>(s->shapes[2].material)];
   EXPECT_EQ(floor_m.reflectivity.value, 0.3f);
@@ -126,12 +127,12 @@ TEST_F(SeedScenes, CgrConventions) {
   EXPECT_TRUE(near(point_light(*s, 1).specular_intensity, RGB(0.5f)));
   EXPECT_FALSE(point_light(*s, 1).inverse_square.value);
   // Cylinder: height is HALF the length, so it spans center +- height * axis.
-  const CylinderDesc& c = geometry_of<CylinderDesc>(*s, 1);
+  const Cylinder& c = geometry_of<Cylinder>(*s, 1);
   EXPECT_TRUE(near(c.p0, Vec3f(-0.3f, -0.01f, 1)));
   EXPECT_TRUE(near(c.p1, Vec3f(-0.3f, 0.39f, 1)));
-  EXPECT_EQ(c.radius.value, 0.15f);
+  EXPECT_EQ(c.radius, 0.15f);
   // Spheres use the default pole (+Y).
-  EXPECT_TRUE(near(geometry_of<SphereDesc>(*s, 0).pole, Vec3f(0, 1, 0)));
+  EXPECT_TRUE(near(geometry_of<Sphere>(*s, 0).pole, Vec3f(0, 1, 0)));
   // isreflective gates reflectivity.
   const MaterialDesc& ground = s->materials[static_cast<std::size_t>(s->shapes[0].material)];
   EXPECT_EQ(ground.reflectivity.value, 0.0f);  // "isreflective": false, "reflectivity": 1.0
@@ -152,7 +153,7 @@ TEST_F(SeedScenes, CgrDefaultsWhenKeysAreAbsent) {
   ASSERT_EQ(s->shapes.size(), 3u);
   ASSERT_EQ(s->materials.size(), 1u);       // no "material": one shared default
   for (const ShapeDesc& shape : s->shapes) EXPECT_EQ(shape.material, 0);
-  const CylinderDesc& c = geometry_of<CylinderDesc>(*s, 1);
+  const Cylinder& c = geometry_of<Cylinder>(*s, 1);
   EXPECT_TRUE(near(c.p0, Vec3f(-0.5f, -0.2f, 1)));
   EXPECT_TRUE(near(c.p1, Vec3f(-0.1f, -0.2f, 1)));
 }
@@ -163,7 +164,7 @@ TEST_F(SeedScenes, CgrPhongModeUsesTheClassicIntegrator) {
   ASSERT_TRUE(s) << diag.format();
   EXPECT_EQ(s->render.integrator.value, "whitted");
   EXPECT_EQ(s->shapes.size(), 4u);
-  const CylinderDesc& c = geometry_of<CylinderDesc>(*s, 1);
+  const Cylinder& c = geometry_of<Cylinder>(*s, 1);
   EXPECT_TRUE(near(c.p0, Vec3f(0.3f, -0.5f, 1)));
   EXPECT_TRUE(near(c.p1, Vec3f(0.3f, 0.5f, 1)));
 }

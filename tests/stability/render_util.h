@@ -27,8 +27,8 @@ inline MaterialDesc lambert_material(RGB albedo) {
 }
 
 // An axis-aligned box as a closed triangle mesh, outward-facing.
-inline MeshDesc box_mesh(Vec3f lo, Vec3f hi) {
-  MeshDesc m;
+inline TriangleMesh box_mesh(Vec3f lo, Vec3f hi) {
+  TriangleMesh m;
   for (int i = 0; i < 8; ++i)
     m.positions.emplace_back((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z);
   // Two triangles per face, counter-clockwise seen from outside.
@@ -40,8 +40,8 @@ inline MeshDesc box_mesh(Vec3f lo, Vec3f hi) {
 }
 
 // A UV sphere as a closed triangle mesh.
-inline MeshDesc sphere_mesh(Vec3f centre, float radius, int rings, int segments) {
-  MeshDesc m;
+inline TriangleMesh sphere_mesh(Vec3f centre, float radius, int rings, int segments) {
+  TriangleMesh m;
   for (int i = 0; i <= rings; ++i) {
     const float theta = kPi * static_cast<float>(i) / static_cast<float>(rings);
     for (int j = 0; j < segments; ++j) {

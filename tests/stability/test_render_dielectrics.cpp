@@ -103,7 +103,7 @@ TEST_P(Dielectrics, CoincidentGlassFacesNeverCreateEnergy) {
 TEST_P(Dielectrics, SlabTransmittanceSumsItsInternalReflections) {
   SceneDescription d = test::empty_scene(64, 64, {0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 2);
   add_shape(d, test::box_mesh({-1, -1, -0.25f}, {1, 1, 0.25f}), add_material(d, glass_material(1.5f)));
-  QuadDesc light;  // faces +z, towards the camera
+  Quad light;  // faces +z, towards the camera
   light.v[0] = Vec3f(-2, -2, -3);
   light.v[1] = Vec3f(2, -2, -3);
   light.v[2] = Vec3f(2, 2, -3);
@@ -138,7 +138,7 @@ TEST_P(Dielectrics, BeyondTheCriticalAngleNothingLeavesTheSlab) {
 TEST_P(Dielectrics, IndexOneIsInvisible) {
   SceneDescription base = test::empty_scene(48, 48, {0, 1.5f, 4}, {0, 0.5f, 0}, {0, 1, 0}, 40);
   base.render.background = RGB(0.3f, 0.5f, 0.8f);
-  QuadDesc floor;
+  Quad floor;
   floor.v[0] = Vec3f(-3, 0, -3);
   floor.v[1] = Vec3f(-3, 0, 3);
   floor.v[2] = Vec3f(3, 0, 3);

@@ -19,8 +19,8 @@ using test::add_sphere;
 
 class DifficultLights : public test::PerBackend {};
 
-QuadDesc quad(Vec3f a, Vec3f b, Vec3f c, Vec3f e) {
-  QuadDesc q;
+Quad quad(Vec3f a, Vec3f b, Vec3f c, Vec3f e) {
+  Quad q;
   q.v[0] = a;
   q.v[1] = b;
   q.v[2] = c;
@@ -56,11 +56,7 @@ TEST_P(DifficultLights, ZeroAreaAndZeroPowerLightsChangeNothing) {
   const int bright = add_material(d, test::emitter_material(RGB(1e4f)));
   const Vec3f p(0.7f, 1.0f, 0.4f);
   add_shape(d, quad(p, p, p, p), bright);
-  TriangleDesc needle;
-  needle.v[0] = Vec3f(-1, 1, 0);
-  needle.v[1] = Vec3f(0, 1, 0);
-  needle.v[2] = Vec3f(1, 1, 0);  // collinear
-  add_shape(d, needle, bright);
+  add_shape(d, make_triangle(Vec3f(-1, 1, 0), Vec3f(0, 1, 0), Vec3f(1, 1, 0)), bright);  // collinear
   add_sphere(d, {0.2f, 1.5f, -0.5f}, 0.0f, bright);
   MaterialDesc dark = test::emitter_material(RGB(0.0f));
   dark.two_sided = true;

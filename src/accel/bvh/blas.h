@@ -45,7 +45,7 @@ struct Blas {
   BlasData view() const { return BlasData{nodes.data(), root, kind, blocks.data(), prims.data(), object}; }
 };
 
-// The mesh must have valid indices (validate_geometry) and fewer than kMaxItems triangles.
+// The mesh must have valid indices (geometry_usable) and fewer than kMaxItems triangles.
 Blas build_mesh_blas(const TriangleMesh& mesh, uint32_t object, const BuildSettings& settings);
 // `prims[i]` has bounds `boxes[i]`.
 Blas build_analytic_blas(std::vector<AnalyticPrim> prims, const std::vector<Bounds3f>& boxes,

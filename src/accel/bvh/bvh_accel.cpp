@@ -1,5 +1,6 @@
 #include "accel/bvh/bvh_accel.h"
 
+#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <type_traits>
@@ -169,7 +170,8 @@ bool check_sizes(const SceneGeometry& geometry, Diagnostics& diag) {
 
 bool BvhAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, Diagnostics& diag,
                            const Options& options) {
-  if (!validate_geometry(geometry, diag) || !check_sizes(geometry, diag)) return false;
+  assert(geometry_usable(geometry));
+  if (!check_sizes(geometry, diag)) return false;
   if (!choose_kernels(options.isa, kernels_, diag)) return false;
 
   // One bottom level per non-empty mesh, one over every analytic shape.

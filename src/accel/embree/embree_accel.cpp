@@ -7,6 +7,7 @@
 #include <embree3/rtcore.h>
 
 #include <algorithm>
+#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -132,7 +133,7 @@ bool report_device_errors(const Device& device, Diagnostics& diag) {
 
 bool EmbreeAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, Diagnostics& diag) {
   if (report_device_errors(device_, diag) || !device_.valid()) return false;
-  if (!validate_geometry(geometry, diag)) return false;  // Embree must never see NaN bounds or bad indices
+  assert(geometry_usable(geometry));  // Embree must never see NaN bounds or bad indices
 
   RTCDevice device = device_.get();
   scene_ = rtcNewScene(device);

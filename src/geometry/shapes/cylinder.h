@@ -152,6 +152,8 @@ inline uint32_t primitive_count(const Cylinder&) { return 1; }
 
 // Validation (fields as the native format names them).
 inline void check(const Cylinder& cyl, ShapeChecker& c) {
+  if (!is_finite(cyl.p0) || !is_finite(cyl.p1) || !std::isfinite(cyl.radius))
+    c.unusable("", "cylinder has a non-finite end point or radius");
   if (!(cyl.radius > 0.0f)) c.error("radius", "radius must be > 0, got " + format_number(cyl.radius));
   if (length(cyl.p1 - cyl.p0) == 0.0f) c.warning("", "cylinder has zero length; it will not be visible");
 }

@@ -29,7 +29,18 @@ bool intersect(const TriangleMesh& m, uint32_t tri, const Ray& ray, PrimHit& hit
 SurfaceGeometry surface(const TriangleMesh& m, uint32_t tri, const Ray& ray, const PrimHit& hit);
 inline uint32_t primitive_count(const TriangleMesh& m) { return static_cast<uint32_t>(m.triangle_count()); }
 
-// Validation: none here yet (src/scene/validate.cpp checks MeshDesc).
+// A single triangle (a scene file's "triangle"): a one-triangle mesh.
+inline TriangleMesh make_triangle(Vec3f v0, Vec3f v1, Vec3f v2) {
+  TriangleMesh m;
+  m.positions = {v0, v1, v2};
+  m.indices = {0, 1, 2};
+  return m;
+}
+
+// Validation: index count a multiple of 3, indices in range, finite positions,
+// one normal and uv per vertex (or none); problems on the field "file" (the
+// mesh file, if any). A file's "triangle" (checker type "triangle") only warns
+// when it has zero area.
 void check(const TriangleMesh& m, ShapeChecker& c);
 
 // Sampling by area: a triangle in proportion to its area.

@@ -142,6 +142,10 @@ inline uint32_t primitive_count(const Quad&) { return 1; }
 // around a convex quad; a quad of zero area is only a warning.
 inline void check(const Quad& q, ShapeChecker& c) {
   const Vec3f* v = q.v;
+  if (!is_finite(v[0]) || !is_finite(v[1]) || !is_finite(v[2]) || !is_finite(v[3])) {
+    c.unusable("", "quad has a non-finite corner");
+    return;
+  }
   float size = 0.0f;
   for (int i = 0; i < 4; ++i) size = std::max(size, length(v[(i + 1) % 4] - v[i]));
   // Reference normal: the largest corner cross product (a bow-tie's corners

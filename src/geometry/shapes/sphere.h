@@ -21,6 +21,12 @@ struct Sphere {
   Vec3f pole{0, 1, 0};  // unit; texture-mapping axis
 };
 
+// A sphere as a scene file gives it: the pole scaled to unit length (a zero
+// pole is kept as it is, for check() to report).
+inline Sphere make_sphere(Vec3f center, float radius, Vec3f pole) {
+  return Sphere{center, radius, length(pole) > 0 ? normalize(pole) : pole};
+}
+
 namespace sphere_detail {
 
 inline Vec3f unit_pole(Vec3f pole) {
@@ -102,6 +108,7 @@ inline uint32_t primitive_count(const Sphere&) { return 1; }
 
 // Validation (fields as the native format names them).
 inline void check(const Sphere& s, ShapeChecker& c) {
+  if (!is_finite(s.center) || !std::isfinite(s.radius)) c.unusable("", "sphere has a non-finite centre or radius");
   if (!(s.radius > 0.0f)) c.error("radius", "radius must be > 0, got " + format_number(s.radius));
   if (length(s.pole) == 0.0f) c.error("pole", "sphere pole must not be zero");
 }

@@ -130,8 +130,6 @@ bool ShapeLight::sample(Vec3f p, Vec2f u, LightSample& s) const {
   if (!(area_ > 0.0f)) return false;
   // A one-sided flat light sends nothing to the points behind its plane.
   if (parallelogram_ && !material_->two_sided && !(dot(p - para_.p0, para_.n) > 0.0f)) return false;
-  s.delta = false;
-  s.infinite = false;
   const auto* sphere = std::get_if<Sphere>(shape_);
   SphericalRectangle rect;
   if (sphere && length_squared(p - sphere->center) > sphere->radius * sphere->radius * 1.0001f) {
