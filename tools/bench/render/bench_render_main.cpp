@@ -15,6 +15,7 @@
 // docs/performance.md and writes docs/bench/cornell.* and docs/bench/render.*.
 #include <algorithm>
 #include <fstream>
+#include <functional>
 #include <optional>
 #include <iostream>
 #include <string>
@@ -49,6 +50,22 @@ std::optional<LoadedScene> load_for(const Common& c, AccelKind accel, WorkerPool
   return load(c.scene, accel, overrides, pool);
 }
 
+// Measures every backend of `c` in turn, each with a worker pool and scene of
+// its own, and writes the JSON array of their records: scene_json and the
+// thread count, then what `measure` adds. 1 if a scene fails to load or
+// `measure` returns false (after printing why).
+using Measure = std::function<bool(const std::string& accel_name, LoadedScene& s, WorkerPool& pool,
+                                   ordered_json& record)>;
+int measure_each_backend(const Common& c, const Measure& measure);
+
+// The reference image at `path`; false after printing why.
+bool read_reference(const std::string& path, Image& reference) {
+  std::string error;
+  if (read_image(path, reference, error)) return true;
+  std::cerr << "bench_render: " << error << '\n';
+  return false;
+}
+
 double median(std::vector<double> v) {
   if (v.empty()) return -1;
   std::sort(v.begin(), v.end());
@@ -81,29 +98,36 @@ ordered_json scene_json(const LoadedScene& s, AccelKind accel) {
           {"build_seconds", s.build_seconds}};
 }
 
-int run_time_to_error(const Common& c, const std::string& reference_path, int pass_spp, double rmse, double relmse,
-                      double max_seconds) {
-  Image reference;
-  std::string error;
-  if (!read_image(reference_path, reference, error)) {
-    std::cerr << "bench_render: " << error << '\n';
-    return 1;
-  }
+int measure_each_backend(const Common& c, const Measure& measure) {
   ordered_json out = ordered_json::array();
   for (const std::string& name : c.accels) {
     AccelKind accel;
     parse_accel_kind(name, accel);
     WorkerPool pool(c.threads);
-    auto s = load_for(c, accel, pool);
+    std::optional<LoadedScene> s = load_for(c, accel, pool);
     if (!s) return 1;
-    if (s->scene->width != reference.width || s->scene->height != reference.height) {
+    ordered_json j = scene_json(*s, accel);
+    j["threads"] = pool.threads();
+    if (!measure(name, *s, pool, j)) return 1;
+    out.push_back(std::move(j));
+  }
+  return emit(out, c.json) ? 0 : 1;
+}
+
+int run_time_to_error(const Common& c, const std::string& reference_path, int pass_spp, double rmse, double relmse,
+                      double max_seconds) {
+  Image reference;
+  if (!read_reference(reference_path, reference)) return 1;
+  return measure_each_backend(c, [&](const std::string& name, LoadedScene& s, WorkerPool& pool,
+                                     ordered_json& j) {
+    if (s.scene->width != reference.width || s.scene->height != reference.height) {
       std::cerr << "bench_render: the reference is " << reference.width << "x" << reference.height << '\n';
-      return 1;
+      return false;
     }
     ordered_json runs = ordered_json::array();
     std::vector<double> t_rmse, t_relmse;
     for (int r = 0; r < c.runs; ++r) {
-      const TimeToError t = time_to_error(*s, reference, pool, pass_spp, rmse, relmse, max_seconds, 1000 + r);
+      const TimeToError t = time_to_error(s, reference, pool, pass_spp, rmse, relmse, max_seconds, 1000 + r);
       t_rmse.push_back(t.seconds_to_rmse);
       t_relmse.push_back(t.seconds_to_relmse);
       ordered_json trace = ordered_json::array();
@@ -121,8 +145,6 @@ int run_time_to_error(const Common& c, const std::string& reference_path, int pa
       std::cerr << name << " run " << r << ": rmse < " << rmse << " after " << t.seconds_to_rmse << " s ("
                 << t.spp_to_rmse << " spp), relmse < " << relmse << " after " << t.seconds_to_relmse << " s\n";
     }
-    ordered_json j = scene_json(*s, accel);
-    j["threads"] = pool.threads();
     j["reference"] = reference_path;
     j["pass_spp"] = pass_spp;
     j["target_rmse"] = rmse;
@@ -131,35 +153,26 @@ int run_time_to_error(const Common& c, const std::string& reference_path, int pa
     j["median_seconds_to_rmse"] = median(t_rmse);
     j["median_seconds_to_relmse"] = median(t_relmse);
     j["runs"] = runs;
-    out.push_back(j);
-  }
-  return emit(out, c.json) ? 0 : 1;
+    return true;
+  });
 }
 
 int run_compare(const Common& c, const std::string& reference_path, int spp, int pass_spp, uint64_t seed,
                 const std::string& output, const std::string& map_output) {
   Image reference;
-  std::string error;
-  if (!read_image(reference_path, reference, error)) {
-    std::cerr << "bench_render: " << error << '\n';
-    return 1;
-  }
-  ordered_json out = ordered_json::array();
-  for (const std::string& name : c.accels) {
-    AccelKind accel;
-    parse_accel_kind(name, accel);
-    WorkerPool pool(c.threads);
-    auto s = load_for(c, accel, pool);
-    if (!s) return 1;
+  if (!read_reference(reference_path, reference)) return 1;
+  return measure_each_backend(c, [&](const std::string& name, LoadedScene& s, WorkerPool& pool,
+                                     ordered_json& j) {
     double seconds = 0;
     const std::string path = c.accels.size() > 1 && !output.empty() ? name + "-" + output : output;
     Image image;
-    const ImageError e = converge(*s, reference, pool, spp, pass_spp, seed, path, &seconds, &image);
+    std::string error;
+    const ImageError e = converge(s, reference, pool, spp, pass_spp, seed, path, &seconds, &image);
     if (!map_output.empty()) {
       const std::string map_path = c.accels.size() > 1 ? name + "-" + map_output : map_output;
       if (!write_image(map_path, error_map(image, reference), DisplaySettings{}, error)) {
         std::cerr << "bench_render: " << error << '\n';
-        return 1;
+        return false;
       }
     }
     ordered_json regions = ordered_json::array();
@@ -169,8 +182,6 @@ int run_compare(const Common& c, const std::string& reference_path, int spp, int
       std::cerr << "  " << r.name << ": " << 100 * r.pixel_share << "% of pixels, " << 100 * r.error_share
                 << "% of the squared error, rmse " << r.rmse << '\n';
     }
-    ordered_json j = scene_json(*s, accel);
-    j["threads"] = pool.threads();
     j["reference"] = reference_path;
     j["spp"] = spp;
     j["seed"] = seed;
@@ -181,64 +192,47 @@ int run_compare(const Common& c, const std::string& reference_path, int spp, int
     j["error_by_region"] = regions;
     std::cerr << name << ": " << spp << " spp, rmse " << e.rmse << ", relmse " << e.relmse << ", mean ratio "
               << e.mean_ratio[0] << " " << e.mean_ratio[1] << " " << e.mean_ratio[2] << '\n';
-    out.push_back(j);
-  }
-  return emit(out, c.json) ? 0 : 1;
+    return true;
+  });
 }
 
 int run_throughput(const Common& c, int spp) {
-  ordered_json out = ordered_json::array();
-  for (const std::string& name : c.accels) {
-    AccelKind accel;
-    parse_accel_kind(name, accel);
-    WorkerPool pool(c.threads);
-    auto s = load_for(c, accel, pool);
-    if (!s) return 1;
-    throughput(*s, pool, 1, 1);  // warm-up: page in the scene and the code
+  return measure_each_backend(c, [&](const std::string& name, LoadedScene& s, WorkerPool& pool,
+                                     ordered_json& j) {
+    throughput(s, pool, 1, 1);  // warm-up: page in the scene and the code
     std::vector<double> rates;
-    for (int r = 0; r < c.runs; ++r) rates.push_back(throughput(*s, pool, spp, 2000 + r).samples_per_second);
-    ordered_json j = scene_json(*s, accel);
-    j["threads"] = pool.threads();
+    for (int r = 0; r < c.runs; ++r) rates.push_back(throughput(s, pool, spp, 2000 + r).samples_per_second);
     j["spp"] = spp;
     j["samples_per_second"] = rates;
     j["median_samples_per_second"] = median(rates);
     std::cerr << name << ": " << median(rates) << " samples/s\n";
-    out.push_back(j);
-  }
-  return emit(out, c.json) ? 0 : 1;
+    return true;
+  });
 }
 
 int run_profile(const Common& c, int spp) {
-  ordered_json out = ordered_json::array();
-  for (const std::string& name : c.accels) {
-    AccelKind accel;
-    parse_accel_kind(name, accel);
-    WorkerPool pool(c.threads);
-    auto s = load_for(c, accel, pool);
-    if (!s) return 1;
-    throughput(*s, pool, 1, 1);  // warm-up
+  return measure_each_backend(c, [&](const std::string& name, LoadedScene& s, WorkerPool& pool,
+                                     ordered_json& j) {
+    throughput(s, pool, 1, 1);  // warm-up
     std::vector<Profile> runs;
-    for (int r = 0; r < c.runs; ++r) runs.push_back(profile(*s, pool, spp, 3000 + r));
+    for (int r = 0; r < c.runs; ++r) runs.push_back(profile(s, pool, spp, 3000 + r));
     std::vector<double> share, render, traversal;
     for (const Profile& p : runs) {
       share.push_back(p.traversal_share());
       render.push_back(p.render_seconds);
       traversal.push_back(p.traversal_seconds);
     }
-    ordered_json j = scene_json(*s, accel);
-    j["threads"] = pool.threads();
     j["spp"] = spp;
     j["method"] = "record every ray of a render, replay them through the accelerator alone";
     j["rays"] = runs.front().rays;
     j["shadow_rays"] = runs.front().shadow_rays;
-    j["rays_per_sample"] = static_cast<double>(runs.front().rays) / (static_cast<double>(s->scene->width) * s->scene->height * spp);
+    j["rays_per_sample"] = static_cast<double>(runs.front().rays) / (static_cast<double>(s.scene->width) * s.scene->height * spp);
     j["median_render_seconds"] = median(render);
     j["median_traversal_seconds"] = median(traversal);
     j["median_traversal_share"] = median(share);
     std::cerr << name << ": traversal " << 100 * median(share) << "% of render time\n";
-    out.push_back(j);
-  }
-  return emit(out, c.json) ? 0 : 1;
+    return true;
+  });
 }
 
 void add_common(CLI::App& app, Common& c) {
