@@ -65,13 +65,13 @@ bool load_mesh_file(ImportContext& ctx, const Sourced<std::string>& written, Sha
   std::string extension = fs::path(*resolved).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  MeshData ply;
+  TriangleMesh mesh;
   const auto start = Clock::now();
   std::string error;
   bool loaded = false;
   if (extension == ".obj") {
-    loaded = load_obj(*resolved, ply, error);
-  } else if (PlyError ply_error; !(loaded = load_ply(*resolved, ply, ply_error))) {
+    loaded = load_obj(*resolved, mesh, error);
+  } else if (PlyError ply_error; !(loaded = load_ply(*resolved, mesh, ply_error))) {
     error = ply_error.message;
     if (ply_error.line > 0) error += " (header line " + std::to_string(ply_error.line) + ")";
   }
@@ -80,11 +80,7 @@ bool load_mesh_file(ImportContext& ctx, const Sourced<std::string>& written, Sha
     ctx.diag().error(written.where, "cannot read mesh '" + written.value + "': " + error);
     return false;
   }
-  TriangleMesh& mesh = shape.geometry.emplace<TriangleMesh>();
-  mesh.positions = std::move(ply.positions);
-  mesh.indices = std::move(ply.indices);
-  mesh.normals = std::move(ply.normals);
-  mesh.uvs = std::move(ply.uvs);
+  shape.geometry = std::move(mesh);
   return true;
 }
 

@@ -39,7 +39,7 @@ bool check_obj_file(const std::string& path, std::string& error) {
 
 }  // namespace
 
-bool load_obj(const std::string& path, MeshData& out, std::string& error) {
+bool load_obj(const std::string& path, TriangleMesh& out, std::string& error) {
   if (!check_obj_file(path, error)) return false;
 
   Assimp::Importer importer;
@@ -74,7 +74,7 @@ bool load_obj(const std::string& path, MeshData& out, std::string& error) {
     return false;
   }
 
-  out = MeshData{};
+  out = TriangleMesh{};
   out.positions.reserve(vertices + 1);  // one spare: the Embree backend can share the buffer
   out.indices.reserve(3 * triangles);
   if (normals) out.normals.reserve(vertices);

@@ -9,18 +9,15 @@
 #include <cstdint>
 #include <string>
 
-#include "scene/ply.h"
+#include "geometry/shapes/mesh.h"
 
 namespace pt {
-
-// Positions, indices (3 per triangle), and normals and uvs (each empty or one per vertex).
-using MeshData = PlyMesh;
 
 // Files larger than this are refused before they are read.
 inline constexpr std::uintmax_t kMaxObjFileBytes = std::uintmax_t{2} << 30;  // 2 GiB
 
 // Returns true on success. On failure `error` says what is wrong (without the
 // path, which the caller adds, as for load_ply) and `out` is unspecified.
-bool load_obj(const std::string& path, MeshData& out, std::string& error);
+bool load_obj(const std::string& path, TriangleMesh& out, std::string& error);
 
 }  // namespace pt

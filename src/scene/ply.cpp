@@ -378,7 +378,7 @@ std::vector<int> vertex_roles(const Element& e, bool& has_normals, bool& has_uvs
 }
 
 template <class Reader>
-bool read_vertices(Reader& r, const Element& e, PlyMesh& out, PlyError& error) {
+bool read_vertices(Reader& r, const Element& e, TriangleMesh& out, PlyError& error) {
   bool has_normals = false, has_uvs = false;
   const std::vector<int> roles = vertex_roles(e, has_normals, has_uvs);
   for (int axis = 0; axis < 3; ++axis) {
@@ -421,7 +421,7 @@ bool read_vertices(Reader& r, const Element& e, PlyMesh& out, PlyError& error) {
 }
 
 template <class Reader>
-bool read_faces(Reader& r, const Element& e, uint64_t vertex_count, PlyMesh& out, PlyError& error) {
+bool read_faces(Reader& r, const Element& e, uint64_t vertex_count, TriangleMesh& out, PlyError& error) {
   int list = kNoRole;
   for (std::size_t k = 0; k < e.properties.size(); ++k) {
     const Property& p = e.properties[k];
@@ -471,7 +471,7 @@ bool read_faces(Reader& r, const Element& e, uint64_t vertex_count, PlyMesh& out
 }
 
 template <class Reader>
-bool read_body(Reader& r, const Header& h, PlyMesh& out, PlyError& error) {
+bool read_body(Reader& r, const Header& h, TriangleMesh& out, PlyError& error) {
   uint64_t vertex_count = 0;
   for (const Element& e : h.elements) {
     if (e.name == "vertex") vertex_count = e.count;
@@ -500,8 +500,8 @@ bool read_body(Reader& r, const Header& h, PlyMesh& out, PlyError& error) {
 
 }  // namespace
 
-bool parse_ply(const std::string& bytes, PlyMesh& out, PlyError& error) {
-  out = PlyMesh{};
+bool parse_ply(const std::string& bytes, TriangleMesh& out, PlyError& error) {
+  out = TriangleMesh{};
   error = PlyError{};
   Header h;
   if (!parse_header(bytes, h, error)) return false;
@@ -546,7 +546,7 @@ bool parse_ply(const std::string& bytes, PlyMesh& out, PlyError& error) {
   return read_body(reader, h, out, error);
 }
 
-bool load_ply(const std::string& path, PlyMesh& out, PlyError& error) {
+bool load_ply(const std::string& path, TriangleMesh& out, PlyError& error) {
   if (const std::string why = why_unreadable(path); !why.empty())
     return fail(error, "cannot open '" + path + "': " + why);
   std::ifstream in(path, std::ios::binary);

@@ -8,24 +8,19 @@
 #include <string>
 #include <vector>
 
-#include "core/math.h"
+#include "geometry/shapes/mesh.h"
 
 namespace pt {
-
-struct PlyMesh {
-  std::vector<Vec3f> positions;
-  std::vector<uint32_t> indices;  // 3 per triangle
-  std::vector<Vec3f> normals;     // empty or one per vertex
-  std::vector<Vec2f> uvs;         // empty or one per vertex
-};
 
 struct PlyError {
   std::string message;  // what is wrong
   int line = 0;         // 1-based header line for header errors, 0 otherwise
 };
 
-// Returns true on success. On failure fills `error` and leaves `out` unspecified.
-bool load_ply(const std::string& path, PlyMesh& out, PlyError& error);
-bool parse_ply(const std::string& bytes, PlyMesh& out, PlyError& error);
+// Fills a TriangleMesh (positions, 3 indices per triangle, normals and uvs each
+// empty or one per vertex). Returns true on success. On failure fills `error`
+// and leaves `out` unspecified.
+bool load_ply(const std::string& path, TriangleMesh& out, PlyError& error);
+bool parse_ply(const std::string& bytes, TriangleMesh& out, PlyError& error);
 
 }  // namespace pt

@@ -53,7 +53,7 @@ f 2/1/1 5/2/1 3/3/1
 )";
 
 TEST_F(ObjFiles, TriangulatesAndMergesParts) {
-  MeshData m;
+  TriangleMesh m;
   std::string error;
   ASSERT_TRUE(load_obj(write("a.obj", kTwoParts), m, error)) << error;
   EXPECT_EQ(m.indices.size(), 9u);  // the quad as 2 triangles, and 1
@@ -79,7 +79,7 @@ TEST_F(ObjFiles, TriangulatesAndMergesParts) {
 }
 
 TEST_F(ObjFiles, DropsNormalsAndUvsThatOnlySomePartsHave) {
-  MeshData m;
+  TriangleMesh m;
   std::string error;
   ASSERT_TRUE(load_obj(write("b.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvn 0 0 1\n"
                                       "g a\nf 1//1 2//1 3//1\ng b\nf 2 4 3\n"),
@@ -91,7 +91,7 @@ TEST_F(ObjFiles, DropsNormalsAndUvsThatOnlySomePartsHave) {
 }
 
 TEST_F(ObjFiles, ReportsWhatIsWrong) {
-  MeshData m;
+  TriangleMesh m;
   std::string error;
   EXPECT_FALSE(load_obj((dir_ / "missing.obj").string(), m, error));
   EXPECT_NE(error.find("cannot read"), std::string::npos) << error;
@@ -136,7 +136,7 @@ TEST_F(ObjFiles, NativeSceneReadsAnObjMesh) {
 TEST(ObjAssets, StanfordBunny) {
   const fs::path bunny = fs::path(PT_SHARED_DIR) / "assets" / "meshes" / "stanford-bunny.obj";
   if (!fs::exists(bunny)) GTEST_SKIP() << bunny << " is not available";
-  MeshData m;
+  TriangleMesh m;
   std::string error;
   ASSERT_TRUE(load_obj(bunny.string(), m, error)) << error;
   EXPECT_EQ(m.indices.size(), 3u * 69451u);

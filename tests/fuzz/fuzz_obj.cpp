@@ -22,7 +22,7 @@ int obj_one_input(const uint8_t* data, std::size_t size) {
     out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
     require(static_cast<bool>(out), "the fuzz input can be written to a temporary file");
   }
-  MeshData mesh;
+  TriangleMesh mesh;
   std::string error;
   const bool ok = load_obj(path, mesh, error);
   std::remove(path.c_str());

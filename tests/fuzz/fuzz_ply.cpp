@@ -9,7 +9,7 @@ namespace pt::fuzz {
 
 int ply_one_input(const uint8_t* data, std::size_t size) {
   const std::string bytes(reinterpret_cast<const char*>(data), size);
-  PlyMesh mesh;
+  TriangleMesh mesh;
   PlyError error;
   if (!parse_ply(bytes, mesh, error)) {
     require(!error.message.empty(), "a refused PLY file says why");

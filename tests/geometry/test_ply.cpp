@@ -36,7 +36,7 @@ class Bytes {
   std::string data_;
 };
 
-bool parse(const std::string& text, PlyMesh& mesh, PlyError& error) { return parse_ply(text, mesh, error); }
+bool parse(const std::string& text, TriangleMesh& mesh, PlyError& error) { return parse_ply(text, mesh, error); }
 
 const char* kAsciiQuadAndTriangle =
     "ply\n"
@@ -63,7 +63,7 @@ const char* kAsciiQuadAndTriangle =
     "3 1 4 2\n";
 
 TEST(Ply, AsciiWithNormalsUvsAndAPolygon) {
-  PlyMesh m;
+  TriangleMesh m;
   PlyError e;
   ASSERT_TRUE(parse(kAsciiQuadAndTriangle, m, e)) << e.message;
   ASSERT_EQ(m.positions.size(), 5u);
@@ -82,7 +82,7 @@ TEST(Ply, CrLfLinesAndExtraWhitespace) {
       "ply\r\nformat ascii 1.0\r\nelement vertex 3\r\nproperty float x\r\nproperty float y\r\n"
       "property float z\r\nelement face 1\r\nproperty list uchar uint vertex_index\r\nend_header\r\n"
       "0 0 0\r\n1 0 0\r\n  0   1\t0\r\n3 0 1 2";
-  PlyMesh m;
+  TriangleMesh m;
   PlyError e;
   ASSERT_TRUE(parse(text, m, e)) << e.message;
   EXPECT_EQ(m.indices.size(), 3u);
@@ -128,7 +128,7 @@ std::string binary_file(bool big_endian) {
 
 TEST(Ply, BinaryLittleAndBigEndianSkipUnknownProperties) {
   for (bool big : {false, true}) {
-    PlyMesh m;
+    TriangleMesh m;
     PlyError e;
     ASSERT_TRUE(parse(binary_file(big), m, e)) << e.message;
     ASSERT_EQ(m.positions.size(), 4u);
@@ -147,7 +147,7 @@ TEST(Ply, TextureUvAliases) {
       "property float y\nproperty float z\nproperty float texture_v\n"
       "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
       "0.1 0 0 0 0.2\n0.3 1 0 0 0.4\n0.5 0 1 0 0.6\n3 0 1 2\n";
-  PlyMesh m;
+  TriangleMesh m;
   PlyError e;
   ASSERT_TRUE(parse(text, m, e)) << e.message;
   ASSERT_EQ(m.uvs.size(), 3u);
@@ -195,7 +195,7 @@ TEST(Ply, ErrorsNameTheProblemAndTheHeaderLine) {
        "no face element", 0},
   };
   for (const Bad& c : cases) {
-    PlyMesh m;
+    TriangleMesh m;
     PlyError e;
     EXPECT_FALSE(parse(c.text, m, e)) << c.text;
     EXPECT_NE(e.message.find(c.message_part), std::string::npos) << "got: " << e.message;
@@ -215,7 +215,7 @@ TEST(Ply, BodyErrorsAreReported) {
       {ascii_header("3", "1") + "0 0 0\n1 0 0\n0 1 0\n9 0 1 2\n", "ends inside face 0 of 1", 0},
   };
   for (const Bad& c : cases) {
-    PlyMesh m;
+    TriangleMesh m;
     PlyError e;
     EXPECT_FALSE(parse(c.text, m, e)) << c.text;
     EXPECT_NE(e.message.find(c.message_part), std::string::npos) << "got: " << e.message;
@@ -227,7 +227,7 @@ TEST(Ply, TruncatedBinaryFilesAreReportedAtEveryLength) {
   const std::string full = binary_file(false);
   const std::size_t body = full.find("end_header\n") + 11;
   for (std::size_t n = body; n < full.size() - 8; ++n) {  // the trailing edge element is 8 bytes
-    PlyMesh m;
+    TriangleMesh m;
     PlyError e;
     EXPECT_FALSE(parse(full.substr(0, n), m, e)) << n;
     EXPECT_FALSE(e.message.empty());
@@ -240,7 +240,7 @@ TEST(Ply, HugeListLengthsAreRefusedBeforeAllocation) {
   Bytes b(false);
   for (int i = 0; i < 9; ++i) b.put(static_cast<float>(i % 2));
   b.put(static_cast<uint32_t>(0xFFFFFFFFu)).put(0u).put(1u).put(2u);
-  PlyMesh m;
+  TriangleMesh m;
   PlyError e;
   EXPECT_FALSE(parse(text + b.str(), m, e));
   EXPECT_NE(e.message.find("ends inside face 0"), std::string::npos) << e.message;
@@ -263,7 +263,7 @@ TEST(Ply, RandomCorruptionNeverCrashesAndNeverYieldsBadIndices) {
         }
         if (s.empty()) break;
       }
-      PlyMesh m;
+      TriangleMesh m;
       PlyError e;
       if (parse(s, m, e)) {
         ++accepted;
@@ -284,7 +284,7 @@ TEST(Ply, LoadsFromDiskAndReportsMissingFiles) {
     std::ofstream out(path, std::ios::binary);
     out << binary_file(true);
   }
-  PlyMesh m;
+  TriangleMesh m;
   PlyError e;
   ASSERT_TRUE(load_ply(path.string(), m, e)) << e.message;
   EXPECT_EQ(m.indices.size(), 6u);
@@ -296,7 +296,7 @@ TEST(Ply, LoadsFromDiskAndReportsMissingFiles) {
 TEST(Ply, LoadsTheStanfordDragonIfPresent) {
   const std::string path = std::string(PT_SHARED_DIR) + "/assets/meshes/dragon_vrip_res4.ply";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not present";
-  PlyMesh m;
+  TriangleMesh m;
   PlyError e;
   ASSERT_TRUE(load_ply(path, m, e)) << e.message;
   EXPECT_GT(m.positions.size(), 1000u);

@@ -71,21 +71,16 @@ void count(BenchScene& s) {
 }
 
 bool load_mesh_file(const std::string& path, TriangleMesh& mesh, std::string& error) {
-  MeshData data;
   if (lower_extension(path) == ".obj") {
-    if (!load_obj(path, data, error)) {
+    if (!load_obj(path, mesh, error)) {
       error = "cannot read '" + path + "': " + error;
       return false;
     }
-  } else if (PlyError e; !load_ply(path, data, e)) {
+  } else if (PlyError e; !load_ply(path, mesh, e)) {
     error = "cannot read '" + path + "': " + e.message;
     return false;
   }
-  mesh.positions = std::move(data.positions);
   mesh.positions.reserve(mesh.positions.size() + 1);  // lets Embree share the buffer (no copy counted)
-  mesh.indices = std::move(data.indices);
-  mesh.normals = std::move(data.normals);
-  mesh.uvs = std::move(data.uvs);
   return true;
 }
 
