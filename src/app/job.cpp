@@ -19,7 +19,7 @@ SettingsOverrides settings_overrides(const Options& o) {
   s.max_depth = o.max_depth;
   s.seed = o.seed;
   s.filter = o.filter;
-  s.sampler = parse_sampler_type(o.sampler).value_or(SamplerType::Sobol);
+  s.sampler = parse_sampler_type(o.sampler).value_or(s.sampler);  // CLI11 checked the name
   s.clamp = o.clamp;
   s.width = o.width;
   s.height = o.height;

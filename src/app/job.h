@@ -63,6 +63,9 @@ struct RunFigures {
   int64_t samples = 0, rays = 0;  // pixel samples and rays (the progress monitor's counts)
   int threads = 0;
   int signal = 0;  // the signal that stopped the render, or 0
+
+  double samples_per_second() const { return render_s > 0 ? static_cast<double>(samples) / render_s : 0.0; }
+  double rays_per_second() const { return render_s > 0 ? static_cast<double>(rays) / render_s : 0.0; }
 };
 
 // The command line's own checks before the scene is read (an output is

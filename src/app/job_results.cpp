@@ -64,9 +64,9 @@ RunRecord run_record(const Options& o, const Job& job, const RenderScene& scene,
   record.primitive_count = stats.primitive_count;
   record.timings = phase_timings(f.parse_s, f.build_s, f.render_s, f.write_s, job.desc, scene);
   record.pixel_samples = f.samples;
-  record.samples_per_second = f.render_s > 0 ? static_cast<double>(f.samples) / f.render_s : 0.0;
+  record.samples_per_second = f.samples_per_second();
   record.rays = f.rays;
-  record.rays_per_second = f.render_s > 0 ? static_cast<double>(f.rays) / f.render_s : 0.0;
+  record.rays_per_second = f.rays_per_second();
   record.memory_estimate_bytes = job.memory.total();
   record.peak_memory_bytes = peak_rss_bytes();
   record.versions = software_versions();
@@ -77,16 +77,14 @@ RunRecord run_record(const Options& o, const Job& job, const RenderScene& scene,
 }
 
 std::string summary_line(const Options& o, const Job& job, const RenderOutcome& outcome, const RunFigures& f) {
-  const double samples_per_s = f.render_s > 0 ? static_cast<double>(f.samples) / f.render_s : 0.0;
-  const double rays_per_s = f.render_s > 0 ? static_cast<double>(f.rays) / f.render_s : 0.0;
   const float clamp = job.settings.integration.clamp;
   std::ostringstream out;
   out << std::fixed << std::setprecision(3) << "wrote " << join(o.outputs, ", ") << " (" << job.settings.width << "x"
       << job.settings.height << ", " << job.settings.integrator_name() << ", " << outcome.spp_done << " spp in "
       << outcome.passes << (outcome.passes == 1 ? " pass, " : " passes, ") << f.threads << " threads"
       << (clamp > 0.0f ? ", clamp " + std::to_string(clamp) : std::string()) << "): parse " << f.parse_s
-      << " s, build " << f.build_s << " s, render " << f.render_s << " s (" << std::setprecision(0) << samples_per_s
-      << " samples/s, " << rays_per_s << " rays/s), write " << std::setprecision(3) << f.write_s << " s\n";
+      << " s, build " << f.build_s << " s, render " << f.render_s << " s (" << std::setprecision(0)
+      << f.samples_per_second() << " samples/s, " << f.rays_per_second() << " rays/s), write " << std::setprecision(3) << f.write_s << " s\n";
   return out.str();
 }
 

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "geometry/shapes.h"
 #include "scene/json_reader.h"
@@ -11,6 +12,13 @@ namespace {
 
 std::string str(double d) { return format_number(d); }
 std::string str(RGB c) { return std::string(1, '[') + str(c.r) + ", " + str(c.g) + ", " + str(c.b) + "]"; }
+
+// What the shape's own rule (geometry/shapes/*.h) finds wrong with it.
+std::vector<ShapeProblem> shape_problems(const ShapeDesc& s) {
+  ShapeChecker checker(s.type, s.file);
+  check(s.geometry, checker);
+  return checker.problems();
+}
 
 class Validator {
  public:
@@ -88,9 +96,7 @@ class Validator {
   // The shape's own rule (geometry/shapes/*.h), each problem reported at the
   // field it names (or at the shape).
   void shape(const ShapeDesc& s) {
-    ShapeChecker checker(s.type, s.file);
-    check(s.geometry, checker);
-    for (const ShapeProblem& p : checker.problems()) {
+    for (const ShapeProblem& p : shape_problems(s)) {
       if (p.warning) diag_.warning(s.at(p.field), p.message);
       else diag_.error(s.at(p.field), p.message);
     }
@@ -133,9 +139,7 @@ bool check_shapes_usable(const SceneDescription& scene, Diagnostics& diag) {
   bool ok = true;
   for (std::size_t i = 0; i < scene.shapes.size(); ++i) {
     const ShapeDesc& s = scene.shapes[i];
-    ShapeChecker checker(s.type, s.file);
-    check(s.geometry, checker);
-    for (const ShapeProblem& p : checker.problems()) {
+    for (const ShapeProblem& p : shape_problems(s)) {
       if (!p.unusable) continue;
       diag.error(s.at(p.field), "shape " + std::to_string(i) + (s.name.empty() ? "" : " ('" + s.name + "')") +
                                     ": " + p.message);

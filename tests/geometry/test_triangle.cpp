@@ -181,7 +181,7 @@ TEST(TriangleMesh, BoundsCoverTheTriangle) {
   TriangleMesh m;
   m.positions = {{0, 0, 0}, {1, 2, 3}, {-1, 5, 0}, {100, 100, 100}};
   m.indices = {0, 1, 2};
-  const Bounds3f b = triangle_bounds(m, 0);
+  const Bounds3f b = bounds(m, 0);
   EXPECT_LE(b.lo.x, -1.0f);
   EXPECT_GE(b.hi.y, 5.0f);
   EXPECT_LT(b.hi.x, 1.01f);

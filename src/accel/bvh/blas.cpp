@@ -131,7 +131,7 @@ Blas build_mesh_blas(const TriangleMesh& mesh, uint32_t object, const BuildSetti
   const auto n = static_cast<uint32_t>(mesh.triangle_count());
   std::vector<PrimRef> refs(n);
   tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, 4096), [&](const tbb::blocked_range<uint32_t>& r) {
-    for (uint32_t i = r.begin(); i != r.end(); ++i) refs[i] = PrimRef{triangle_bounds(mesh, i), i};
+    for (uint32_t i = r.begin(); i != r.end(); ++i) refs[i] = PrimRef{bounds(mesh, i), i};
   });
   const BuildTree tree = build_tree(std::move(refs), sanitise(settings, 4));
   blas.bounds = tree.bounds;

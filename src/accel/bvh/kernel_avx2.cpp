@@ -32,8 +32,9 @@ inline __m128 difference_of_products(__m128 a, __m128 b, __m128 c, __m128 d) {
   return _mm_add_ps(dop, err);
 }
 
-// |x| per lane.
+// |x| per lane, and the largest of |a|, |b|, |c| per lane.
 inline __m128 abs4(__m128 x) { return _mm_and_ps(x, _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff))); }
+inline __m128 max_abs3(__m128 a, __m128 b, __m128 c) { return _mm_max_ps(_mm_max_ps(abs4(a), abs4(b)), abs4(c)); }
 
 // The reference's bound on the error of t (geometry/triangle.cpp: delta_t),
 // from the lanes' largest |x|, |y|, |z| of the sheared vertices, largest |e|
@@ -143,10 +144,8 @@ class Avx2Ops {
     const __m128 azs = _mm_mul_ps(az, shear_[2]), bzs = _mm_mul_ps(bz, shear_[2]), czs = _mm_mul_ps(cz, shear_[2]);
     const __m128 certainly_ahead =
         _mm_and_ps(_mm_and_ps(_mm_cmpgt_ps(azs, zero), _mm_cmpgt_ps(bzs, zero)), _mm_cmpgt_ps(czs, zero));
-    const __m128 delta_t = t_error_bound(_mm_max_ps(_mm_max_ps(abs4(ax), abs4(bx)), abs4(cx)),
-                                         _mm_max_ps(_mm_max_ps(abs4(ay), abs4(by)), abs4(cy)),
-                                         _mm_max_ps(_mm_max_ps(abs4(azs), abs4(bzs)), abs4(czs)),
-                                         _mm_max_ps(_mm_max_ps(abs4(e0), abs4(e1)), abs4(e2)), abs4(det));
+    const __m128 delta_t = t_error_bound(max_abs3(ax, bx, cx), max_abs3(ay, by, cy), max_abs3(azs, bzs, czs),
+                                         max_abs3(e0, e1, e2), abs4(det));
     const uint32_t zero_lanes = static_cast<uint32_t>(_mm_movemask_ps(any_zero));
     const uint32_t hits = static_cast<uint32_t>(
         _mm_movemask_ps(_mm_and_ps(inside, _mm_or_ps(_mm_cmpgt_ps(t, delta_t), certainly_ahead))));

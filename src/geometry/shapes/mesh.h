@@ -24,7 +24,6 @@ bool intersect_triangle(Vec3f p0, Vec3f p1, Vec3f p2, const Ray& ray, PrimHit& h
 
 Bounds3f bounds(const TriangleMesh& m);                 // every referenced vertex
 Bounds3f bounds(const TriangleMesh& m, uint32_t tri);   // one triangle
-inline Bounds3f triangle_bounds(const TriangleMesh& m, uint32_t tri) { return bounds(m, tri); }
 bool intersect(const TriangleMesh& m, uint32_t tri, const Ray& ray, PrimHit& hit);
 SurfaceGeometry surface(const TriangleMesh& m, uint32_t tri, const Ray& ray, const PrimHit& hit);
 inline uint32_t primitive_count(const TriangleMesh& m) { return static_cast<uint32_t>(m.triangle_count()); }

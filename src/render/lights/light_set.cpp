@@ -50,7 +50,7 @@ LightSet::LightSet(std::vector<Light> lights, std::size_t shape_count, float sce
             ++delta_count_;
           } else if constexpr (L::infinite) {
             environment_ = static_cast<int>(i);
-          } else if constexpr (!L::delta) {
+          } else {  // finite and not delta: an area light
             if (shape_light_.empty()) shape_light_.assign(shape_count, -1);
             if (l.shape_id() < shape_count) shape_light_[l.shape_id()] = static_cast<int>(i);
           }
