@@ -19,7 +19,7 @@ void read_camera(ImportContext& ctx, const JsonValue& v) {
   ObjectReader r(ctx.read, v, "camera");
   CameraDesc& cam = ctx.scene.camera;
   cam.where = r.where();
-  read_choice(r, "type", {"pinhole"});
+  cam.type = read_camera_type(r);
   r.read_required("width", ctx.scene.film.width);
   r.read_required("height", ctx.scene.film.height);
   r.read_required("position", cam.position);
@@ -27,6 +27,7 @@ void read_camera(ImportContext& ctx, const JsonValue& v) {
   r.read_required("upVector", cam.up);
   r.read_required("fov", cam.fov_y_deg);   // vertical, degrees
   cam.left_handed = true;                  // image right = up x forward
+  if (cam.type == CameraType::ThinLens) read_lens(ctx, r, cam);  // "finite-aperture": docs/scene-format.md
   // The course never defines "exposure"; its display mapping (DisplayTransform::CgrCourse)
   // is fitted to reference images that all use 0.1, so the value is not applied.
   Sourced<float> exposure;
@@ -41,7 +42,8 @@ void read_camera(ImportContext& ctx, const JsonValue& v) {
 void read_light(ImportContext& ctx, const JsonValue& v, std::size_t index) {
   if (!expect_object(ctx.read, v, "lightsources[" + std::to_string(index) + "]")) return;
   ObjectReader r(ctx.read, v, "light source");
-  if (!accept_point_light(r)) return;
+  if (read_light_type(r, {"pointlight"}) != 0) return;
+  r.set_what("point light");
   PointLightDesc light;
   light.where = r.where();
   r.read_required("position", light.position);
@@ -122,10 +124,10 @@ void read_shape(ImportContext& ctx, const JsonValue& v, std::size_t index) {
     read_corners(r, 3, c);
     shape.geometry = make_triangle(c[0], c[1], c[2]);
   } else {
-    warn_unsupported_type(r, "shape", type, {"sphere", "cylinder", "triangle"});
+    report_unknown_type(r, "shape", type, {"sphere", "cylinder", "triangle"});
     return;
   }
-  finish_legacy_shape(ctx, r, std::move(shape), read_material);
+  finish_legacy_shape(ctx, r, v, std::move(shape), read_material);
 }
 
 }  // namespace
@@ -142,9 +144,11 @@ void import_cgr(ImportContext& ctx) {
     scene.render.integrator = Sourced<std::string>(kIntegrators[mode], mode_at);
   }
   top.read("nbounces", scene.render.max_depth);
+  read_sampling(ctx, top);
   if (const JsonValue* v = top.require("camera")) read_camera(ctx, *v);
   if (const JsonValue* v = top.require("scene")) read_legacy_scene(ctx, *v, read_light, read_shape);
   top.finish();
+  warn_if_unlit(ctx);
 }
 
 }  // namespace pt

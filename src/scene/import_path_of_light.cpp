@@ -2,10 +2,10 @@
 // and docs/scene-format.md): Z-up, "lookat" is a direction, point lights give
 // "id"/"is" with a 1/(4 pi r^2) falloff, "plane" is a quad with named corners,
 // linear display (value * 255).
+#include <cmath>
 #include <string>
 
 #include "scene/importers.h"
-#include "scene/json_lists.h"
 #include "scene/legacy_common.h"
 
 namespace pt {
@@ -13,26 +13,19 @@ namespace {
 
 constexpr float kInv4Pi = 1.0f / (4.0f * kPi);
 
-// A required value that files spell in several ways: exactly one of `keys`
-// must be present (the first is the one the messages name).
-void read_aliased(ObjectReader& r, std::initializer_list<const char*> keys, Sourced<float>& out) {
-  const char* found = nullptr;
-  for (const char* key : keys) {
-    if (!r.get(key)) continue;
-    if (found) {
-      r.context().diag.error(r.context().at(*r.get(key)), std::string("'") + key + "' and '" + found +
-                                                              "' say the same thing; give one of them");
-      r.fail();
-      return;
-    }
-    found = key;
-  }
-  if (!found) {
-    r.require(*keys.begin());
-    r.fail();
+// The view direction "lookat", or (after reporting a zero one) a stand-in
+// that lets validation go on without blaming the camera twice.
+void read_view_direction(ImportContext& ctx, ObjectReader& r, CameraDesc& cam) {
+  Sourced<Vec3f> direction;
+  if (!r.read_required("lookat", direction)) return;
+  if (length(direction.value) == 0.0f) {
+    ctx.diag().error(direction.where, "'lookat' is the camera's view direction in Path of Light files and must "
+                                      "not be zero");
+    const Vec3f any = std::fabs(cam.up.value.x) < 0.9f * length(cam.up.value) ? Vec3f(1, 0, 0) : Vec3f(0, 1, 0);
+    cam.look_at = Sourced<Vec3f>(cam.position.value + any);
     return;
   }
-  r.read(found, out);
+  cam.look_at = Sourced<Vec3f>(cam.position.value + direction.value, direction.where);  // target = position + lookat
 }
 
 void read_camera(ImportContext& ctx, const JsonValue& v) {
@@ -40,42 +33,61 @@ void read_camera(ImportContext& ctx, const JsonValue& v) {
   ObjectReader r(ctx.read, v, "camera");
   CameraDesc& cam = ctx.scene.camera;
   cam.where = r.where();
-  SourceLocation type_at;
-  const int type = read_choice(r, "type", {"pinhole", "thinlens"}, &type_at);
-  if (type == 1) cam.type = CameraType::ThinLens;
+  cam.type = read_camera_type(r);
   r.read_required("width", ctx.scene.film.width);
   r.read_required("height", ctx.scene.film.height);
   r.read_required("fov", cam.fov_y_deg);  // full angle; the course's images are square
   r.read_required("position", cam.position);
-  Sourced<Vec3f> direction;
-  if (r.read_required("lookat", direction))  // a direction: the target is position + lookat
-    cam.look_at = Sourced<Vec3f>(cam.position.value + direction.value, direction.where);
   r.read_required("up", cam.up);
+  read_view_direction(ctx, r, cam);
   cam.left_handed = false;  // image right = forward x up
-  if (cam.type == CameraType::ThinLens) {
-    // No official keys exist: ours first, then the unambiguous spellings seen in
-    // third-party files (pbrt's "focaldistance", snake case). docs/scene-format.md.
-    read_aliased(r, {"lensradius", "lens_radius", "apertureradius", "aperture_radius"}, cam.lens_radius);
-    read_aliased(r, {"focusdistance", "focaldistance", "focus_distance", "focal_distance"}, cam.focus_distance);
-  }
+  if (cam.type == CameraType::ThinLens) read_lens(ctx, r, cam);  // no official keys: docs/scene-format.md
   r.finish();
 }
 
 void read_light(ImportContext& ctx, const JsonValue& v, std::size_t index) {
   if (!expect_object(ctx.read, v, "lightsources[" + std::to_string(index) + "]")) return;
   ObjectReader r(ctx.read, v, "light source");
-  if (!accept_point_light(r)) return;
+  const int type = read_light_type(r, {"pointlight", "arealight"});
+  if (type == 1) return read_area_light(ctx, r);
+  if (type != 0) return;
+  r.set_what("point light");
   PointLightDesc light;
   light.where = r.where();
   r.read_required("position", light.position);
   Sourced<RGB> diffuse, specular;
   // The course shades kd Cd id cos / (4 pi r^2); a native point light of intensity I
   // shades kd Cd I cos / r^2 in the classic integrator, so I = id / (4 pi).
-  if (r.read_required("id", diffuse)) light.intensity = Sourced<RGB>(diffuse.value * kInv4Pi, diffuse.where);
-  if (r.read_required("is", specular))
-    light.specular_intensity = Sourced<RGB>(specular.value * kInv4Pi, specular.where);
+  // "intensity" (the CGR spelling, seen in third-party files) stands for both.
+  if (r.get("intensity") && !r.get("id") && !r.get("is") && r.read("intensity", diffuse)) specular = diffuse;
+  else r.read_required("id", diffuse), r.read_required("is", specular);
+  if (diffuse.where.valid()) light.intensity = Sourced<RGB>(diffuse.value * kInv4Pi, diffuse.where);
+  if (specular.where.valid()) light.specular_intensity = Sourced<RGB>(specular.value * kInv4Pi, specular.where);
   r.finish();
   if (r.ok()) ctx.scene.lights.emplace_back(std::move(light));
+}
+
+// "kt" (transmission) with the index of refraction under "eta", "ior" or
+// "refractiveIndex": the smooth dielectric, whose Fresnel term decides how much
+// is reflected and transmitted (a kt strictly between 0 and 1 cannot be honoured).
+void read_transmission(ImportContext& ctx, ObjectReader& r, MaterialDesc& m) {
+  Sourced<float> kt{0.0f};
+  r.read("kt", kt);
+  const char* ior_key = find_aliased(r, {"eta", "ior", "refractiveIndex", "refractiveindex"});
+  if (ior_key) r.read(ior_key, m.ior);
+  if (!(kt.value > 0.0f)) {
+    if (ior_key && m.ior.where.valid())
+      ctx.diag().warning(m.ior.where, std::string("'") + ior_key + "' has no effect without 'kt' > 0");
+    return;
+  }
+  m.refractive = Sourced<bool>(true, kt.where);
+  if (kt.value < 1.0f)
+    ctx.diag().warning(kt.where, "kt " + format_number(kt.value) + " taken as a fully transparent dielectric: "
+                                 "the share reflected and refracted follows Fresnel's equations");
+  if (!ior_key) {
+    m.ior = Sourced<float>(1.5f, kt.where);
+    ctx.diag().warning(kt.where, "no index of refraction ('eta', 'ior' or 'refractiveIndex'): glass's 1.5 is used");
+  }
 }
 
 // An inline material; returns its index in scene.materials, or -1 if it was bad.
@@ -89,6 +101,7 @@ int read_material(ImportContext& ctx, const JsonValue& v) {
   r.read("specularexponent", m.exponent);
   r.read("diffusecolor", m.diffuse);
   r.read("kr", m.reflectivity);
+  read_transmission(ctx, r, m);
   Sourced<std::string> texture;
   if (r.get("tPath") && r.read("tPath", texture)) m.texture = add_texture(ctx, texture);
   r.allow({"tWidth", "tHeight"});  // the course's claimed image size; the real size is used
@@ -97,35 +110,6 @@ int read_material(ImportContext& ctx, const JsonValue& v) {
   m.name = "material " + std::to_string(ctx.scene.materials.size());
   ctx.scene.materials.push_back(std::move(m));
   return static_cast<int>(ctx.scene.materials.size() - 1);
-}
-
-// "trimesh": inline "vertices" + "faces" (or "indices"), or a PLY path under
-// "mPath", "plyPath" or "filename" (keys seen in third-party files).
-void read_trimesh(ImportContext& ctx, ObjectReader& r, ShapeDesc& shape) {
-  TriangleMesh& m = shape.geometry.emplace<TriangleMesh>();
-  for (const char* key : {"mPath", "plyPath", "filename"}) {
-    if (const JsonValue* v = r.get(key)) {
-      Sourced<std::string> path;
-      if (!read_value(ctx.read, *v, key, path) || !load_mesh_file(ctx, path, shape)) r.fail();
-      return;
-    }
-  }
-  const JsonValue* vertices = r.require("vertices");
-  const JsonValue* faces = r.get("faces");
-  const char* faces_key = "faces";
-  if (!faces) {
-    faces = r.get("indices");
-    faces_key = "indices";
-  }
-  if (!faces) {
-    ctx.diag().error(r.where(), "a trimesh needs 'vertices' and 'faces' (or 'indices'), or a PLY file under "
-                                "'mPath', 'plyPath' or 'filename'");
-    r.fail();
-    return;
-  }
-  if (!vertices || !read_vec3_list(ctx.read, *vertices, "vertices", m.positions) ||
-      !read_index_list(ctx.read, *faces, faces_key, m.positions.size(), /*allow_flat=*/true, m.indices))
-    r.fail();
 }
 
 void read_shape(ImportContext& ctx, const JsonValue& v, std::size_t index) {
@@ -145,22 +129,24 @@ void read_shape(ImportContext& ctx, const JsonValue& v, std::size_t index) {
     shape.geometry = make_sphere(center, shape.field("radius", radius), Vec3f(0, 0, 1));  // the course's world is Z-up
   } else if (type == "plane") {
     Sourced<Vec3f> c[4];  // a planar quad; corners looked up by name (key order is scrambled)
-    read_corners(r, 4, c);
-    shape.geometry = Quad{{c[0], c[1], c[2], c[3]}};
+    if (read_corners(r, 4, c)) {
+      shape.geometry = Quad{{c[0], c[1], c[2], c[3]}};
+      order_quad_corners(ctx, c, std::get<Quad>(shape.geometry));
+    }
   } else if (type == "triangle") {
     Sourced<Vec3f> c[3];
     read_corners(r, 3, c);
     shape.geometry = make_triangle(c[0], c[1], c[2]);
-  } else if (type == "trimesh") {
-    read_trimesh(ctx, r, shape);
+  } else if (type == "trimesh" || type == "mesh") {
+    read_legacy_mesh(ctx, r, v, shape);
   } else {
-    warn_unsupported_type(r, "shape", type, {"sphere", "plane", "triangle", "trimesh"});
+    report_unknown_type(r, "shape", type, {"sphere", "plane", "triangle", "trimesh", "mesh"});
     return;
   }
   Sourced<std::string> id;
   r.read("id", id);
   shape.name = id.value;
-  finish_legacy_shape(ctx, r, std::move(shape), read_material);
+  finish_legacy_shape(ctx, r, v, std::move(shape), read_material);
 }
 
 }  // namespace
@@ -171,9 +157,11 @@ void import_path_of_light(ImportContext& ctx) {
   scene.render.integrator = std::string("whitted");
   ObjectReader top(ctx.read, ctx.doc().root(), "the scene file");
   top.read("nbounces", scene.render.max_depth);
+  read_sampling(ctx, top);
   if (const JsonValue* v = top.require("camera")) read_camera(ctx, *v);
   if (const JsonValue* v = top.require("scene")) read_legacy_scene(ctx, *v, read_light, read_shape);
   top.finish();
+  warn_if_unlit(ctx);
 }
 
 }  // namespace pt

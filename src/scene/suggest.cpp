@@ -47,7 +47,12 @@ std::string closest_match(std::string_view word, const std::vector<std::string>&
   // "ks"); then one edit, two for 6+ characters, three for 12+.
   const int len = static_cast<int>(word.size());
   const int allowed = len <= 2 ? 0 : (len < 6 ? 1 : (len < 12 ? 2 : 3));
-  return !best.empty() && best_distance <= allowed ? best : std::string();
+  if (best.empty() || best_distance > allowed) return {};
+  // In a short key the first letter names what it is about ("tPath" a texture,
+  // "mPath" a mesh; "uv0" a texture coordinate, "v0" a corner): another first
+  // letter is another key, not a typo.
+  if (len < 6 && best_distance > 0 && w[0] != lower(best)[0]) return {};
+  return best;
 }
 
 std::string quoted(std::string_view word) {

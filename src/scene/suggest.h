@@ -12,7 +12,8 @@ namespace pt {
 int edit_distance(std::string_view a, std::string_view b);
 
 // The candidate closest to `word` if it is close enough to be a likely typo
-// (case differences are free), else an empty string.
+// (case differences are free), else an empty string. A word of fewer than 6
+// characters must keep its first letter ("uv0" is not a typo of "v0").
 std::string closest_match(std::string_view word, const std::vector<std::string>& candidates);
 
 // "'word'"

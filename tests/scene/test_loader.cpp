@@ -17,43 +17,8 @@ namespace fs = std::filesystem;
 using test::geometry_of;
 using test::near;
 using test::point_light;
-
-// A fresh folder under the system's temporary directory, removed afterwards.
-class TempDir {
- public:
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() /
-            ("pt-scene-" + std::to_string(::getpid()) + "-" + info->test_suite_name() + "-" + info->name());
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  std::string write(const std::string& relative, const std::string& text) const {
-    const fs::path p = path_ / relative;
-    fs::create_directories(p.parent_path());
-    std::ofstream(p, std::ios::binary) << text;
-    return p.string();
-  }
-  std::string str() const { return path_.string(); }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
-
-// Changes the working directory for the lifetime of the object.
-class ScopedCwd {
- public:
-  explicit ScopedCwd(const fs::path& dir) : old_(fs::current_path()) { fs::current_path(dir); }
-  ~ScopedCwd() { fs::current_path(old_); }
-
- private:
-  fs::path old_;
-};
+using test::ScopedCwd;
+using test::TempDir;
 
 const char* kNativeHeader = R"("format": "pathtracer-scene", "version": 1,
   "camera": { "position": [0, 1, 5], "look_at": [0, 1, 0] })";
@@ -248,7 +213,8 @@ TEST(CourseFormats, PathOfLightTrimeshInlineAndFromPly) {
   const std::string path = dir.write("pol.json", R"({
   "camera": { "type": "pinhole", "width": 8, "height": 8, "fov": 40,
               "position": [0, -5, 1], "lookat": [0, 1, 0], "up": [0, 0, 1] },
-  "scene": { "shapes": [
+  "scene": { "lightsources": [ { "type": "pointlight", "position": [0, 0, 3], "id": [1, 1, 1], "is": [1, 1, 1] } ],
+             "shapes": [
     { "type": "trimesh", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]], "faces": [[0, 1, 2], [2, 1, 3]] },
     { "type": "trimesh", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "indices": [0, 1, 2] },
     { "type": "trimesh", "mPath": "meshes/tri.ply" },
