@@ -53,6 +53,9 @@ Loaded load(const std::string& text, const std::string& path = "course.json") {
   return l;
 }
 
+// A scene of one sphere lit by `light`.
+Loaded load_lit(const std::string& light) { return load(pol(light, kSphere)); }
+
 const MaterialDesc& material_of(const SceneDescription& s, std::size_t shape) {
   return s.materials[static_cast<std::size_t>(s.shapes[shape].material)];
 }
@@ -62,10 +65,9 @@ const MaterialDesc& material_of(const SceneDescription& s, std::size_t shape) {
 // The lamp's radiance: seen face-on from afar it is as bright as the point
 // light of the same "id" (radiant intensity id / 4): L * area = id / 4.
 TEST(CourseAreaLights, QuadCornersBecomeATwoSidedEmissiveQuad) {
-  const Loaded l = load(pol(R"({ "type": "arealight", "v0": [-1, 0, 3], "v1": [1, 0, 3], "v2": [1, 2, 3],
+  const Loaded l = load_lit(R"({ "type": "arealight", "v0": [-1, 0, 3], "v1": [1, 0, 3], "v2": [1, 2, 3],
                                  "v3": [-1, 2, 3], "id": [8, 8, 8], "is": [8, 8, 8], "samples": 16,
-                                 "method": "jittered" })",
-                            kSphere));
+                                 "method": "jittered" })");
   ASSERT_TRUE(l.scene) << l.diag.format();
   EXPECT_EQ(l.diag.all().size(), 0u) << l.diag.format();
   ASSERT_EQ(l.scene->shapes.size(), 2u);
@@ -79,9 +81,8 @@ TEST(CourseAreaLights, QuadCornersBecomeATwoSidedEmissiveQuad) {
 }
 
 TEST(CourseAreaLights, TriangleCornersAndTheIntensityKey) {
-  const Loaded l = load(pol(R"({ "type": "arealight", "v0": [0, 0, 3], "v1": [2, 0, 3], "v2": [0, 2, 3],
-                                 "intensity": [4, 2, 4] })",
-                            kSphere));
+  const Loaded l = load_lit(R"({ "type": "arealight", "v0": [0, 0, 3], "v1": [2, 0, 3], "v2": [0, 2, 3],
+                                 "intensity": [4, 2, 4] })");
   ASSERT_TRUE(l.scene) << l.diag.format();
   EXPECT_EQ(l.diag.all().size(), 0u) << l.diag.format();
   const TriangleMesh& t = geometry_of<TriangleMesh>(*l.scene, 1);
@@ -90,9 +91,8 @@ TEST(CourseAreaLights, TriangleCornersAndTheIntensityKey) {
 }
 
 TEST(CourseAreaLights, ParallelogramFromThreeCornersWarnsWhichCornerIsShared) {
-  const Loaded l = load(pol(R"({ "type": "arealight", "c1": [0, 0, 3], "c2": [1, 0, 3], "c3": [0, 1, 3],
-                                 "id": [1, 1, 1], "is": [1, 1, 1] })",
-                            kSphere));
+  const Loaded l = load_lit(R"({ "type": "arealight", "c1": [0, 0, 3], "c2": [1, 0, 3], "c3": [0, 1, 3],
+                                 "id": [1, 1, 1], "is": [1, 1, 1] })");
   ASSERT_TRUE(l.scene) << l.diag.format();
   EXPECT_TRUE(l.has(Severity::Warning, "c1 the corner between c2 and c3")) << l.diag.format();
   const Quad& q = geometry_of<Quad>(*l.scene, 1);
@@ -103,9 +103,8 @@ TEST(CourseAreaLights, ParallelogramFromThreeCornersWarnsWhichCornerIsShared) {
 }
 
 TEST(CourseAreaLights, CgrStyleRectangleAroundItsPosition) {
-  const Loaded l = load(pol(R"({ "type": "arealight", "position": [0, 1, 3], "u": [2, 0, 0], "v": [0, 1, 0],
-                                 "width": 2, "height": 1, "id": [2, 2, 2], "is": [2, 2, 2] })",
-                            kSphere));
+  const Loaded l = load_lit(R"({ "type": "arealight", "position": [0, 1, 3], "u": [2, 0, 0], "v": [0, 1, 0],
+                                 "width": 2, "height": 1, "id": [2, 2, 2], "is": [2, 2, 2] })");
   ASSERT_TRUE(l.scene) << l.diag.format();
   EXPECT_TRUE(l.has(Severity::Warning, "'position' taken as the centre")) << l.diag.format();
   const Quad& q = geometry_of<Quad>(*l.scene, 1);
@@ -135,19 +134,17 @@ TEST(CourseAreaLights, ShapeIdMakesANamedShapeEmit) {
 }
 
 TEST(CourseAreaLights, WithoutAShapeOrIntensityTheyAreErrors) {
-  const Loaded l = load(pol(R"({ "type": "arealight", "center": [0, 0, 3], "id": [1, 1, 1] })", kSphere));
+  const Loaded l = load_lit(R"({ "type": "arealight", "center": [0, 0, 3], "id": [1, 1, 1] })");
   EXPECT_FALSE(l.scene);
   EXPECT_TRUE(l.has(Severity::Error, "an area light needs its shape")) << l.diag.format();
-  const Loaded dark = load(pol(R"({ "type": "arealight", "v0": [0, 0, 3], "v1": [2, 0, 3], "v2": [0, 2, 3] })",
-                               kSphere));
+  const Loaded dark = load_lit(R"({ "type": "arealight", "v0": [0, 0, 3], "v1": [2, 0, 3], "v2": [0, 2, 3] })");
   EXPECT_FALSE(dark.scene);
   EXPECT_TRUE(dark.has(Severity::Error, "missing key 'id' in area light")) << dark.diag.format();
 }
 
 TEST(CourseAreaLights, DiffuseAndSpecularIntensitiesMustAgree) {
-  const Loaded l = load(pol(R"({ "type": "arealight", "v0": [0, 0, 3], "v1": [2, 0, 3], "v2": [0, 2, 3],
-                                 "id": [1, 1, 1], "is": [2, 2, 2] })",
-                            kSphere));
+  const Loaded l = load_lit(R"({ "type": "arealight", "v0": [0, 0, 3], "v1": [2, 0, 3], "v2": [0, 2, 3],
+                                 "id": [1, 1, 1], "is": [2, 2, 2] })");
   ASSERT_TRUE(l.scene) << l.diag.format();
   EXPECT_TRUE(l.has(Severity::Warning, "'is' differs from 'id'")) << l.diag.format();
 }
@@ -155,7 +152,7 @@ TEST(CourseAreaLights, DiffuseAndSpecularIntensitiesMustAgree) {
 // ---------------------------------------------------------------- lights and types: messages
 
 TEST(CourseMessages, AScenelWithoutLightWarnsThatItWillBeDark) {
-  const Loaded l = load(pol(R"({ "type": "spotlight", "position": [0, 0, 3] })", kSphere));
+  const Loaded l = load_lit(R"({ "type": "spotlight", "position": [0, 0, 3] })");
   ASSERT_TRUE(l.scene) << l.diag.format();
   EXPECT_TRUE(l.has(Severity::Warning, "unsupported light type 'spotlight' (ignored)")) << l.diag.format();
   EXPECT_TRUE(l.has(Severity::Warning, "the scene has no light source")) << l.diag.format();
@@ -204,6 +201,28 @@ TEST(CourseMessages, SuggestionsThatMisledAreGone) {
                                        "'mPath', 'modelpath', 'path' or 'plyPath'"))
       << key.diag.format();
   EXPECT_EQ(key.where("meshFile"), "6:36");
+}
+
+TEST(CourseMessages, PointLightIntensityAndCgrTypes) {
+  // "intensity" stands for both of a Path of Light point light's id and is.
+  const Loaded l = load(pol(R"({ "type": "pointlight", "position": [0, 0, 3], "intensity": [4, 4, 4] })", kSphere));
+  ASSERT_TRUE(l.scene) << l.diag.format();
+  EXPECT_EQ(l.diag.all().size(), 0u) << l.diag.format();
+  const PointLightDesc& p = test::point_light(*l.scene, 0);
+  EXPECT_NEAR(p.intensity.value.r, 1.0f / kPi, 1e-6f);
+  EXPECT_NEAR(p.specular_intensity.value.r, 1.0f / kPi, 1e-6f);
+  // The CGR family: a close type is an error, a far one a warning.
+  const std::string cgr = R"({ "rendermode": "phong",
+  "camera": { "type": "pinhole", "width": 8, "height": 8, "position": [0, 0, 0], "lookAt": [0, 0, 1],
+              "upVector": [0, 1, 0], "fov": 45 },
+  "scene": { "lightsources": [ { "type": "pointlight", "position": [0, 1, 0], "intensity": [1, 1, 1] } ],
+             "shapes": [ { "type": "TYPE", "center": [0, 0, 3], "radius": 1 } ] } })";
+  const Loaded typo = load(std::string(cgr).replace(cgr.find("TYPE"), 4, "cylindre"));
+  EXPECT_FALSE(typo.scene);
+  EXPECT_TRUE(typo.has(Severity::Error, "unknown shape type 'cylindre'; did you mean 'cylinder'?")) << typo.diag.format();
+  const Loaded other = load(std::string(cgr).replace(cgr.find("TYPE"), 4, "torus"));
+  ASSERT_TRUE(other.scene) << other.diag.format();
+  EXPECT_TRUE(other.has(Severity::Warning, "unsupported shape type 'torus' (ignored)")) << other.diag.format();
 }
 
 // ---------------------------------------------------------------- zig-zag quads
