@@ -59,8 +59,16 @@ void read_light(ImportContext& ctx, const JsonValue& v, std::size_t index) {
   // The course shades kd Cd id cos / (4 pi r^2); a native point light of intensity I
   // shades kd Cd I cos / r^2 in the classic integrator, so I = id / (4 pi).
   // "intensity" (the CGR spelling, seen in third-party files) stands for both.
-  if (r.get("intensity") && !r.get("id") && !r.get("is") && r.read("intensity", diffuse)) specular = diffuse;
-  else r.read_required("id", diffuse), r.read_required("is", specular);
+  if (r.get("intensity") && !r.get("id") && !r.get("is")) {
+    if (r.read("intensity", diffuse)) specular = diffuse;
+  } else if (r.get("intensity")) {
+    ctx.diag().error(ctx.read.at(*r.get("intensity")), "'intensity' stands for both 'id' and 'is'; give either it "
+                                                       "or them");
+    r.fail();
+  } else {
+    r.read_required("id", diffuse);
+    r.read_required("is", specular);
+  }
   if (diffuse.where.valid()) light.intensity = Sourced<RGB>(diffuse.value * kInv4Pi, diffuse.where);
   if (specular.where.valid()) light.specular_intensity = Sourced<RGB>(specular.value * kInv4Pi, specular.where);
   r.finish();

@@ -68,7 +68,7 @@ int read_light_type(ObjectReader& r, std::initializer_list<std::string_view> sup
 
 CameraType read_camera_type(ObjectReader& r) {
   Sourced<std::string> type;
-  if (!r.read_required("type", type)) return CameraType::Pinhole;
+  if (!r.get("type") || !r.read("type", type)) return CameraType::Pinhole;  // absent: a pinhole, as before
   if (type.value == "pinhole") return CameraType::Pinhole;
   if (type.value == "thinlens" || type.value == "finite-aperture") return CameraType::ThinLens;
   const std::vector<std::string> names = {"pinhole", "thinlens", "finite-aperture"};

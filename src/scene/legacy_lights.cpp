@@ -46,13 +46,14 @@ RGB radiance_for(const RGB& id, const Shape& geometry) {
 
 // "id" (with "is", which must agree: an emitter has one radiance) or "intensity".
 bool read_intensity(ObjectReader& r, Sourced<RGB>& out) {
-  if (r.get("intensity") && !r.get("id")) return r.read("intensity", out);
+  if (!r.get("id") && !r.get("intensity")) return r.require("id") != nullptr;  // "missing key 'id'"
+  const char* key = find_aliased(r, {"id", "intensity"});
+  if (!key || !r.read(key, out)) return false;
   Sourced<RGB> specular;
-  if (!r.read_required("id", out)) return false;
   if (r.read("is", specular) && specular.where.valid() &&
       (specular.value.r != out.value.r || specular.value.g != out.value.g || specular.value.b != out.value.b)) {
-    r.context().diag.warning(specular.where, "an area light has a single emission: 'is' differs from 'id' and "
-                                             "is not used (the emission follows 'id')");
+    r.context().diag.warning(specular.where, "an area light has a single emission: 'is' differs from '" +
+                                                 std::string(key) + "' and is not used");
   }
   return true;
 }

@@ -211,6 +211,20 @@ TEST(CourseMessages, PointLightIntensityAndCgrTypes) {
   const PointLightDesc& p = test::point_light(*l.scene, 0);
   EXPECT_NEAR(p.intensity.value.r, 1.0f / kPi, 1e-6f);
   EXPECT_NEAR(p.specular_intensity.value.r, 1.0f / kPi, 1e-6f);
+  // Both spellings at once: an error.
+  const Loaded both = load_lit(R"({ "type": "pointlight", "position": [0, 0, 3], "intensity": [4, 4, 4],
+                                    "id": [1, 1, 1], "is": [1, 1, 1] })");
+  EXPECT_FALSE(both.scene);
+  EXPECT_TRUE(both.has(Severity::Error, "'intensity' stands for both 'id' and 'is'")) << both.diag.format();
+  const Loaded area = load_lit(R"({ "type": "arealight", "v0": [0, 0, 3], "v1": [2, 0, 3], "v2": [0, 2, 3],
+                                    "intensity": [4, 4, 4], "id": [1, 1, 1] })");
+  EXPECT_FALSE(area.scene);
+  EXPECT_TRUE(area.has(Severity::Error, "say the same thing")) << area.diag.format();
+  // A camera without a type is a pinhole, as before.
+  std::string text = pol(kPointLight, kSphere);
+  const Loaded untyped = load(text.replace(text.find(R"("type": "pinhole", )"), 19, ""));
+  ASSERT_TRUE(untyped.scene) << untyped.diag.format();
+  EXPECT_EQ(untyped.diag.all().size(), 0u) << untyped.diag.format();
   // The CGR family: a close type is an error, a far one a warning.
   const std::string cgr = R"({ "rendermode": "phong",
   "camera": { "type": "pinhole", "width": 8, "height": 8, "position": [0, 0, 0], "lookAt": [0, 0, 1],
