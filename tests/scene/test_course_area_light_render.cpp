@@ -53,6 +53,8 @@ double mean_path_radiance(const std::string& text, AccelKind accel) {
 TEST(CourseAreaLightRender, LightsTheFloorAsThePointLightOfTheSameIntensity) {
   const std::string point = R"({ "type": "pointlight", "position": [0, 0, 5], "id": [100, 100, 100],
                                   "is": [100, 100, 100] })";
+  // The corners run counter-clockwise seen from above: the floor sees the lamp's back, lit
+  // because course area lights are two-sided.
   const std::string area = R"({ "type": "arealight", "v0": [-0.1, -0.1, 5], "v1": [0.1, -0.1, 5],
                                  "v2": [0.1, 0.1, 5], "v3": [-0.1, 0.1, 5], "id": [100, 100, 100],
                                  "is": [100, 100, 100], "samples": 4 })";

@@ -363,6 +363,21 @@ TEST(CourseMeshes, PlacementIsBakedIntoTheVertices) {
   EXPECT_TRUE(both.has(Severity::Error, "'pos' and 'locX'/'locY'/'locZ' say the same thing")) << both.diag.format();
 }
 
+TEST(CourseMeshes, NormalsFromTheFileFollowTheScale) {
+  TempDir dir;
+  dir.write("n.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                     "property float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+                     "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                     "0 0 0 0.6 0.8 0\n1 0 0 0.6 0.8 0\n0 1 0 0.6 0.8 0\n3 0 1 2\n");
+  const Loaded l = load(pol(kPointLight, R"({ "type": "mesh", "plyPath": "n.ply", "scale": [2, 1, 1] })"),
+                        dir.write("pol.json", ""));
+  ASSERT_TRUE(l.scene) << l.diag.format();
+  const TriangleMesh& m = geometry_of<TriangleMesh>(*l.scene, 0);
+  EXPECT_TRUE(near(m.positions[1], Vec3f(2, 0, 0)));
+  ASSERT_EQ(m.normals.size(), 3u);
+  EXPECT_TRUE(near(m.normals[0], normalize(Vec3f(0.3f, 0.8f, 0))));  // the inverse transpose of the scale
+}
+
 TEST(CourseMeshes, NumberedVerticesAndFaces) {
   const Loaded l = load(pol(kPointLight, R"({ "type": "trimesh", "v0": [0, 0, 0], "v1": [1, 0, 0], "v2": [1, 1, 0],
     "v3": [0, 1, 0], "f0": [0, 1, 2, 3], "f1": [0, 2, 1] })"));
