@@ -42,7 +42,9 @@ struct Sourced {
 };
 
 // ---------------------------------------------------------------- camera
-enum class CameraType { Pinhole, ThinLens };
+// The projections (render/camera/*.h): perspective (pinhole, thin lens),
+// orthographic and spherical (equirectangular 360 degrees).
+enum class CameraType { Pinhole, ThinLens, Orthographic, Spherical };
 
 struct CameraDesc {
   SourceLocation where;
@@ -58,6 +60,11 @@ struct CameraDesc {
   // distance along the view direction of the plane in focus.
   Sourced<float> lens_radius{0.0f};
   Sourced<float> focus_distance{1.0f};
+  // Orthographic only: the visible rectangle in scene units, its height, or its
+  // width when view_width > 0 (0: not given); the other side follows from the
+  // image's aspect ratio.
+  Sourced<float> view_height{2.0f};
+  Sourced<float> view_width{0.0f};
 };
 
 // ---------------------------------------------------------------- film / output
