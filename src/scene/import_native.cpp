@@ -110,6 +110,11 @@ void read_render(ImportContext& ctx, const JsonValue& v) {
   const int filter = read_choice(r, "filter", {std::begin(kPixelFilterNames), std::end(kPixelFilterNames)}, &filter_at);
   if (filter >= 0) render.filter = Sourced<PixelFilterType>(static_cast<PixelFilterType>(filter), filter_at);
   r.read("clamp", render.clamp);
+  Sourced<std::string> image;
+  if (r.read("background_image", image) && image.where.valid()) {
+    if (const std::optional<std::string> resolved = find_scene_file(ctx, image, "background image"))
+      render.background_image = TextureDesc{image.where, image.value, *resolved};
+  }
   r.finish();
 }
 
@@ -227,13 +232,8 @@ void read_environment(ImportContext& ctx, const JsonValue& v) {
   EnvironmentDesc env;
   env.where = r.where();
   if (r.read_required("file", env.file)) {
-    const std::optional<std::string> resolved = resolve_scene_path(ctx.scene.source_path, env.file.value);
-    if (resolved) {
+    if (const std::optional<std::string> resolved = find_scene_file(ctx, env.file, "environment map"))
       env.resolved = *resolved;
-    } else {
-      ctx.diag().error(env.file.where, "environment map '" + env.file.value + "' not found; " +
-                                           describe_search(ctx.scene.source_path, env.file.value));
-    }
   }
   r.read("rotation", env.rotation_deg);
   r.read("intensity", env.intensity);

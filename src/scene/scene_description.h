@@ -84,6 +84,15 @@ struct FilmDesc {
   Sourced<float> exposure{0.0f};  // stops; display images are scaled by 2^exposure
 };
 
+// ---------------------------------------------------------------- textures
+// A reference to an image file used as a texture. `path` is resolved (absolute or
+// relative to the working directory) by the loader; `written` is the text in the file.
+struct TextureDesc {
+  SourceLocation where;
+  std::string written;   // the path as written in the scene file
+  std::string resolved;  // the file that exists on disk
+};
+
 // ---------------------------------------------------------------- render settings
 // Pixel reconstruction filter (docs/path-tracing.md): a 1-pixel box, a
 // Gaussian (radius 1.5, sigma 0.5) or Mitchell-Netravali (radius 2, B = C = 1/3).
@@ -100,16 +109,12 @@ struct RenderDesc {
   Sourced<RGB> background{RGB(0, 0, 0)};
   Sourced<PixelFilterType> filter{PixelFilterType::Box};
   Sourced<float> clamp{0.0f};    // firefly clamp on each sample's radiance; 0 = off
+  // An image behind the scene in screen space, stretched over the frame: what
+  // camera rays that leave the scene see instead of `background` or the
+  // environment. Bounce rays do not see it and it lights nothing.
+  std::optional<TextureDesc> background_image;
 };
 
-// ---------------------------------------------------------------- textures
-// A reference to an image file used as a texture. `path` is resolved (absolute or
-// relative to the working directory) by the loader; `written` is the text in the file.
-struct TextureDesc {
-  SourceLocation where;
-  std::string written;   // the path as written in the scene file
-  std::string resolved;  // the file that exists on disk
-};
 
 // ---------------------------------------------------------------- materials
 // Phong: the course material model. The classic (Whitted) integrator reads it
