@@ -7,7 +7,7 @@
 // v = y / height is the polar angle theta = pi v from `up`: the top row is the
 // zenith. So a camera looking down -z with +y up renders exactly the map an
 // "environment" with up [0, 1, 0] and rotation 0 reads (tests/render/
-// test_camera_kinds.cpp). The field of view is always the full sphere.
+// test_camera.cpp). The field of view is always the full sphere.
 // Depth (the Z AOV) is the distance from the camera position, |p - position|
 // (there is no view axis). There is no worldToNDC (the projection is not
 // linear): EXR files get worldToCamera only.
