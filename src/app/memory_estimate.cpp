@@ -71,6 +71,7 @@ uint64_t texture_bytes(const SceneDescription& scene, const TextureLimits& limit
   for (std::size_t i = 0; i < scene.textures.size(); ++i)
     if (used[i]) add(scene.textures[i].resolved, kTextureBytesPerTexel);
   if (scene.environment) add(scene.environment->resolved, kTextureBytesPerTexel + kDistributionBytesPerTexel);
+  if (scene.render.background_image) add(scene.render.background_image->resolved, kTextureBytesPerTexel);
   return saturating_add(total, largest_decode);
 }
 

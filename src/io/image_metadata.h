@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -46,14 +47,16 @@ struct RenderStamp {
   // requested end, and every pixel has the complete passes.
   bool partial = false;
   bool has_camera = false;
-  ImageMetadata::Matrix world_to_camera{}, world_to_ndc{};
+  ImageMetadata::Matrix world_to_camera{};
+  std::optional<ImageMetadata::Matrix> world_to_ndc;  // none for a spherical camera
 };
 
 // Adds `stamp` to `metadata`: pathtracer:renderTime, pathtracer:clamp
 // (float; clamp 0 means off), pathtracer:spp, pathtracer:maxDepth,
 // pathtracer:partial (int 0/1), pathtracer:seed, pathtracer:backend,
 // pathtracer:integrator, pathtracer:sampler, pathtracer:filter,
-// pathtracer:version (strings), and worldToCamera / worldToNDC when has_camera.
+// pathtracer:version (strings), and worldToCamera / worldToNDC when has_camera
+// (worldToNDC only for a camera that has one: not the spherical camera).
 inline void add_render_stamp(ImageMetadata& metadata, const RenderStamp& stamp) {
   metadata.set("pathtracer:renderTime", static_cast<float>(stamp.render_seconds));
   metadata.set("pathtracer:spp", stamp.spp);
@@ -68,7 +71,7 @@ inline void add_render_stamp(ImageMetadata& metadata, const RenderStamp& stamp) 
   metadata.set("pathtracer:version", stamp.software_version);
   if (stamp.has_camera) {
     metadata.set("worldToCamera", stamp.world_to_camera);
-    metadata.set("worldToNDC", stamp.world_to_ndc);
+    if (stamp.world_to_ndc) metadata.set("worldToNDC", *stamp.world_to_ndc);
   }
 }
 

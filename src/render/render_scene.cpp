@@ -1,5 +1,6 @@
 #include "render/render_scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <type_traits>
 #include <utility>
@@ -46,6 +47,20 @@ namespace {
 // ---------------------------------------------------------------- textures and materials
 // Decodes each texture some material references, once. Unreferenced textures
 // are never read. Returns false if any referenced texture failed to decode.
+// Decodes one image (its time added to the scene's texture_load_seconds); on
+// failure reports "cannot read <what> '<file>': ..." at its location.
+std::unique_ptr<Texture> load_texture(const TextureDesc& t, const char* what, const TextureLimits& limits,
+                                      RenderScene& scene, Diagnostics& diag) {
+  auto tex = std::make_unique<Texture>();
+  std::string error;
+  const auto start = Clock::now();
+  const bool loaded = Texture::load(t.resolved, *tex, error, limits);
+  scene.texture_load_seconds += seconds_since(start);
+  if (loaded) return tex;
+  diag.error(t.where, std::string("cannot read ") + what + " '" + t.written + "': " + error);
+  return nullptr;
+}
+
 bool load_textures(const SceneDescription& desc, const TextureLimits& limits, RenderScene& scene,
                    Diagnostics& diag) {
   std::vector<bool> used(desc.textures.size(), false);
@@ -63,18 +78,12 @@ bool load_textures(const SceneDescription& desc, const TextureLimits& limits, Re
   scene.textures.resize(desc.textures.size());
   for (std::size_t i = 0; i < desc.textures.size(); ++i) {
     if (!used[i]) continue;
-    const TextureDesc& t = desc.textures[i];
-    auto tex = std::make_unique<Texture>();
-    std::string error;
-    const auto start = Clock::now();
-    const bool loaded = Texture::load(t.resolved, *tex, error, limits);
-    scene.texture_load_seconds += seconds_since(start);
-    if (!loaded) {
-      diag.error(t.where, "cannot read texture '" + t.written + "': " + error);
-      ok = false;
-      continue;
-    }
-    scene.textures[i] = std::move(tex);
+    scene.textures[i] = load_texture(desc.textures[i], "texture", limits, scene, diag);
+    ok = ok && scene.textures[i] != nullptr;
+  }
+  if (desc.render.background_image) {
+    scene.background_image = load_texture(*desc.render.background_image, "background image", limits, scene, diag);
+    ok = ok && scene.background_image != nullptr;
   }
   return ok;
 }
@@ -118,6 +127,16 @@ LightSet build_light_set(const SceneDescription& desc, const RenderScene& scene)
 }
 
 }  // namespace
+
+RGB RenderScene::background_image_at(Vec2f film_px) const {
+  const Texture& image = *background_image;
+  // Clamped to the outermost texel centres, where the bilinear lookup has no
+  // weight on the wrapped-around texel: the edge texels extend outwards.
+  const float hx = 0.5f / static_cast<float>(image.width()), hy = 0.5f / static_cast<float>(image.height());
+  const float u = std::clamp(film_px.x / static_cast<float>(width), hx, 1.0f - hx);
+  const float v = std::clamp(film_px.y / static_cast<float>(height), hy, 1.0f - hy);
+  return image.lookup(Vec2f(u, v));
+}
 
 std::unique_ptr<RenderScene> build_render_scene(const SceneDescription& desc, const BuildOptions& options,
                                                 WorkerPool& pool, Diagnostics& diag) {

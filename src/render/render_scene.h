@@ -48,6 +48,7 @@ struct RenderScene {
   std::vector<int> shape_material;   // per shape, index into materials
   std::vector<Material> materials;
   std::vector<std::unique_ptr<Texture>> textures;  // stable addresses (materials point in)
+  std::unique_ptr<Texture> background_image;       // render.background_image, if any
   // Owns the environment map (its sampling distribution included) when the
   // scene has one; it is reached through `lights` (an EnvironmentLight).
   std::unique_ptr<EnvironmentMap> environment_map;
@@ -67,6 +68,17 @@ struct RenderScene {
   // environment light's (the map, or the background colour), or else the
   // background colour (black).
   RGB escaped_radiance(Vec3f dir) const { return lights.escaped_radiance(dir, background); }
+  // Radiance seen by a camera ray (one `camera` generated) that leaves the
+  // scene: the background image at the ray's film position if the scene has
+  // one, else escaped_radiance. Only integrators' depth-0 misses ask this.
+  RGB camera_ray_escaped(const Ray& camera_ray) const {
+    return background_image ? background_image_at(camera.film_position(camera_ray))
+                            : escaped_radiance(camera_ray.dir);
+  }
+  // The background image (render.background_image) stretched over the full
+  // frame, bilinear, its edge texels extended: film pixel (x, y) shows image
+  // uv (x / width, y / height), whatever the crop.
+  RGB background_image_at(Vec2f film_px) const;
 };
 
 

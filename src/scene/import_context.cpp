@@ -36,13 +36,19 @@ std::string describe_search(const std::string& scene_path, const std::string& wr
          "') and the working directory ('" + in_cwd.lexically_normal().string() + "')";
 }
 
-std::optional<int> add_texture(ImportContext& ctx, const Sourced<std::string>& written) {
-  const std::optional<std::string> resolved = resolve_scene_path(ctx.scene.source_path, written.value);
+std::optional<std::string> find_scene_file(ImportContext& ctx, const Sourced<std::string>& written,
+                                           const std::string& what) {
+  std::optional<std::string> resolved = resolve_scene_path(ctx.scene.source_path, written.value);
   if (!resolved) {
-    ctx.diag().error(written.where, "texture file '" + written.value + "' not found; " +
+    ctx.diag().error(written.where, what + " '" + written.value + "' not found; " +
                                         describe_search(ctx.scene.source_path, written.value));
-    return std::nullopt;
   }
+  return resolved;
+}
+
+std::optional<int> add_texture(ImportContext& ctx, const Sourced<std::string>& written) {
+  const std::optional<std::string> resolved = find_scene_file(ctx, written, "texture file");
+  if (!resolved) return std::nullopt;
   std::error_code ec;
   fs::path canonical = fs::weakly_canonical(*resolved, ec);
   const std::string key = ec ? *resolved : canonical.string();
@@ -55,12 +61,8 @@ std::optional<int> add_texture(ImportContext& ctx, const Sourced<std::string>& w
 
 bool load_mesh_file(ImportContext& ctx, const Sourced<std::string>& written, ShapeDesc& shape) {
   shape.file = shape.field("file", written);
-  const std::optional<std::string> resolved = resolve_scene_path(ctx.scene.source_path, written.value);
-  if (!resolved) {
-    ctx.diag().error(written.where, "mesh file '" + written.value + "' not found; " +
-                                        describe_search(ctx.scene.source_path, written.value));
-    return false;
-  }
+  const std::optional<std::string> resolved = find_scene_file(ctx, written, "mesh file");
+  if (!resolved) return false;
   // The reader by extension: .obj (any case) is OBJ, anything else PLY.
   std::string extension = fs::path(*resolved).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),

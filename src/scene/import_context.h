@@ -24,6 +24,12 @@ struct ImportContext {
   const JsonDocument& doc() { return read.doc; }
 };
 
+// Resolves a path written in the file (see resolve_scene_path); a missing
+// file is reported at the path's location as "<what> 'x' not found; looked
+// in ..." and gives std::nullopt.
+std::optional<std::string> find_scene_file(ImportContext& ctx, const Sourced<std::string>& written,
+                                           const std::string& what);
+
 // Resolves a texture path written in the file (see resolve_scene_path) and
 // returns its index in scene.textures, adding it the first time. A missing
 // file is reported (saying where it was looked for) and gives std::nullopt.

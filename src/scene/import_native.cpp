@@ -13,24 +13,73 @@
 namespace pt {
 namespace {
 
+// The camera types' names (docs/scene-format.md): Mitsuba's "perspective" and
+// "thinlens" are accepted beside ours.
+struct CameraTypeName {
+  const char* name;
+  CameraType type;
+};
+constexpr CameraTypeName kCameraTypes[] = {{"pinhole", CameraType::Pinhole},        {"perspective", CameraType::Pinhole},
+                                           {"thin_lens", CameraType::ThinLens},     {"thinlens", CameraType::ThinLens},
+                                           {"orthographic", CameraType::Orthographic}, {"spherical", CameraType::Spherical}};
+
+// The keys only some camera types read; one the type does not read is an error.
+std::vector<std::string> camera_type_keys(CameraType type) {
+  switch (type) {
+    case CameraType::ThinLens: return {"fov", "lens_radius", "focus_distance"};
+    case CameraType::Orthographic: return {"view_height", "view_width"};
+    case CameraType::Spherical: return {};
+    case CameraType::Pinhole: break;
+  }
+  return {"fov"};
+}
+
+void refuse_camera_keys(ImportContext& ctx, ObjectReader& r, CameraType type, const std::string& type_name) {
+  const std::vector<std::string> allowed = camera_type_keys(type);
+  for (const char* key : {"fov", "lens_radius", "focus_distance", "view_height", "view_width"}) {
+    if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
+    if (const JsonValue* v = r.get(key)) {
+      std::string message = "'";
+      message += key;
+      message += std::string("' does not apply to ") + (type_name[0] == 'o' ? "an " : "a ") + type_name + " camera";
+      for (std::size_t i = 0; i < allowed.size(); ++i) message += (i == 0 ? " (it reads: " : ", ") + allowed[i];
+      if (!allowed.empty()) message += ')';
+      ctx.diag().error(ctx.read.at(*v), message);
+      r.fail();
+    }
+  }
+}
+
 void read_camera(ImportContext& ctx, const JsonValue& v) {
   if (!expect_object(ctx.read, v, "camera")) return;
   ObjectReader r(ctx.read, v, "camera");
   CameraDesc& cam = ctx.scene.camera;
   cam.where = r.where();
   SourceLocation type_at;
-  const int type = read_choice(r, "type", {"pinhole", "thin_lens"}, &type_at);
-  if (type == 1) cam.type = CameraType::ThinLens;
+  std::vector<std::string> names;
+  for (const CameraTypeName& t : kCameraTypes) names.emplace_back(t.name);
+  const int type = read_choice(r, "type", names, &type_at);
+  if (type >= 0) cam.type = kCameraTypes[type].type;
+  refuse_camera_keys(ctx, r, cam.type, type >= 0 ? names[static_cast<std::size_t>(type)] : "pinhole");
   r.read_required("position", cam.position);
   r.read_required("look_at", cam.look_at);
   r.read("up", cam.up);
-  r.read("fov", cam.fov_y_deg);
   SourceLocation handed_at;
   const int handed = read_choice(r, "handedness", {"right", "left"}, &handed_at);
   if (handed >= 0) cam.left_handed = Sourced<bool>(handed == 1, handed_at);
+  if (cam.type == CameraType::Pinhole || cam.type == CameraType::ThinLens) r.read("fov", cam.fov_y_deg);
   if (cam.type == CameraType::ThinLens) {
     r.read_required("lens_radius", cam.lens_radius);
     r.read_required("focus_distance", cam.focus_distance);
+  }
+  if (cam.type == CameraType::Orthographic) {
+    r.read("view_height", cam.view_height);
+    r.read("view_width", cam.view_width);
+    if (cam.view_height.where.valid() && cam.view_width.where.valid()) {
+      ctx.diag().error(cam.view_width.where,
+                       "give view_height or view_width, not both: the other follows from the image's aspect ratio");
+      r.fail();
+    }
   }
   r.finish();
 }
@@ -61,6 +110,11 @@ void read_render(ImportContext& ctx, const JsonValue& v) {
   const int filter = read_choice(r, "filter", {std::begin(kPixelFilterNames), std::end(kPixelFilterNames)}, &filter_at);
   if (filter >= 0) render.filter = Sourced<PixelFilterType>(static_cast<PixelFilterType>(filter), filter_at);
   r.read("clamp", render.clamp);
+  Sourced<std::string> image;
+  if (r.read("background_image", image) && image.where.valid()) {
+    if (const std::optional<std::string> resolved = find_scene_file(ctx, image, "background image"))
+      render.background_image = TextureDesc{image.where, image.value, *resolved};
+  }
   r.finish();
 }
 
@@ -178,13 +232,8 @@ void read_environment(ImportContext& ctx, const JsonValue& v) {
   EnvironmentDesc env;
   env.where = r.where();
   if (r.read_required("file", env.file)) {
-    const std::optional<std::string> resolved = resolve_scene_path(ctx.scene.source_path, env.file.value);
-    if (resolved) {
+    if (const std::optional<std::string> resolved = find_scene_file(ctx, env.file, "environment map"))
       env.resolved = *resolved;
-    } else {
-      ctx.diag().error(env.file.where, "environment map '" + env.file.value + "' not found; " +
-                                           describe_search(ctx.scene.source_path, env.file.value));
-    }
   }
   r.read("rotation", env.rotation_deg);
   r.read("intensity", env.intensity);

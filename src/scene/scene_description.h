@@ -42,7 +42,9 @@ struct Sourced {
 };
 
 // ---------------------------------------------------------------- camera
-enum class CameraType { Pinhole, ThinLens };
+// The projections (render/camera/*.h): perspective (pinhole, thin lens),
+// orthographic and spherical (equirectangular 360 degrees).
+enum class CameraType { Pinhole, ThinLens, Orthographic, Spherical };
 
 struct CameraDesc {
   SourceLocation where;
@@ -58,6 +60,11 @@ struct CameraDesc {
   // distance along the view direction of the plane in focus.
   Sourced<float> lens_radius{0.0f};
   Sourced<float> focus_distance{1.0f};
+  // Orthographic only: the visible rectangle in scene units, its height, or its
+  // width when view_width > 0 (0: not given); the other side follows from the
+  // image's aspect ratio.
+  Sourced<float> view_height{2.0f};
+  Sourced<float> view_width{0.0f};
 };
 
 // ---------------------------------------------------------------- film / output
@@ -77,6 +84,15 @@ struct FilmDesc {
   Sourced<float> exposure{0.0f};  // stops; display images are scaled by 2^exposure
 };
 
+// ---------------------------------------------------------------- textures
+// A reference to an image file used as a texture. `path` is resolved (absolute or
+// relative to the working directory) by the loader; `written` is the text in the file.
+struct TextureDesc {
+  SourceLocation where;
+  std::string written;   // the path as written in the scene file
+  std::string resolved;  // the file that exists on disk
+};
+
 // ---------------------------------------------------------------- render settings
 // Pixel reconstruction filter (docs/path-tracing.md): a 1-pixel box, a
 // Gaussian (radius 1.5, sigma 0.5) or Mitchell-Netravali (radius 2, B = C = 1/3).
@@ -93,16 +109,12 @@ struct RenderDesc {
   Sourced<RGB> background{RGB(0, 0, 0)};
   Sourced<PixelFilterType> filter{PixelFilterType::Box};
   Sourced<float> clamp{0.0f};    // firefly clamp on each sample's radiance; 0 = off
+  // An image behind the scene in screen space, stretched over the frame: what
+  // camera rays that leave the scene see instead of `background` or the
+  // environment. Bounce rays do not see it and it lights nothing.
+  std::optional<TextureDesc> background_image;
 };
 
-// ---------------------------------------------------------------- textures
-// A reference to an image file used as a texture. `path` is resolved (absolute or
-// relative to the working directory) by the loader; `written` is the text in the file.
-struct TextureDesc {
-  SourceLocation where;
-  std::string written;   // the path as written in the scene file
-  std::string resolved;  // the file that exists on disk
-};
 
 // ---------------------------------------------------------------- materials
 // Phong: the course material model. The classic (Whitted) integrator reads it

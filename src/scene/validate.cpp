@@ -41,6 +41,12 @@ class Validator {
       if (cam.focus_distance.value <= 0.0f)
         diag_.error(cam.focus_distance.where, "focus distance must be > 0, got " + str(cam.focus_distance.value));
     }
+    if (cam.type == CameraType::Orthographic) {
+      if (!(cam.view_height.value > 0.0f && std::isfinite(cam.view_height.value)))
+        diag_.error(cam.view_height.where, "view_height must be > 0, got " + str(cam.view_height.value));
+      if (cam.view_width.where.valid() && !(cam.view_width.value > 0.0f && std::isfinite(cam.view_width.value)))
+        diag_.error(cam.view_width.where, "view_width must be > 0, got " + str(cam.view_width.value));
+    }
   }
 
   void film(const FilmDesc& film) {

@@ -46,7 +46,7 @@ class PathTracer {
     for (int depth = 0;; ++depth) {
       Intersection isect;
       if (!scene_.intersect(ray, isect)) {
-        const RGB le = scene_.escaped_radiance(ray.dir);
+        const RGB le = depth == 0 ? scene_.camera_ray_escaped(ray) : scene_.escaped_radiance(ray.dir);
         if (!le.is_black()) {
           const RGB term = beta * le * escape_weight(ray.dir, specular, prev_pdf);
           L += term;

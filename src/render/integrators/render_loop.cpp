@@ -28,7 +28,7 @@ void first_hit_aovs(const RenderScene& scene, const Ray& ray, AovSample& aov) {
   const bool front = dot(isect.geo.ng, wo) >= 0.0f;
   aov.normal = front ? isect.geo.ns : -isect.geo.ns;
   aov.position = isect.geo.p;
-  aov.depth = dot(isect.geo.p - scene.camera.position(), scene.camera.forward());
+  aov.depth = scene.camera.depth(isect.geo.p);
   aov.object = isect.hit.shape + 1;
   aov.material = isect.hit.shape < scene.shape_material.size()
                      ? static_cast<uint32_t>(scene.shape_material[isect.hit.shape]) + 1

@@ -86,7 +86,8 @@ class Whitted {
 
   RGB trace(const Ray& ray, int depth) const {
     Intersection isect;
-    if (!scene_.intersect(ray, isect)) return scene_.escaped_radiance(ray.dir);
+    if (!scene_.intersect(ray, isect))
+      return depth == 0 ? scene_.camera_ray_escaped(ray) : scene_.escaped_radiance(ray.dir);
     const Material& m = *isect.material;
     if (m.glass()) return dielectric(ray, isect, depth);
 
