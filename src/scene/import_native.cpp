@@ -141,15 +141,21 @@ std::vector<NativeMaterial> read_materials(ImportContext& ctx, const JsonValue& 
   return materials;
 }
 
-// A spot light: its axis as "direction" or as "look_at" (not both).
-void read_spot_light(ImportContext& ctx, ObjectReader& r) {
-  r.set_what("spot light");
-  SpotLightDesc light;
+// The keys point and spot lights share: where, position, intensity, specular_intensity.
+template <class Desc>
+void read_positioned_light(ObjectReader& r, const char* what, Desc& light) {
+  r.set_what(what);
   light.where = r.where();
   r.read_required("position", light.position);
   r.read_required("intensity", light.intensity);
   light.specular_intensity = light.intensity;
   r.read("specular_intensity", light.specular_intensity);
+}
+
+// A spot light: its axis as "direction" or as "look_at" (not both).
+void read_spot_light(ImportContext& ctx, ObjectReader& r) {
+  SpotLightDesc light;
+  read_positioned_light(r, "spot light", light);
   r.read("cone_angle", light.cone_angle);
   r.read("cone_delta", light.cone_delta);
   Sourced<Vec3f> look_at;
@@ -198,13 +204,8 @@ void read_light(ImportContext& ctx, const JsonValue& v, std::size_t index) {
     if (r.ok()) ctx.scene.lights.emplace_back(std::move(light));
     return;
   }
-  r.set_what("point light");
   PointLightDesc light;
-  light.where = r.where();
-  r.read_required("position", light.position);
-  r.read_required("intensity", light.intensity);
-  light.specular_intensity = light.intensity;
-  r.read("specular_intensity", light.specular_intensity);
+  read_positioned_light(r, "point light", light);
   SourceLocation falloff_at;
   const int falloff = read_choice(r, "falloff", {"inverse_square", "none"}, &falloff_at);
   if (falloff >= 0) light.inverse_square = Sourced<bool>(falloff == 0, falloff_at);

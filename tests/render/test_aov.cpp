@@ -187,6 +187,26 @@ std::unique_ptr<RenderScene> lighting_scene(WorkerPool& pool) {
   return test::build(d, pool);
 }
 
+// Every pixel's `parts` (non-negative) sum to its beauty, and each part is used somewhere.
+void expect_parts_sum_to_beauty(const Film& film, const std::vector<AovType>& parts) {
+  std::vector<double> totals(parts.size());
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const RGB beauty = film.pixel(x, y);
+      RGB sum;
+      for (std::size_t i = 0; i < parts.size(); ++i) {
+        const std::vector<float> v = film.aov_value(parts[i], x, y);
+        sum += RGB(v[0], v[1], v[2]);
+        for (float c : v) {
+          EXPECT_GE(c, 0.0f);
+          totals[i] += c;
+        }
+      }
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(sum[c], beauty[c], 1e-5f * std::max(1.0f, beauty[c])) << x << "," << y;
+    }
+  for (std::size_t i = 0; i < parts.size(); ++i) EXPECT_GT(totals[i], 0.0) << aov_info(parts[i]).name << " is never used";
+}
+
 TEST(Aov, PathLightingSplitSumsToTheBeauty) {
   WorkerPool pool(2);
   const auto scene = lighting_scene(pool);
@@ -201,24 +221,8 @@ TEST(Aov, PathLightingSplitSumsToTheBeauty) {
     Film film(kW, kH, PixelRect{0, 0, kW, kH},
               aovs("emission,diffuse_direct,diffuse_indirect,specular_direct,specular_indirect"));
     make_integrator("path", settings, error)->render(*scene, film, pool);
-    const AovType parts[] = {AovType::Emission, AovType::DiffuseDirect, AovType::DiffuseIndirect,
-                             AovType::SpecularDirect, AovType::SpecularIndirect};
-    double totals[5] = {};
-    for (int y = 0; y < kH; ++y)
-      for (int x = 0; x < kW; ++x) {
-        const RGB beauty = film.pixel(x, y);
-        RGB sum;
-        for (int i = 0; i < 5; ++i) {
-          const std::vector<float> v = film.aov_value(parts[i], x, y);
-          sum += RGB(v[0], v[1], v[2]);
-          for (float c : v) {
-            EXPECT_GE(c, 0.0f);
-            totals[i] += c;
-          }
-        }
-        for (int c = 0; c < 3; ++c) EXPECT_NEAR(sum[c], beauty[c], 1e-5f * std::max(1.0f, beauty[c])) << x << "," << y;
-      }
-    for (int i = 0; i < 5; ++i) EXPECT_GT(totals[i], 0.0) << "part " << i << " is never used";
+    expect_parts_sum_to_beauty(film, {AovType::Emission, AovType::DiffuseDirect, AovType::DiffuseIndirect,
+                                      AovType::SpecularDirect, AovType::SpecularIndirect});
   }
 }
 
@@ -265,24 +269,8 @@ TEST(Aov, WhittedSplitSumsToTheBeauty) {
   std::string error;
   Film film(kW, kH, PixelRect{0, 0, kW, kH}, aovs("emission,ambient,diffuse_direct,specular_direct,specular_indirect"));
   make_integrator("whitted", settings, error)->render(*scene, film, pool);
-  const AovType parts[] = {AovType::Emission, AovType::Ambient, AovType::DiffuseDirect, AovType::SpecularDirect,
-                           AovType::SpecularIndirect};
-  double totals[5] = {};
-  for (int y = 0; y < kH; ++y)
-    for (int x = 0; x < kW; ++x) {
-      const RGB beauty = film.pixel(x, y);
-      RGB sum;
-      for (int i = 0; i < 5; ++i) {
-        const std::vector<float> v = film.aov_value(parts[i], x, y);
-        sum += RGB(v[0], v[1], v[2]);
-        for (float c : v) {
-          EXPECT_GE(c, 0.0f);
-          totals[i] += c;
-        }
-      }
-      for (int c = 0; c < 3; ++c) EXPECT_NEAR(sum[c], beauty[c], 1e-5f * std::max(1.0f, beauty[c])) << x << "," << y;
-    }
-  for (int i = 0; i < 5; ++i) EXPECT_GT(totals[i], 0.0) << "part " << i << " is never used";
+  expect_parts_sum_to_beauty(film, {AovType::Emission, AovType::Ambient, AovType::DiffuseDirect,
+                                    AovType::SpecularDirect, AovType::SpecularIndirect});
   // The beauty with the AOVs is the beauty without them, bit for bit.
   Film plain(kW, kH);
   make_integrator("whitted", settings, error)->render(*scene, plain, pool);
