@@ -17,14 +17,17 @@ std::string frame(int width, int height) { return std::to_string(width) + "x" + 
 
 }  // namespace
 
-bool film_aovs(const Options& o, std::vector<AovRequest>& out, ChannelType& beauty, std::string& error) {
+bool film_aovs(const Options& o, const IntegratorInfo& integrator, std::vector<AovRequest>& out, ChannelType& beauty,
+               std::string& error) {
   out.clear();
   beauty = ChannelType::Float;
   if (o.replaying()) {  // a replay reports every AOV of its one sample (they draw no random numbers)
-    for (const AovInfo& info : aov_catalogue()) out.push_back({info.type, info.default_type});
+    for (const AovInfo& info : aov_catalogue())
+      if (integrator.produces(info.type)) out.push_back({info.type, info.default_type});
     return true;
   }
-  if (std::string why; !o.aov.empty() && !parse_aov_list(o.aov, out, beauty, why)) {
+  std::string why;
+  if (!o.aov.empty() && (!parse_aov_list(o.aov, out, beauty, why) || !integrator.check_aovs(out, why))) {
     error = "--aov: " + why;
     return false;
   }

@@ -10,6 +10,7 @@
 #include "app/memory_estimate.h"
 #include "render/film/aov.h"
 #include "render/film/film.h"
+#include "render/integrators/integrator.h"
 
 namespace pt {
 
@@ -17,9 +18,11 @@ struct Options;
 struct SceneDescription;
 
 // The requested AOVs and the beauty's pixel type ("--aov beauty:half"); a
-// replay reports every AOV of its one sample. Returns false with `error` (an
-// unknown name: the valid ones are listed).
-bool film_aovs(const Options& o, std::vector<AovRequest>& out, ChannelType& beauty, std::string& error);
+// replay reports every AOV of its one sample that `integrator` produces.
+// Returns false with `error`: an unknown name (the valid ones are listed), or
+// one the integrator cannot produce (the ones it can are listed).
+bool film_aovs(const Options& o, const IntegratorInfo& integrator, std::vector<AovRequest>& out, ChannelType& beauty,
+               std::string& error);
 
 // The region to render, in pixels of a width x height frame: the crop, the
 // replayed pixel, or the whole frame. Returns false with `error`.

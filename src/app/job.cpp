@@ -40,9 +40,10 @@ bool load_job(const Options& o, Job& job, Messages& m) {
   job.parse_s = seconds_since(t0);
   job.desc = std::move(*desc);
   Diagnostics settings_diag;
-  if (resolve_render_settings(job.desc, settings_overrides(o), job.settings, settings_diag)) return true;
-  m.text += settings_diag.format();
-  return false;
+  settings_diag.set_warnings_as_errors(o.strict);
+  const bool resolved = resolve_render_settings(job.desc, settings_overrides(o), job.settings, settings_diag);
+  m.add(settings_diag, o.quiet);  // e.g. an ambient light the integrator leaves out
+  return resolved && !settings_diag.has_errors();
 }
 
 // Passes, AOVs, the replayed sample and the display images; false with the
@@ -56,7 +57,7 @@ bool plan_job(const Options& o, Job& job, Messages& m) {
   if (plan.pass_spp == 0 && plan.time_budget_s == 0 && !(o.checkpoint.empty() && o.resume.empty()))
     plan.pass_spp = kCheckpointPassSpp;
   std::string error;
-  if (!film_aovs(o, job.aovs, job.beauty_type, error)) {
+  if (!film_aovs(o, *job.settings.integrator, job.aovs, job.beauty_type, error)) {
     m.error(error);
     return false;
   }

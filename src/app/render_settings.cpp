@@ -16,6 +16,16 @@ bool resolve_render_settings(const SceneDescription& desc, const SettingsOverrid
     diag.error(o.integrator.empty() ? desc.render.integrator.where : SourceLocation{}, error);
     return false;
   }
+  if (out.integrator->lights == LightModel::Physical) {
+    for (const LightDesc& light : desc.lights) {
+      const auto* ambient = std::get_if<AmbientLightDesc>(&light);
+      if (ambient == nullptr) continue;
+      diag.warning(ambient->where, std::string("an ambient light is not physical: the ") + name +
+                                       " integrator leaves it out (its equivalent is a uniform environment: give "
+                                       "render.background the ambient colour; docs/path-tracing.md)");
+      break;  // once
+    }
+  }
   IntegratorSettings& s = out.integration;
   s = IntegratorSettings{};
   s.max_depth = o.max_depth >= 0 ? o.max_depth : desc.render.max_depth.value;

@@ -106,6 +106,18 @@ void add_light(std::vector<Light>& lights, const DirectionalLightDesc& d) {
   lights.emplace_back(DirectionalLight{normalize(d.direction.value / m), d.irradiance});
 }
 
+void add_light(std::vector<Light>& lights, const SpotLightDesc& d) {
+  const float m = max_component(abs(d.direction.value));  // as a directional light's direction
+  if (!(m > 0.0f) || !std::isfinite(m)) return;
+  const float cone = std::clamp(d.cone_angle.value, 0.0f, 180.0f);
+  const float start = std::clamp(cone - d.cone_delta.value, 0.0f, cone);
+  lights.emplace_back(SpotLight{d.position, normalize(d.direction.value / m), d.intensity, d.specular_intensity,
+                                std::cos(cone * kPi / 180.0f), std::cos(start * kPi / 180.0f)});
+}
+
+// Not a light of the set: the classic integrators' constant term (RenderScene::ambient).
+void add_light(std::vector<Light>&, const AmbientLightDesc&) {}
+
 // Every light: the description's, every emissive shape, and the environment
 // (the map, or the background colour if it is not black).
 LightSet build_light_set(const SceneDescription& desc, const RenderScene& scene) {
@@ -207,6 +219,8 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDescription& desc, co
   scene->accel = build_accelerator(options.accel, scene->geometry, pool, diag);
   if (!scene->accel) return nullptr;
   scene->lights = build_light_set(desc, *scene);
+  for (const LightDesc& l : desc.lights)
+    if (const auto* ambient = std::get_if<AmbientLightDesc>(&l)) scene->ambient += ambient->intensity.value;
   return scene;
 }
 

@@ -44,6 +44,7 @@ struct RenderScene {
   int width = 0, height = 0;
   Camera camera;
   RGB background;
+  RGB ambient;  // the sum of the ambient lights: the classic integrators' constant term (whitted.cpp)
   SceneGeometry geometry;
   std::vector<int> shape_material;   // per shape, index into materials
   std::vector<Material> materials;

@@ -121,9 +121,9 @@ void read_render(ImportContext& ctx, const JsonValue& v) {
 // The keys each material type reads besides "type" (docs/scene-format.md); a
 // key the type does not read is an error rather than silently ignored.
 const std::vector<std::string>& material_keys(MaterialType type) {
-  static const std::vector<std::string> kPhong = {"diffuse", "kd", "specular", "ks", "exponent", "reflectivity",
+  static const std::vector<std::string> kPhong = {"diffuse", "kd", "ka", "specular", "ks", "exponent", "reflectivity",
                                                   "refractive", "ior", "emission", "two_sided", "texture"};
-  static const std::vector<std::string> kLambert = {"diffuse", "kd", "texture", "emission", "two_sided"};
+  static const std::vector<std::string> kLambert = {"diffuse", "kd", "ka", "texture", "emission", "two_sided"};
   static const std::vector<std::string> kMirror = {"specular", "emission", "two_sided"};
   static const std::vector<std::string> kGlass = {"ior", "emission", "two_sided"};
   switch (type) {
@@ -171,6 +171,7 @@ NativeMaterial read_material(ImportContext& ctx, const JsonMember& member) {
   }
   r.read("diffuse", m.diffuse);
   r.read("kd", m.kd);
+  if (Sourced<float> ka; r.get("ka") && r.read("ka", ka)) m.ka = ka;
   r.read("specular", m.specular);
   r.read("ks", m.ks);
   r.read("exponent", m.exponent);
@@ -194,13 +195,59 @@ std::vector<NativeMaterial> read_materials(ImportContext& ctx, const JsonValue& 
   return materials;
 }
 
+// The keys point and spot lights share: where, position, intensity, specular_intensity.
+template <class Desc>
+void read_positioned_light(ObjectReader& r, const char* what, Desc& light) {
+  r.set_what(what);
+  light.where = r.where();
+  r.read_required("position", light.position);
+  r.read_required("intensity", light.intensity);
+  light.specular_intensity = light.intensity;
+  r.read("specular_intensity", light.specular_intensity);
+}
+
+// A spot light: its axis as "direction" or as "look_at" (not both).
+void read_spot_light(ImportContext& ctx, ObjectReader& r) {
+  SpotLightDesc light;
+  read_positioned_light(r, "spot light", light);
+  r.read("cone_angle", light.cone_angle);
+  r.read("cone_delta", light.cone_delta);
+  Sourced<Vec3f> look_at;
+  const bool has_direction = r.get("direction") != nullptr;
+  if (r.get("look_at") && r.read("look_at", look_at) && r.ok()) {
+    if (has_direction) {
+      ctx.diag().error(look_at.where, "a spot light takes 'direction' or 'look_at', not both");
+      r.fail();
+    }
+    light.direction = Sourced<Vec3f>(look_at.value - light.position.value, look_at.where);
+  } else if (!has_direction && !r.get("look_at")) {
+    r.require("direction");  // "missing key 'direction'": one of the two is needed
+  }
+  if (has_direction) r.read("direction", light.direction);
+  r.finish();
+  if (r.ok()) ctx.scene.lights.emplace_back(std::move(light));
+}
+
 void read_light(ImportContext& ctx, const JsonValue& v, std::size_t index) {
   const std::string label = "lights[" + std::to_string(index) + "]";
   if (!expect_object(ctx.read, v, label)) return;
   ObjectReader r(ctx.read, v, "light");
-  const int type = read_choice(r, "type", {"point", "directional"});
+  const int type = read_choice(r, "type", {"point", "directional", "spot", "ambient"});
   if (type == -1) r.require("type");
   if (type < 0) return;  // the error is reported; the rest of this light cannot be checked
+  if (type == 2) {
+    read_spot_light(ctx, r);
+    return;
+  }
+  if (type == 3) {
+    r.set_what("ambient light");
+    AmbientLightDesc light;
+    light.where = r.where();
+    r.read_required("intensity", light.intensity);
+    r.finish();
+    if (r.ok()) ctx.scene.lights.emplace_back(std::move(light));
+    return;
+  }
   if (type == 1) {
     r.set_what("directional light");
     DirectionalLightDesc light;
@@ -211,13 +258,8 @@ void read_light(ImportContext& ctx, const JsonValue& v, std::size_t index) {
     if (r.ok()) ctx.scene.lights.emplace_back(std::move(light));
     return;
   }
-  r.set_what("point light");
   PointLightDesc light;
-  light.where = r.where();
-  r.read_required("position", light.position);
-  r.read_required("intensity", light.intensity);
-  light.specular_intensity = light.intensity;
-  r.read("specular_intensity", light.specular_intensity);
+  read_positioned_light(r, "point light", light);
   SourceLocation falloff_at;
   const int falloff = read_choice(r, "falloff", {"inverse_square", "none"}, &falloff_at);
   if (falloff >= 0) light.inverse_square = Sourced<bool>(falloff == 0, falloff_at);

@@ -136,6 +136,7 @@ struct MaterialDesc {
   Sourced<float> reflectivity{0.0f};   // mirror weight in [0,1] (kr)
   Sourced<bool> refractive{false};
   Sourced<float> ior{1.0f};
+  std::optional<Sourced<float>> ka;     // weight of the classic ambient term; absent: kd (the path equivalent's)
   Sourced<RGB> emission{RGB(0, 0, 0)};  // emitted radiance, on the front (ng) side only unless two_sided
   Sourced<bool> two_sided{false};       // emission from both sides
   std::optional<int> texture;           // index into SceneDescription::textures; modulates diffuse
@@ -160,7 +161,30 @@ struct DirectionalLightDesc {
   Sourced<RGB> irradiance;
 };
 
-using LightDesc = std::variant<PointLightDesc, DirectionalLightDesc>;
+// A spot light (docs/scene-format.md): a point light whose intensity is
+// confined to a cone about `direction` (given, or towards `look_at`): full
+// within cone_angle - cone_delta of the axis, none beyond cone_angle, and a
+// falloff between that each integrator reads its own way (docs/path-tracing.md).
+struct SpotLightDesc {
+  SourceLocation where;
+  Sourced<Vec3f> position;
+  Sourced<Vec3f> direction{Vec3f(0, 0, 1)};  // the axis; any length (look_at - position when that is given)
+  Sourced<RGB> intensity;                    // as a point light's I, on the axis
+  Sourced<RGB> specular_intensity;           // used by the specular lobe of the classic integrator
+  Sourced<float> cone_angle{30.0f};          // degrees from the axis to the cone's edge (pbrt-v4's coneangle)
+  Sourced<float> cone_delta{5.0f};           // degrees of the falloff band inside the edge (pbrt-v4's conedelta)
+};
+
+// The classic integrators' ambient light (seeds 002 and 003): a constant term
+// ka Cd `intensity` added to every surface's local shading, unshadowed. Not
+// physical: the path integrator leaves it out with a warning; its equivalent
+// there is a uniform environment (render.background), docs/path-tracing.md.
+struct AmbientLightDesc {
+  SourceLocation where;
+  Sourced<RGB> intensity;
+};
+
+using LightDesc = std::variant<PointLightDesc, DirectionalLightDesc, SpotLightDesc, AmbientLightDesc>;
 
 // ---------------------------------------------------------------- environment
 // A latitude-longitude (equirectangular) radiance map around the scene, seen by

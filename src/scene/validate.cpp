@@ -73,6 +73,7 @@ class Validator {
   void material(const MaterialDesc& m) {
     non_negative(m.kd, "kd");
     non_negative(m.ks, "ks");
+    if (m.ka) non_negative(*m.ka, "ka");
     non_negative(m.exponent, "specular exponent");
     if (m.reflectivity.value < 0.0f || m.reflectivity.value > 1.0f)
       diag_.error(m.reflectivity.where, "reflectivity must be between 0 and 1, got " + str(m.reflectivity.value));
@@ -91,6 +92,20 @@ class Validator {
     if (!(length(l.direction.value) > 0.0f))
       diag_.error(l.direction.where, "a directional light's direction must not be zero");
     colour(l.irradiance, "irradiance");
+  }
+
+  void light(const AmbientLightDesc& l) { colour(l.intensity, "ambient intensity"); }
+
+  void light(const SpotLightDesc& l) {
+    colour(l.intensity, "light intensity");
+    colour(l.specular_intensity, "specular intensity");
+    if (!(length(l.direction.value) > 0.0f))
+      diag_.error(l.direction.where, "a spot light's direction must not be zero (look_at must differ from position)");
+    const float cone = l.cone_angle.value, band = l.cone_delta.value;
+    if (!(cone > 0.0f && cone <= 180.0f))
+      diag_.error(l.cone_angle.where, "cone_angle must be between 0 (excluded) and 180 degrees, got " + str(cone));
+    else if (!(band >= 0.0f && band <= cone))
+      diag_.error(l.cone_delta.where, "cone_delta must be between 0 and cone_angle (" + str(cone) + "), got " + str(band));
   }
 
   void environment(const EnvironmentDesc& e) {

@@ -314,8 +314,8 @@ TEST(MemoryEstimate, OutputBuffersCountEveryAovChannel) {
     all.push_back({info.type, info.default_type});
     channels += static_cast<std::size_t>(info.channels);
   }
-  EXPECT_EQ(channels, 36u);
-  EXPECT_EQ(output_bytes_per_pixel(all, {"a.png", "a.exr"}), 2 * 36u * 4u);  // 288 bytes a pixel
+  EXPECT_EQ(channels, 39u);
+  EXPECT_EQ(output_bytes_per_pixel(all, {"a.png", "a.exr"}), 2 * 39u * 4u);  // 312 bytes a pixel
   // The film: PixelSum, then each AOV's doubles.
   EXPECT_EQ(film_bytes_per_pixel({}), sizeof(PixelSum));
   EXPECT_EQ(film_bytes_per_pixel({{AovType::Position, ChannelType::Float}}), sizeof(PixelSum) + 4 * sizeof(double));

@@ -54,6 +54,50 @@ TEST_F(CliOutput, UnknownAovIsAUsageErrorListingTheValidNames) {
   EXPECT_FALSE(fs::exists(path("out.exr")));
 }
 
+// What an integrator produces is the registry's (IntegratorInfo::aovs): any
+// other AOV is refused before rendering, listing those it can produce.
+TEST_F(CliOutput, AnAovTheIntegratorCannotProduceIsRefusedListingThoseItCan) {
+  Result r = run("-o out.exr --aov albedo,diffuse_indirect");  // the scene's integrator: whitted
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--aov: the whitted integrator cannot produce AOV 'diffuse_indirect'; it produces: albedo N P Z "
+                       "IndexOB IndexMA emission diffuse_direct specular_direct specular_indirect variance samples "
+                       "nonfinite ambient"),
+            std::string::npos)
+      << r.err;
+  r = run("-o out.exr --integrator path --aov ambient");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("the path integrator cannot produce AOV 'ambient'; it produces: albedo N P Z IndexOB IndexMA "
+                       "emission diffuse_direct diffuse_indirect specular_direct specular_indirect variance"),
+            std::string::npos)
+      << r.err;
+  r = run("-o out.exr --integrator normal --aov N,specular_direct");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("the normal integrator cannot produce AOV 'specular_direct'"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("out.exr")));
+  r = run("-o out.exr --quiet --aov emission,ambient,diffuse_direct,specular_direct,specular_indirect");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(path("out.exr")));
+}
+
+// The path integrator leaves an ambient light out, saying so once.
+TEST_F(CliOutput, PathWarnsOnceAboutAnAmbientLight) {
+  write("ambient.json", R"({ "format": "pathtracer-scene", "version": 1,
+    "camera": { "position": [0, 0, 5], "look_at": [0, 0, 0] }, "film": { "width": 8, "height": 6 },
+    "lights": [{ "type": "ambient", "intensity": [0.1, 0.1, 0.1] }, { "type": "ambient", "intensity": [0.2, 0.2, 0.2] },
+               { "type": "point", "position": [0, 3, 3], "intensity": [1, 1, 1] }],
+    "shapes": [{ "type": "sphere", "center": [0, 0, 0], "radius": 1 }] })");
+  Result r = AppTest::run("ambient.json -o a.png --integrator path --spp 1");
+  EXPECT_EQ(r.status, 0) << r.err;
+  const std::string warning = "an ambient light is not physical: the path integrator leaves it out";
+  const std::size_t at = r.err.find(warning);
+  EXPECT_NE(at, std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find(warning, at + 1), std::string::npos) << r.err;  // once
+  EXPECT_NE(r.err.find("ambient.json:"), std::string::npos) << r.err;
+  r = AppTest::run("ambient.json -o w.png --spp 1");  // whitted: the classic term, no warning
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.find("ambient light"), std::string::npos) << r.err;
+}
+
 TEST_F(CliOutput, BadCropsAndReplaysAreUsageErrors) {
   for (const char* args : {"-o out.exr --crop 0.5,0.5,0.4,1", "-o out.exr --crop 0,0,1", "-o out.exr --crop 0,0,1,1.5",
                            "-o out.exr --crop-px 30,0,5,5", "-o out.exr --crop-px 0,0,0,5",

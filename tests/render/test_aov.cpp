@@ -1,5 +1,5 @@
 // AOVs: parsing, geometric layers on known hits for every integrator, the path
-// integrator's lighting split (its parts sum to the beauty), the variance and
+// and classic integrators' lighting splits (their parts sum to the beauty), the variance and
 // sample count, and that AOVs do not depend on threads or tiles.
 #include <gtest/gtest.h>
 
@@ -187,6 +187,26 @@ std::unique_ptr<RenderScene> lighting_scene(WorkerPool& pool) {
   return test::build(d, pool);
 }
 
+// Every pixel's `parts` (non-negative) sum to its beauty, and each part is used somewhere.
+void expect_parts_sum_to_beauty(const Film& film, const std::vector<AovType>& parts) {
+  std::vector<double> totals(parts.size());
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const RGB beauty = film.pixel(x, y);
+      RGB sum;
+      for (std::size_t i = 0; i < parts.size(); ++i) {
+        const std::vector<float> v = film.aov_value(parts[i], x, y);
+        sum += RGB(v[0], v[1], v[2]);
+        for (float c : v) {
+          EXPECT_GE(c, 0.0f);
+          totals[i] += c;
+        }
+      }
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(sum[c], beauty[c], 1e-5f * std::max(1.0f, beauty[c])) << x << "," << y;
+    }
+  for (std::size_t i = 0; i < parts.size(); ++i) EXPECT_GT(totals[i], 0.0) << aov_info(parts[i]).name << " is never used";
+}
+
 TEST(Aov, PathLightingSplitSumsToTheBeauty) {
   WorkerPool pool(2);
   const auto scene = lighting_scene(pool);
@@ -201,25 +221,61 @@ TEST(Aov, PathLightingSplitSumsToTheBeauty) {
     Film film(kW, kH, PixelRect{0, 0, kW, kH},
               aovs("emission,diffuse_direct,diffuse_indirect,specular_direct,specular_indirect"));
     make_integrator("path", settings, error)->render(*scene, film, pool);
-    const AovType parts[] = {AovType::Emission, AovType::DiffuseDirect, AovType::DiffuseIndirect,
-                             AovType::SpecularDirect, AovType::SpecularIndirect};
-    double totals[5] = {};
-    for (int y = 0; y < kH; ++y)
-      for (int x = 0; x < kW; ++x) {
-        const RGB beauty = film.pixel(x, y);
-        RGB sum;
-        for (int i = 0; i < 5; ++i) {
-          const std::vector<float> v = film.aov_value(parts[i], x, y);
-          sum += RGB(v[0], v[1], v[2]);
-          for (float c : v) {
-            EXPECT_GE(c, 0.0f);
-            totals[i] += c;
-          }
-        }
-        for (int c = 0; c < 3; ++c) EXPECT_NEAR(sum[c], beauty[c], 1e-5f * std::max(1.0f, beauty[c])) << x << "," << y;
-      }
-    for (int i = 0; i < 5; ++i) EXPECT_GT(totals[i], 0.0) << "part " << i << " is never used";
+    expect_parts_sum_to_beauty(film, {AovType::Emission, AovType::DiffuseDirect, AovType::DiffuseIndirect,
+                                      AovType::SpecularDirect, AovType::SpecularIndirect});
   }
+}
+
+// The classic integrator's scene: the lighting scene's floor, a glossy Phong
+// sphere that also reflects, a glass sphere, a point, a spot and an ambient
+// light, and a background the camera sees.
+std::unique_ptr<RenderScene> classic_scene(WorkerPool& pool) {
+  SceneDescription d = test::empty_scene(kW, kH, Vec3f(0, 1.5f, 6), Vec3f(0, 0.5f, 0), Vec3f(0, 1, 0), 55.0f);
+  d.render.background = RGB(0.1f, 0.2f, 0.3f);
+  Quad q;
+  q.v[0] = Vec3f(-3, 0, -3);
+  q.v[1] = Vec3f(-3, 0, 3);
+  q.v[2] = Vec3f(3, 0, 3);
+  q.v[3] = Vec3f(3, 0, -3);
+  test::add_shape(d, q, test::add_material(d, test::diffuse_material(RGB(0.6f, 0.5f, 0.4f), 0.8f)));
+  MaterialDesc glossy = test::diffuse_material(RGB(0.3f, 0.6f, 0.3f), 0.6f);
+  glossy.ks = 0.5f;
+  glossy.exponent = 40.0f;
+  glossy.reflectivity = 0.3f;
+  glossy.ka = Sourced<float>(0.2f);
+  test::add_sphere(d, Vec3f(-0.8f, 0.7f, 0), 0.7f, test::add_material(d, glossy));
+  MaterialDesc glass;
+  glass.refractive = true;
+  glass.ior = 1.5f;
+  test::add_sphere(d, Vec3f(0.9f, 0.6f, 0.5f), 0.6f, test::add_material(d, glass));
+  test::add_point_light(d, Vec3f(1, 3, 2), RGB(3.0f), RGB(3.0f));
+  SpotLightDesc spot;
+  spot.position = Vec3f(-1, 3, 1);
+  spot.direction = Vec3f(0.2f, -1, -0.3f);
+  spot.intensity = spot.specular_intensity = RGB(4.0f, 3.0f, 2.0f);
+  d.lights.emplace_back(spot);
+  AmbientLightDesc ambient;
+  ambient.intensity = RGB(0.2f, 0.25f, 0.3f);
+  d.lights.emplace_back(ambient);
+  return test::build(d, pool);
+}
+
+TEST(Aov, WhittedSplitSumsToTheBeauty) {
+  WorkerPool pool(2);
+  const auto scene = classic_scene(pool);
+  ASSERT_TRUE(scene);
+  IntegratorSettings settings;
+  settings.spp = 4;
+  std::string error;
+  Film film(kW, kH, PixelRect{0, 0, kW, kH}, aovs("emission,ambient,diffuse_direct,specular_direct,specular_indirect"));
+  make_integrator("whitted", settings, error)->render(*scene, film, pool);
+  expect_parts_sum_to_beauty(film, {AovType::Emission, AovType::Ambient, AovType::DiffuseDirect,
+                                    AovType::SpecularDirect, AovType::SpecularIndirect});
+  // The beauty with the AOVs is the beauty without them, bit for bit.
+  Film plain(kW, kH);
+  make_integrator("whitted", settings, error)->render(*scene, plain, pool);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) ASSERT_EQ(plain.pixel(x, y), film.pixel(x, y)) << x << "," << y;
 }
 
 TEST(Aov, DiffuseOnlySceneHasNoSpecularLight) {

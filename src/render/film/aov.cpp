@@ -26,6 +26,7 @@ const std::vector<AovInfo> kCatalogue = {
     {AovType::Variance, "variance", 3, {"R", "G", "B"}, kFloat, A::Sum, 6, false},
     {AovType::Samples, "samples", 1, {"", "", ""}, kFloat, A::Sum, 0, false},
     {AovType::NonFinite, "nonfinite", 1, {"", "", ""}, kHalf, A::Max, 1, false},
+    {AovType::Ambient, "ambient", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, true},
 };
 
 std::string trim(const std::string& s) {

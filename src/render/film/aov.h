@@ -22,14 +22,16 @@ enum class AovType : uint8_t {
   Depth,             // Z: camera-space depth of the first hit along the view axis
   ObjectId,          // IndexOB: 1 + shape index of the first hit, 0 for none
   MaterialId,        // IndexMA: 1 + material index of the first hit, 0 for none
-  Emission,          // emission.R/G/B (path): emitters seen directly by the camera
-  DiffuseDirect,     // diffuse_direct.R/G/B (path)
+  Emission,          // emission.R/G/B (path, whitted): emitters and the background seen directly by the camera
+  DiffuseDirect,     // diffuse_direct.R/G/B (path, whitted)
   DiffuseIndirect,   // diffuse_indirect.R/G/B (path)
-  SpecularDirect,    // specular_direct.R/G/B (path)
-  SpecularIndirect,  // specular_indirect.R/G/B (path)
+  SpecularDirect,    // specular_direct.R/G/B (path, whitted)
+  SpecularIndirect,  // specular_indirect.R/G/B (path, whitted)
   Variance,          // variance.R/G/B: variance of the pixel mean, per channel
   Samples,           // samples: the pixel's sample count
   NonFinite,         // nonfinite: 1 where a NaN or infinite sample was caught, else 0
+  // Last, so the numbers of the others (in checkpoints) stay as they were.
+  Ambient,           // ambient.R/G/B (whitted): the classic ambient term at the first hit
 };
 
 // How a layer's samples combine into the pixel value.
@@ -48,13 +50,27 @@ struct AovInfo {
   ChannelType default_type;
   Accumulation accumulation;
   int state_doubles;                   // doubles per pixel in the film
-  bool path_only;                      // filled only by the path integrator (others leave it black)
+  bool lighting;                       // a part of the beauty's lighting split, filled by the integrator
+                                       // (which integrator fills which: IntegratorInfo::aovs)
 };
 
 // Every AOV, in the order the film stores and the EXR lists them.
 const std::vector<AovInfo>& aov_catalogue();
 const AovInfo& aov_info(AovType type);
 std::vector<std::string> aov_names();
+
+// A set of AOV types, one bit per AovType.
+using AovSet = uint32_t;
+constexpr AovSet aov_bit(AovType type) { return AovSet{1} << static_cast<unsigned>(type); }
+template <class... Types>
+constexpr AovSet aov_set(Types... types) {
+  return (AovSet{0} | ... | aov_bit(types));
+}
+// What the render loop fills for every integrator: the first hit's geometry
+// and the pixel statistics.
+inline constexpr AovSet kRenderLoopAovs =
+    aov_set(AovType::Albedo, AovType::Normal, AovType::Position, AovType::Depth, AovType::ObjectId,
+            AovType::MaterialId, AovType::Variance, AovType::Samples, AovType::NonFinite);
 
 struct AovRequest {
   AovType type;
@@ -74,14 +90,14 @@ bool parse_aov_list(const std::string& list, std::vector<AovRequest>& out, Chann
 
 // What one camera sample contributes to the AOVs besides its radiance. The
 // render loop fills the geometric part (only when a geometric AOV is
-// requested), the path integrator the lighting split (only when asked).
+// requested), the integrator the lighting split (only when asked).
 struct AovSample {
   bool hit = false;
   RGB albedo;
   Vec3f normal, position;
   float depth = kInfinity;           // +inf for a ray that hits nothing
   uint32_t object = 0, material = 0; // 1 + index, 0 = nothing hit
-  RGB emission, diffuse_direct, diffuse_indirect, specular_direct, specular_indirect;
+  RGB emission, diffuse_direct, diffuse_indirect, specular_direct, specular_indirect, ambient;
 };
 
 }  // namespace pt

@@ -85,7 +85,7 @@ Film::Film(int width, int height, PixelRect crop, std::vector<AovRequest> aovs)
     const AovInfo& info = aov_info(r.type);
     stride_ += info.state_doubles;
     if (r.type <= AovType::MaterialId) wants_geometry_ = true;
-    if (info.path_only) wants_lighting_ = true;
+    if (info.lighting) wants_lighting_ = true;
   }
   aov_data_.assign(pixels_.size() * static_cast<std::size_t>(stride_), 0.0);
 }
@@ -129,6 +129,7 @@ void Film::accumulate(double* scratch, const AovSample& a, RGB radiance, float w
       case AovType::DiffuseIndirect: if (!non_finite) add_weighted(s, w, a.diffuse_indirect); break;
       case AovType::SpecularDirect: if (!non_finite) add_weighted(s, w, a.specular_direct); break;
       case AovType::SpecularIndirect: if (!non_finite) add_weighted(s, w, a.specular_indirect); break;
+      case AovType::Ambient: if (!non_finite) add_weighted(s, w, a.ambient); break;
       case AovType::Variance:
         if (!non_finite) {
           for (int c = 0; c < 3; ++c) {

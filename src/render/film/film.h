@@ -104,7 +104,7 @@ class Film {
   // with add_aovs().
   const std::vector<AovRequest>& aovs() const { return aovs_; }
   bool wants_geometry() const { return wants_geometry_; }  // albedo, N, P, Z or ids
-  bool wants_lighting() const { return wants_lighting_; }  // the path integrator's split
+  bool wants_lighting() const { return wants_lighting_; }  // the integrator's lighting split
   int aov_doubles() const { return stride_; }
   void accumulate(double* scratch, const AovSample& sample, RGB radiance, float weight, bool non_finite) const;
   void add_aovs(int x, int y, const double* scratch);

@@ -85,6 +85,13 @@ class Integrator {
 
 using IntegratorFactory = std::unique_ptr<Integrator> (*)(const IntegratorSettings& settings);
 
+// How an integrator reads the scene's lights.
+enum class LightModel {
+  None,      // a debug view: lights play no part
+  Classic,   // whitted: the ambient term, spot lights' linear falloff (docs/rendering.md)
+  Physical,  // path: no ambient term (a warning), spot lights' smoothstep (docs/path-tracing.md)
+};
+
 // A registry entry: the integrator's name, its factory, and the facts the
 // command line needs before making one.
 struct IntegratorInfo {
@@ -94,6 +101,15 @@ struct IntegratorInfo {
   // settings.filter (path); false: the classic pixel grid, stratified over each
   // pass's sample count, and the box filter.
   bool configurable_sampling;
+  // The AOVs it produces (the render loop's, and its own lighting split);
+  // any other is refused before rendering (check_aovs).
+  AovSet aovs;
+  LightModel lights;
+
+  bool produces(AovType type) const { return (aovs & aov_bit(type)) != 0; }
+  // False, with `error` naming the first AOV of `requested` it cannot produce
+  // and listing those it can.
+  bool check_aovs(const std::vector<AovRequest>& requested, std::string& error) const;
 
   // What takes the samples with `sampler` and `filter` (the EXR stamp, the run
   // record): the configured ones, or "pixel-grid" and "box".

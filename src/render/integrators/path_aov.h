@@ -64,7 +64,7 @@ class PathAovRecorder {
   }
   void scale(float k) {
     for (RGB* c : {&out_->emission, &out_->diffuse_direct, &out_->diffuse_indirect, &out_->specular_direct,
-                   &out_->specular_indirect})
+                   &out_->specular_indirect})  // (path has no ambient term)
       *c *= k;
   }
 

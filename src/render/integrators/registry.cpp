@@ -10,16 +10,22 @@ namespace pt {
 
 namespace {
 
+using enum AovType;
+constexpr AovSet kWhittedAovs =
+    kRenderLoopAovs | aov_set(Emission, Ambient, DiffuseDirect, SpecularDirect, SpecularIndirect);
+constexpr AovSet kPathAovs =
+    kRenderLoopAovs | aov_set(Emission, DiffuseDirect, DiffuseIndirect, SpecularDirect, SpecularIndirect);
+
 // A plain array: adding a row needs no count. The columns: name, factory,
-// configurable sampling (IntegratorInfo).
+// configurable sampling, AOVs, light model (IntegratorInfo).
 constexpr IntegratorInfo kIntegrators[] = {
-    {"whitted", make_whitted_integrator, false},
-    {"path", make_path_integrator, true},
-    {"binary", make_binary_integrator, false},
-    {"normal", make_normal_integrator, false},
-    {"depth", make_depth_integrator, false},
-    {"signature", make_signature_integrator, false},
-    {"bvh-cost", make_bvh_cost_integrator, false},
+    {"whitted", make_whitted_integrator, false, kWhittedAovs, LightModel::Classic},
+    {"path", make_path_integrator, true, kPathAovs, LightModel::Physical},
+    {"binary", make_binary_integrator, false, kRenderLoopAovs, LightModel::None},
+    {"normal", make_normal_integrator, false, kRenderLoopAovs, LightModel::None},
+    {"depth", make_depth_integrator, false, kRenderLoopAovs, LightModel::None},
+    {"signature", make_signature_integrator, false, kRenderLoopAovs, LightModel::None},
+    {"bvh-cost", make_bvh_cost_integrator, false, 0, LightModel::None},  // its film holds colours only
 };
 
 }  // namespace
@@ -34,6 +40,17 @@ const char* IntegratorInfo::filter_name(PixelFilterType filter) const {
 
 bool IntegratorInfo::equal_passes(SamplerType sampler) const {
   return !configurable_sampling || sampler == SamplerType::Jittered;
+}
+
+bool IntegratorInfo::check_aovs(const std::vector<AovRequest>& requested, std::string& error) const {
+  for (const AovRequest& r : requested) {
+    if (produces(r.type)) continue;
+    error = std::string("the ") + name + " integrator cannot produce AOV '" + aov_info(r.type).name + "'; it produces:";
+    for (const AovInfo& info : aov_catalogue())
+      if (produces(info.type)) error += std::string(" ") + info.name;
+    return false;
+  }
+  return true;
 }
 
 std::vector<std::string> integrator_names() {

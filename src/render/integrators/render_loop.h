@@ -33,8 +33,8 @@ Vec2f sample_position(int x, int y, int index, int spp, uint64_t seed, uint64_t 
 // Computes one radiance estimate for a camera ray.
 using RadianceFn = FunctionRef<RGB(const Ray&)>;
 // Computes one radiance estimate for a camera ray, drawing further dimensions
-// from `sampler`. `aov` is null unless the film asks for the path integrator's
-// lighting split (Film::wants_lighting()); then the estimate's parts go there.
+// from `sampler`. `aov` is null unless the film asks for the lighting split
+// (Film::wants_lighting()); then the estimate's parts go there.
 using SampleRadianceFn = FunctionRef<RGB(const Ray&, Sampler&, AovSample* aov)>;
 
 // The general loop: for samples [settings.first_sample, + settings.spp) of every
@@ -57,5 +57,11 @@ void first_hit_aovs(const RenderScene& scene, const Ray& ray, AovSample& aov);
 // over settings.spp camera rays.
 void render_pixels(const RenderScene& scene, Film& film, WorkerPool& pool, const IntegratorSettings& settings,
                    RadianceFn radiance);
+
+// The same for an integrator that splits its estimate into the lighting AOVs
+// (whitted): `aov` is null unless the film asks for them (Film::wants_lighting()).
+using SplitRadianceFn = FunctionRef<RGB(const Ray&, AovSample* aov)>;
+void render_pixels_with_split(const RenderScene& scene, Film& film, WorkerPool& pool,
+                              const IntegratorSettings& settings, SplitRadianceFn radiance);
 
 }  // namespace pt

@@ -15,10 +15,17 @@ namespace pt {
 
 namespace {
 
-// The classic shading of each delta light at one surface point: ambient-free
-// Blinn-Phong with hard shadows, added to `result`. Lights that are not delta
-// (area lights, the environment) are not shaded: the integrator's rays see
-// them (a material's emission, the escaped radiance).
+// The diffuse and specular parts of the direct light, kept apart only for the
+// AOVs (their sum in shading order is the beauty's term).
+struct DirectParts {
+  RGB diffuse, specular;
+};
+
+// The classic shading of each delta light at one surface point: Blinn-Phong
+// with hard shadows, added to `result` (and, when `parts` is set, to its
+// diffuse or specular part). Lights that are not delta (area lights, the
+// environment) are not shaded: the integrator's rays see them (a material's
+// emission, the escaped radiance). The ambient term is the caller's.
 // `n` is the shading normal facing the viewer, `wo` the unit direction to the viewer.
 struct ClassicShading {
   const RenderScene& scene;
@@ -26,21 +33,44 @@ struct ClassicShading {
   const SurfaceGeometry& geo;
   Vec3f n, wo;
   RGB& result;
+  DirectParts* parts;
+
+  void add(RGB term, bool diffuse) const {
+    result += term;
+    if (parts != nullptr) (diffuse ? parts->diffuse : parts->specular) += term;
+  }
 
   void operator()(const PointLight& light) const {
-    const Vec3f to_light = light.position - geo.p;
+    shade_from(light.position, light.intensity, light.specular_intensity,
+               [&](float r2, Vec3f) { return light.falloff(r2); });
+  }
+
+  // A spot light: a point light times its classic cone factor (render/lights/spot_light.h).
+  void operator()(const SpotLight& light) const {
+    shade_from(light.position, light.intensity, light.specular_intensity, [&](float r2, Vec3f l) {
+      const float cone = light.classic_factor(dot(-l, light.axis));
+      return cone > 0.0f ? cone / r2 : 0.0f;
+    });
+  }
+
+  // A light at `position`; falloff(r2, l) is the factor on both intensities
+  // (0: nothing arrives, no shadow ray).
+  template <class Falloff>
+  void shade_from(Vec3f position, const RGB& intensity, const RGB& specular_intensity, Falloff falloff_of) const {
+    const Vec3f to_light = position - geo.p;
     const float r2 = length_squared(to_light);
     if (!(r2 > 0.0f)) return;
     const Vec3f l = to_light / std::sqrt(r2);
     const float cos_theta = dot(n, l);
     if (cos_theta <= 0.0f) return;
-    if (scene.occluded(spawn_ray_to(geo, light.position))) return;
-    const float falloff = light.falloff(r2);
-    result += m.kd * cos_theta * falloff * (m.diffuse_at(geo.uv) * light.intensity);
+    const float falloff = falloff_of(r2, l);
+    if (falloff == 0.0f) return;
+    if (scene.occluded(spawn_ray_to(geo, position))) return;
+    add(m.kd * cos_theta * falloff * (m.diffuse_at(geo.uv) * intensity), true);
     if (m.ks > 0.0f) {
       const Vec3f h = normalize(l + wo);
       const float spec = std::pow(std::max(0.0f, dot(n, h)), m.exponent);
-      result += m.ks * spec * falloff * (m.specular * light.specular_intensity);
+      add(m.ks * spec * falloff * (m.specular * specular_intensity), false);
     }
   }
 
@@ -52,10 +82,10 @@ struct ClassicShading {
     if (cos_theta <= 0.0f) return;
     if (scene.occluded(spawn_ray(geo, l))) return;
     const RGB e = light.irradiance * kInvPi;
-    result += m.kd * cos_theta * (m.diffuse_at(geo.uv) * e);
+    add(m.kd * cos_theta * (m.diffuse_at(geo.uv) * e), true);
     if (m.ks > 0.0f) {
       const float spec = std::pow(std::max(0.0f, dot(n, normalize(l + wo))), m.exponent);
-      result += m.ks * spec * (m.specular * e);
+      add(m.ks * spec * (m.specular * e), false);
     }
   }
 
@@ -65,11 +95,11 @@ struct ClassicShading {
   void operator()(const L&) const {}
 };
 
-// Direct light from every delta light (the light set keeps point lights
-// before directional ones: the sum's order is fixed).
-RGB direct_lighting(const RenderScene& scene, const Intersection& isect, Vec3f n, Vec3f wo) {
+// Direct light from every delta light (the light set keeps point and spot
+// lights before directional ones: the sum's order is fixed).
+RGB direct_lighting(const RenderScene& scene, const Intersection& isect, Vec3f n, Vec3f wo, DirectParts* parts) {
   RGB result;
-  const ClassicShading shade{scene, *isect.material, isect.geo, n, wo, result};
+  const ClassicShading shade{scene, *isect.material, isect.geo, n, wo, result, parts};
   for (const Light& light : scene.lights.delta_lights()) std::visit(shade, light);
   return result;
 }
@@ -84,22 +114,49 @@ class Whitted {
  public:
   Whitted(const RenderScene& scene, int max_depth) : scene_(scene), max_depth_(max_depth) {}
 
-  RGB trace(const Ray& ray, int depth) const {
+  // `aov` (the camera ray's only, else null) receives the terms of the
+  // result: emission (the surface's own, or what the ray sees leaving the
+  // scene), ambient, diffuse and specular direct light at the first hit, and
+  // specular_indirect (what its mirror reflection or refraction brings).
+  RGB trace(const Ray& ray, int depth, AovSample* aov = nullptr) const {
     Intersection isect;
-    if (!scene_.intersect(ray, isect))
-      return depth == 0 ? scene_.camera_ray_escaped(ray) : scene_.escaped_radiance(ray.dir);
+    if (!scene_.intersect(ray, isect)) {
+      const RGB seen = depth == 0 ? scene_.camera_ray_escaped(ray) : scene_.escaped_radiance(ray.dir);
+      if (aov != nullptr) aov->emission += seen;
+      return seen;
+    }
     const Material& m = *isect.material;
-    if (m.glass()) return dielectric(ray, isect, depth);
+    if (m.glass()) {
+      const RGB through = dielectric(ray, isect, depth);
+      if (aov != nullptr) aov->specular_indirect += through;
+      return through;
+    }
 
     // Both normals flipped to the viewer's side of the surface.
     const Vec3f wo = -ray.dir;
     Vec3f n = isect.geo.ns;
     if (dot(isect.geo.ng, wo) < 0.0f) n = -n;
 
-    RGB local = m.emission + direct_lighting(scene_, isect, n, wo);
-    if (m.reflectivity <= 0.0f) return local;
+    DirectParts parts;
+    const RGB direct = direct_lighting(scene_, isect, n, wo, aov != nullptr ? &parts : nullptr);
+    RGB ambient;
+    RGB local;
+    if (scene_.ambient.is_black()) {
+      local = m.emission + direct;
+    } else {
+      ambient = m.ka * (m.diffuse_at(isect.geo.uv) * scene_.ambient);
+      local = m.emission + ambient + direct;
+    }
+    if (m.reflectivity <= 0.0f) {
+      if (aov != nullptr) record(*aov, m.emission, ambient, parts, 1.0f);
+      return local;
+    }
     RGB mirrored;  // beyond the depth limit a ray carries nothing
     if (depth < max_depth_) mirrored = trace(spawn_ray(isect.geo, reflect(wo, n)), depth + 1);
+    if (aov != nullptr) {
+      record(*aov, m.emission, ambient, parts, 1.0f - m.reflectivity);
+      aov->specular_indirect += mirrored * m.reflectivity;
+    }
     return local * (1.0f - m.reflectivity) + mirrored * m.reflectivity;
   }
 
@@ -127,6 +184,13 @@ class Whitted {
     return result;
   }
 
+  static void record(AovSample& aov, RGB emission, RGB ambient, const DirectParts& parts, float weight) {
+    aov.emission += emission * weight;
+    aov.ambient += ambient * weight;
+    aov.diffuse_direct += parts.diffuse * weight;
+    aov.specular_direct += parts.specular * weight;
+  }
+
   const RenderScene& scene_;
   int max_depth_;
 };
@@ -137,7 +201,8 @@ class WhittedIntegrator final : public Integrator {
 
   void render(const RenderScene& scene, Film& film, WorkerPool& pool) const override {
     const Whitted whitted(scene, settings_.max_depth);
-    render_pixels(scene, film, pool, settings_, [&](const Ray& ray) { return whitted.trace(ray, 0); });
+    render_pixels_with_split(scene, film, pool, settings_,
+                             [&](const Ray& ray, AovSample* aov) { return whitted.trace(ray, 0, aov); });
   }
 
  private:

@@ -1,5 +1,5 @@
 // The lights of a render scene, each stored once: point and directional
-// lights, area lights (every emissive shape), and the environment (an image
+// lights, spot lights, area lights (every emissive shape), and the environment (an image
 // map, or the background colour as a uniform environment when it is not
 // black). The path integrator chooses one light per next-event estimate, in
 // proportion to its power (an estimate for infinite lights, from the scene's
@@ -17,6 +17,7 @@
 #include "render/lights/environment.h"
 #include "render/lights/light.h"
 #include "render/lights/shape_light.h"
+#include "render/lights/spot_light.h"
 
 namespace pt {
 
@@ -35,7 +36,7 @@ concept LightKind = requires(const L& light, Vec3f v, Vec2f u, LightSample& s, f
 // list, and where it comes from (RenderScene's build, from a LightDesc).
 template <LightKind... Kinds>
 using LightVariant = std::variant<Kinds...>;
-using Light = LightVariant<PointLight, DirectionalLight, ShapeLight, EnvironmentLight, UniformEnvironment>;
+using Light = LightVariant<PointLight, SpotLight, DirectionalLight, ShapeLight, EnvironmentLight, UniformEnvironment>;
 
 // Samples `light` from point p (and sets s.delta, s.infinite from its kind).
 bool sample_light(const Light& light, Vec3f p, Vec2f u, LightSample& s);
@@ -47,7 +48,7 @@ class LightSet {
   LightSet() = default;
   // `shape_count`: the number of shapes (for the shape -> light table).
   // The lights are kept in the order delta before not, finite before infinite
-  // (point, directional, area, environment), each kind in the order given:
+  // (point and spot, directional, area, environment), each in the order given:
   // the choice among them and the classic integrator's sum over them follow
   // this order, and images depend on it bit for bit.
   LightSet(std::vector<Light> lights, std::size_t shape_count, float scene_radius);
@@ -57,7 +58,7 @@ class LightSet {
   const Light& operator[](std::size_t i) const { return lights_[i]; }
   auto begin() const { return lights_.begin(); }
   auto end() const { return lights_.end(); }
-  // The delta lights (point, then directional): the first ones of the set.
+  // The delta lights (point and spot, then directional): the first ones of the set.
   std::span<const Light> delta_lights() const { return {lights_.data(), delta_count_}; }
 
   // Picks a light with probability proportional to its power; -1 if there is none.

@@ -34,6 +34,7 @@ Material make_material(const MaterialDesc& d, const Texture* texture) {
       if (d.refractive) m.type = MaterialType::Glass;  // the course's dielectric
       break;
   }
+  m.ka = d.ka ? d.ka->value : m.kd;  // after the classic meanings: a mirror has none
   m.texture = texture;
   return m;
 }

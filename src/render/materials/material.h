@@ -25,6 +25,7 @@ namespace pt {
 struct Material {
   MaterialType type = MaterialType::Phong;  // decided: Glass for every dielectric
   float kd = 1, ks = 0;
+  float ka = 1;  // the classic ambient term's weight: ka Cd times the ambient light (kd unless given)
   RGB diffuse{0.8f, 0.8f, 0.8f};
   RGB specular{1, 1, 1};
   float exponent = 1;
