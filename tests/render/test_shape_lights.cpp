@@ -43,7 +43,8 @@ void expect_floor_radiance(const Shape& light, float expected, const char* what)
     BuildOptions options;
     ASSERT_TRUE(parse_accel_kind(accel, options.accel));
     const Image img = test::render_with(d, "path", test::path_settings(1024, 1), 2, options);
-    // 16 pixels x 1024 samples: the estimate is within 1e-4 of the closed form (measured: 0.264691 against 0.264706 for the disc);
+    // 16 pixels x 1024 samples: the estimate is within 1e-4 of the closed form
+    // (measured: 0.264691 against 0.264706 for the disc);
     // 0.2% allows for the pixels' footprint (within 0.02 of the origin) and the noise.
     EXPECT_NEAR(mean_red(img), expected, 2e-3f * expected) << what << " on " << accel;
   }
