@@ -11,12 +11,7 @@ namespace {
 const Cone kCone{{0, 0, 0}, {0, 0, 2}, 1.0f, 0.0f};       // pointed, apex at z = 2
 const Cone kFrustum{{0, 0, 0}, {0, 0, 2}, 1.0f, 0.5f};    // truncated
 
-SurfaceGeometry hit_surface(const Cone& c, const Ray& ray, float expected_t) {
-  PrimHit hit;
-  EXPECT_TRUE(intersect(c, ray, hit));
-  EXPECT_NEAR(hit.t, expected_t, 1e-5f);
-  return surface(c, ray, hit);
-}
+using test::hit_surface;
 
 TEST(Cone, SideHitHasSlantedNormalAndTextureCoordinates) {
   // At z = 1 the radius is 0.5; the outward normal is (2, 0, 1) / sqrt(5).

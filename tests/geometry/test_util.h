@@ -123,4 +123,13 @@ Vec3f expect_samples_hit_along_normal(const S& shape, int n = 2000, float tol = 
   return sum / static_cast<float>(n);
 }
 
+// The hit of `ray` on a whole shape, expected at t = expected_t; its surface.
+template <class S>
+SurfaceGeometry hit_surface(const S& shape, const Ray& ray, float expected_t) {
+  PrimHit hit;
+  EXPECT_TRUE(intersect(shape, ray, hit));
+  EXPECT_NEAR(hit.t, expected_t, 1e-5f);
+  return surface(shape, ray, hit);
+}
+
 }  // namespace pt::test

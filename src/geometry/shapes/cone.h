@@ -18,6 +18,7 @@
 
 #include "geometry/float_util.h"
 #include "geometry/shape_base.h"
+#include "geometry/shapes/capped_solid.h"
 
 namespace pt {
 
@@ -28,8 +29,6 @@ struct Cone {
 };
 
 namespace cone_detail {
-
-enum Part { kSide = 0, kCap0 = 1, kCap1 = 2 };
 
 // The interval of t where the ray is inside the infinite cone's nappe that
 // holds the solid: r(t)^2 <= R(t)^2 with R(t) = g - kd t >= 0, where r is the
@@ -86,16 +85,8 @@ inline bool intersect(const Cone& cone, const Ray& ray, PrimHit& hit) {
   const float fa = dot(f, a), da = dot(ray.dir, a);
 
   // Interval inside the slab 0 <= h <= len, and which cap bounds each end.
-  float s_in = -kInfinity, s_out = kInfinity;
-  cone_detail::Part cap_in = cone_detail::kCap0, cap_out = cone_detail::kCap1;
-  if (da != 0.0f) {
-    const float t0 = -fa / da, t1 = (len - fa) / da;
-    s_in = da > 0.0f ? t0 : t1;
-    s_out = da > 0.0f ? t1 : t0;
-    if (da < 0.0f) std::swap(cap_in, cap_out);
-  } else if (!(fa >= 0.0f && fa <= len)) {
-    return false;  // parallel to the caps and outside the slab (or NaN)
-  }
+  capped_detail::Slab slab;
+  if (!capped_detail::slab_interval(fa, da, len, slab)) return false;
 
   // Radius R(h) = r0 - k h along the axis; along the ray R = g - k da t.
   const double k = (static_cast<double>(cone.radius) - cone.top_radius) / len;
@@ -110,44 +101,24 @@ inline bool intersect(const Cone& cone, const Ray& ray, PrimHit& hit) {
   float c_in, c_out;
   if (!cone_detail::nappe_interval(A, B, C, kd, c_in, c_out)) return false;
 
-  const bool side_in = c_in > s_in, side_out = c_out < s_out;
-  const float t_enter = side_in ? c_in : s_in;
-  const float t_exit = side_out ? c_out : s_out;
-  if (!(t_enter <= t_exit)) return false;
-  cone_detail::Part part;
-  if (t_enter > ray.tmin && t_enter < ray.tmax) {
-    hit.t = t_enter;
-    part = side_in ? cone_detail::kSide : cap_in;
-  } else if (t_exit > ray.tmin && t_exit < ray.tmax) {
-    hit.t = t_exit;
-    part = side_out ? cone_detail::kSide : cap_out;
-  } else {
-    return false;
-  }
-  if (part == cone_detail::kCap1 && !(cone.top_radius > 0.0f)) part = cone_detail::kSide;  // the apex
+  capped_detail::Part part;
+  if (!capped_detail::pick_hit(c_in, c_out, slab, ray, hit, part)) return false;
+  if (part == capped_detail::kCap1 && !(cone.top_radius > 0.0f)) part = capped_detail::kSide;  // the apex
   hit.uv = {static_cast<float>(part), 0.0f};
   return true;
 }
 
 inline SurfaceGeometry surface(const Cone& cone, const Ray& ray, const PrimHit& hit) {
-  const Vec3f axis = cone.p1 - cone.p0;
-  const float len = length(axis);
-  const Vec3f a = axis / len;
-  Vec3f e0, e1;
-  fp::axis_frame(a, e0, e1);
-
   // Reproject the ray's point onto the part it hit.
-  const Vec3f q = ray.at(hit.t) - cone.p0;
-  const float h = dot(q, a);
-  const Vec3f radial = q - a * h;
-  const float rl = length(radial);
-  const Vec3f dir = (rl > 0.0f && std::isfinite(rl)) ? radial / rl : e0;
+  const capped_detail::AxisPoint ap = capped_detail::axis_point(cone.p0, cone.p1, ray.at(hit.t));
+  const float len = ap.len, rl = ap.rl;
+  const Vec3f a = ap.a, q = ap.q, dir = ap.dir;
   const float k = (cone.radius - cone.top_radius) / len;
 
   SurfaceGeometry sg;
   const int part = static_cast<int>(hit.uv.x);
   float v;
-  if (part == cone_detail::kSide) {
+  if (part == capped_detail::kSide) {
     // The side point nearest the hit along the slant (and the normal there).
     const float slant2 = len * len + (cone.radius - cone.top_radius) * (cone.radius - cone.top_radius);
     const Vec3f s = a * len + dir * (cone.top_radius - cone.radius);  // base rim -> top rim
@@ -157,13 +128,13 @@ inline SurfaceGeometry surface(const Cone& cone, const Ray& ray, const PrimHit& 
     sg.ng = normalize(dir + a * k);
     v = w;
   } else {
-    const float rmax = part == cone_detail::kCap0 ? cone.radius : cone.top_radius;
-    sg.p = (part == cone_detail::kCap0 ? cone.p0 : cone.p1) + dir * std::min(rl, rmax);
-    sg.ng = part == cone_detail::kCap0 ? -a : a;
-    v = part == cone_detail::kCap0 ? 0.0f : 1.0f;
+    const float rmax = part == capped_detail::kCap0 ? cone.radius : cone.top_radius;
+    sg.p = (part == capped_detail::kCap0 ? cone.p0 : cone.p1) + dir * std::min(rl, rmax);
+    sg.ng = part == capped_detail::kCap0 ? -a : a;
+    v = part == capped_detail::kCap0 ? 0.0f : 1.0f;
   }
   sg.ns = sg.ng;
-  sg.uv = {fp::longitude_fraction(dot(dir, e0), dot(dir, e1)), v};
+  sg.uv = {fp::longitude_fraction(dot(dir, ap.e0), dot(dir, ap.e1)), v};
   sg.p_error = fp::gamma(8) * (abs(sg.p) + abs(cone.p0) + Vec3f(len + cone.radius));
   return sg;
 }
