@@ -30,12 +30,7 @@ inline Bounds3f bounds(const Cylinder& c) {
   const float len = length(axis);
   const float r = c.radius > 0.0f ? c.radius : 0.0f;
   Vec3f ext(r);
-  if (len > 0.0f && std::isfinite(len)) {
-    const Vec3f a = axis / len;
-    // A disc of radius r with unit normal a spans r * sqrt(1 - a_i^2) along axis i.
-    ext = {r * std::sqrt(std::max(0.0f, 1.0f - a.x * a.x)), r * std::sqrt(std::max(0.0f, 1.0f - a.y * a.y)),
-           r * std::sqrt(std::max(0.0f, 1.0f - a.z * a.z))};
-  }
+  if (len > 0.0f && std::isfinite(len)) ext = fp::circle_extent(axis / len, r);  // each cap
   b.extend(min(c.p0, c.p1) - ext);
   b.extend(max(c.p0, c.p1) + ext);
   return fp::pad(b);

@@ -33,13 +33,6 @@ inline Disc make_disc(Vec3f center, Vec3f normal, float radius, float inner_radi
 
 namespace disc_detail {
 
-// Half-extents of a circle of radius r with unit normal n: r sqrt(1 - n_i^2) along axis i.
-inline Vec3f circle_extent(Vec3f n, float r) {
-  r = r > 0.0f ? r : 0.0f;
-  return {r * std::sqrt(std::max(0.0f, 1.0f - n.x * n.x)), r * std::sqrt(std::max(0.0f, 1.0f - n.y * n.y)),
-          r * std::sqrt(std::max(0.0f, 1.0f - n.z * n.z))};
-}
-
 // Whether the ray point at t lies in the annulus inner <= |p - c| <= outer (in double).
 inline bool in_annulus(Vec3f c, double t, const Ray& ray, float inner, float outer) {
   const double qx = ray.origin.x + t * ray.dir.x - c.x;
@@ -52,7 +45,7 @@ inline bool in_annulus(Vec3f c, double t, const Ray& ray, float inner, float out
 }  // namespace disc_detail
 
 inline Bounds3f bounds(const Disc& d) {
-  const Vec3f e = disc_detail::circle_extent(d.normal, d.radius);
+  const Vec3f e = fp::circle_extent(d.normal, d.radius);
   Bounds3f b;
   b.extend(d.center - e);
   b.extend(d.center + e);
