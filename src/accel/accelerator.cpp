@@ -3,6 +3,7 @@
 
 #include "accel/bvh/bvh_accel.h"
 #include "accel/embree/embree_accel.h"
+#include "accel/unbounded.h"
 
 namespace pt {
 
@@ -39,11 +40,12 @@ bool geometry_usable(const SceneGeometry& geometry) {
 
 std::unique_ptr<Accelerator> build_accelerator(AccelKind kind, const SceneGeometry& geometry, WorkerPool& pool,
                                                Diagnostics& diag) {
+  std::unique_ptr<Accelerator> backend;
   switch (kind) {
-    case AccelKind::Embree: return embree::build(geometry, pool, diag);
-    case AccelKind::Bvh: return bvh::build(geometry, pool, diag);
+    case AccelKind::Embree: backend = embree::build(geometry, pool, diag); break;
+    case AccelKind::Bvh: backend = bvh::build(geometry, pool, diag); break;
   }
-  return nullptr;
+  return with_unbounded_shapes(std::move(backend), geometry);  // infinite planes, above both backends
 }
 
 }  // namespace pt

@@ -3,6 +3,7 @@
 // deterministic tangent frame used for texture coordinates about an axis.
 #pragma once
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -73,6 +74,14 @@ inline float longitude_fraction(float x, float y) {
   float u = phi * (0.5f * kInvPi);
   if (!(u < 1.0f) || !(u >= 0.0f)) u = 0.0f;  // 2pi rounding and NaN land on the seam
   return u;
+}
+
+// Half-extents of a circle of radius r (clamped to >= 0) with unit normal n
+// along each world axis: r sqrt(1 - n_i^2) (discs, caps of cylinders and cones).
+inline Vec3f circle_extent(Vec3f n, float r) {
+  r = r > 0.0f ? r : 0.0f;
+  return {r * std::sqrt(std::max(0.0f, 1.0f - n.x * n.x)), r * std::sqrt(std::max(0.0f, 1.0f - n.y * n.y)),
+          r * std::sqrt(std::max(0.0f, 1.0f - n.z * n.z))};
 }
 
 // Bounds padded outwards by a few ulps of their magnitude, so that a backend

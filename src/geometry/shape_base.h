@@ -22,7 +22,8 @@ struct PrimHit {
   //  quad:     (u, v) of the two-triangle parameterisation (u >= v: triangle
   //            v0 v1 v2, else v0 v2 v3; equals the bilinear (u, v) for parallelograms);
   //  cylinder: (part, 0), part 0 = side, 1 = cap at p0, 2 = cap at p1;
-  //  sphere:   unused (0, 0); surface() reprojects ray.at(t).
+  //  cone:     (part, 0) as the cylinder's (the apex counts as side);
+//  sphere, disc, polygon, plane: unused (0, 0); surface() reprojects ray.at(t).
   Vec2f uv;
 };
 

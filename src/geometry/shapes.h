@@ -1,8 +1,10 @@
 // The list of shapes. Each shape is defined once, in its own header under
 // geometry/shapes/, by its struct and the routines every other part of the
 // renderer finds by name (overloads on the shape type):
-//   Bounds3f bounds(const S&)                      conservative, never invalid
-//   uint32_t primitive_count(const S&)             1, or one per triangle of a mesh
+//   Bounds3f bounds(const S&)                      conservative, never invalid (but empty
+//                                                  for the unbounded InfinitePlane)
+//   uint32_t primitive_count(const S&)             1, or one per triangle of a mesh (0 for
+//                                                  the InfinitePlane: accel/unbounded.h tests it)
 //   bool intersect(const S&, const Ray&, PrimHit&) (or, with several primitives,
 //        intersect(s, prim, ray, hit) and bounds(s, prim))
 //   SurfaceGeometry surface(const S&, const Ray&, const PrimHit&)   (or with prim)
@@ -28,8 +30,12 @@
 
 #include "core/math.h"
 #include "geometry/shape_base.h"
+#include "geometry/shapes/cone.h"
 #include "geometry/shapes/cylinder.h"
+#include "geometry/shapes/disc.h"
 #include "geometry/shapes/mesh.h"
+#include "geometry/shapes/plane.h"
+#include "geometry/shapes/polygon.h"
 #include "geometry/shapes/quad.h"
 #include "geometry/shapes/sphere.h"
 
@@ -37,7 +43,7 @@ namespace pt {
 
 // One renderable object. Its index in SceneGeometry::shapes is its object id
 // (Embree geomID == object id; prim id is the triangle index for meshes, 0 otherwise).
-using Shape = std::variant<Sphere, Quad, Cylinder, TriangleMesh>;
+using Shape = std::variant<Sphere, Quad, Cylinder, TriangleMesh, Disc, ConvexPolygon, Cone, InfinitePlane>;
 
 struct SceneGeometry {
   std::vector<Shape> shapes;

@@ -1,4 +1,4 @@
-// Native-format shapes: sphere, quad, triangle, cylinder, mesh.
+// Native-format shapes: sphere, quad, triangle, cylinder, mesh, disc, polygon, cone, plane.
 #include <string>
 
 #include "scene/json_lists.h"
@@ -8,19 +8,22 @@
 namespace pt {
 namespace {
 
-// "vertices": exactly n points.
-bool read_vertices(ObjectReader& r, std::size_t n, Sourced<Vec3f>* out) {
+// "vertices": exactly n points, or (at_least) n or more.
+bool read_vertices(ObjectReader& r, std::size_t n, std::vector<Sourced<Vec3f>>& out, bool at_least = false) {
   const JsonValue* v = r.require("vertices");
   if (!v) return false;
   ReadContext& ctx = r.context();
-  const std::string expected = "an array of " + std::to_string(n) + " points [x, y, z]";
-  if (!v->is_array() || v->as_array().size() != n) {
+  const std::string expected = "an array of " + std::string(at_least ? "at least " : "") + std::to_string(n) +
+                               " points [x, y, z]";
+  const std::size_t size = v->is_array() ? v->as_array().size() : 0;
+  if (!v->is_array() || size < n || (size > n && !at_least)) {
     ctx.diag.error(ctx.at(*v), "expected " + expected + " for 'vertices' of a " + r.what());
     r.fail();
     return false;
   }
   bool ok = true;
-  for (std::size_t i = 0; i < n; ++i) {
+  out.resize(size);
+  for (std::size_t i = 0; i < size; ++i) {
     const std::string label = "vertices[" + std::to_string(i) + "]";
     ok = read_value(ctx, v->as_array()[i], label, out[i]) && ok;
   }
@@ -41,13 +44,13 @@ void read_sphere(ObjectReader& r, ShapeDesc& shape) {
 }
 
 void read_quad(ObjectReader& r, ShapeDesc& shape) {
-  Sourced<Vec3f> v[4];
+  std::vector<Sourced<Vec3f>> v(4);
   read_vertices(r, 4, v);
   shape.geometry = Quad{{v[0], v[1], v[2], v[3]}};
 }
 
 void read_triangle(ObjectReader& r, ShapeDesc& shape) {
-  Sourced<Vec3f> v[3];
+  std::vector<Sourced<Vec3f>> v(3);
   read_vertices(r, 3, v);
   shape.geometry = make_triangle(v[0], v[1], v[2]);
 }
@@ -59,6 +62,48 @@ void read_cylinder(ObjectReader& r, ShapeDesc& shape) {
   r.read_required("p1", p1);
   r.read_required("radius", radius);
   shape.geometry = Cylinder{p0, p1, shape.field("radius", radius)};
+}
+
+void read_disc(ObjectReader& r, ShapeDesc& shape) {
+  Sourced<Vec3f> center, normal{Vec3f(0, 1, 0)};
+  Sourced<float> radius{1.0f}, inner_radius{0.0f};
+  r.read_required("center", center);
+  r.read_required("normal", normal);
+  r.read_required("radius", radius);
+  r.read("inner_radius", inner_radius);
+  shape.geometry = make_disc(center, shape.field("normal", normal), shape.field("radius", radius),
+                             shape.field("inner_radius", inner_radius));
+}
+
+// Each corner's location is recorded as "vertices[i]", where check() reports
+// a corner off the plane or a reflex one.
+void read_polygon(ObjectReader& r, ShapeDesc& shape) {
+  std::vector<Sourced<Vec3f>> v;
+  if (!read_vertices(r, 3, v, /*at_least=*/true)) return;
+  std::vector<Vec3f> corners;
+  for (std::size_t i = 0; i < v.size(); ++i) corners.push_back(shape.field("vertices[" + std::to_string(i) + "]", v[i]));
+  shape.geometry = make_polygon(std::move(corners));
+}
+
+void read_cone(ObjectReader& r, ShapeDesc& shape) {
+  Sourced<Vec3f> p0, p1;
+  Sourced<float> radius{1.0f}, top_radius{0.0f};
+  r.read_required("p0", p0);
+  r.read_required("p1", p1);
+  r.read_required("radius", radius);
+  r.read("top_radius", top_radius);
+  shape.geometry = Cone{p0, p1, shape.field("radius", radius), shape.field("top_radius", top_radius)};
+}
+
+void read_plane(ObjectReader& r, ShapeDesc& shape) {
+  Sourced<Vec3f> point, normal{Vec3f(0, 1, 0)}, tangent{Vec3f(0.0f)};
+  Sourced<float> uv_scale{1.0f};
+  r.read_required("point", point);
+  r.read_required("normal", normal);
+  r.read("tangent", tangent);
+  r.read("uv_scale", uv_scale);
+  shape.geometry = make_plane(point, shape.field("normal", normal), shape.field("tangent", tangent),
+                              shape.field("uv_scale", uv_scale));
 }
 
 void read_mesh(ImportContext& ctx, ObjectReader& r, ShapeDesc& shape) {
@@ -127,7 +172,8 @@ void read_native_shape(ImportContext& ctx, const JsonValue& v, std::size_t index
                        std::vector<NativeMaterial>& materials, std::vector<int>& shape_material) {
   if (!expect_object(ctx.read, v, "shapes[" + std::to_string(index) + "]")) return;
   ObjectReader r(ctx.read, v, "shape");
-  static const std::vector<std::string> kTypes = {"sphere", "quad", "triangle", "cylinder", "mesh"};
+  static const std::vector<std::string> kTypes = {"sphere", "quad", "triangle", "cylinder", "mesh",
+                                                  "disc", "polygon", "cone", "plane"};
   const int type = read_choice(r, "type", kTypes);
   if (type == -1) r.require("type");
   if (type < 0) return;
@@ -145,7 +191,11 @@ void read_native_shape(ImportContext& ctx, const JsonValue& v, std::size_t index
     case 1: read_quad(r, shape); break;
     case 2: read_triangle(r, shape); break;
     case 3: read_cylinder(r, shape); break;
-    default: read_mesh(ctx, r, shape); break;
+    case 4: read_mesh(ctx, r, shape); break;
+    case 5: read_disc(r, shape); break;
+    case 6: read_polygon(r, shape); break;
+    case 7: read_cone(r, shape); break;
+    default: read_plane(r, shape); break;
   }
   r.finish();
   if (!r.ok()) return;

@@ -143,6 +143,19 @@ class Validator {
   Diagnostics& diag_;
 };
 
+// An infinite plane has infinite area, so an emitting one would have infinite
+// power and no density to sample it by: refused, at the shape.
+bool emitting_plane(const SceneDescription& scene, const ShapeDesc& s, Diagnostics& diag) {
+  if (!std::holds_alternative<InfinitePlane>(s.geometry)) return false;
+  if (s.material < 0 || static_cast<std::size_t>(s.material) >= scene.materials.size()) return false;
+  const MaterialDesc& m = scene.materials[static_cast<std::size_t>(s.material)];
+  const RGB e = m.emission.value;
+  if (!(e.r > 0.0f || e.g > 0.0f || e.b > 0.0f)) return false;
+  diag.error(s.where, "an infinite plane cannot be a light (its power would be infinite), but its material '" +
+                          m.name + "' has emission; use a large quad or disc as the light");
+  return true;
+}
+
 }  // namespace
 
 void validate_scene(const SceneDescription& scene, const LoadOptions& options, Diagnostics& diag) {
@@ -152,7 +165,10 @@ void validate_scene(const SceneDescription& scene, const LoadOptions& options, D
   v.render(scene.render);
   for (const MaterialDesc& m : scene.materials) v.material(m);
   for (const LightDesc& l : scene.lights) std::visit([&](const auto& light) { v.light(light); }, l);
-  for (const ShapeDesc& s : scene.shapes) v.shape(s);
+  for (const ShapeDesc& s : scene.shapes) {
+    v.shape(s);
+    emitting_plane(scene, s, diag);
+  }
   if (scene.environment) v.environment(*scene.environment);
 }
 
@@ -166,6 +182,7 @@ bool check_shapes_usable(const SceneDescription& scene, Diagnostics& diag) {
                                     ": " + p.message);
       ok = false;
     }
+    if (emitting_plane(scene, s, diag)) ok = false;
   }
   return ok;
 }

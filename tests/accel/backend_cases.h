@@ -15,6 +15,7 @@
 
 #include "accel/accelerator.h"
 #include "accel/bvh/bvh_accel.h"
+#include "accel/unbounded.h"
 #include "brute_force.h"
 #include "core/parallel.h"
 
@@ -46,7 +47,7 @@ inline std::unique_ptr<Accelerator> build_backend(const Backend& b, const SceneG
   if (b.kind == AccelKind::Bvh) {
     bvh::Options options;
     options.isa = b.isa;
-    accel = bvh::build(g, pool, diag, options);
+    accel = with_unbounded_shapes(bvh::build(g, pool, diag, options), g);  // as build_accelerator()
   } else {
     accel = build_accelerator(b.kind, g, pool, diag);
   }
@@ -61,7 +62,7 @@ inline bool primitive_hit(const SceneGeometry& g, uint32_t shape, uint32_t prim,
         if constexpr (std::is_same_v<std::decay_t<decltype(s)>, TriangleMesh>) {
           return intersect(s, prim, ray, h);
         } else {
-          return intersect(s, ray, h);
+          return intersect_primitive(s, 0, ray, h);
         }
       },
       g.shapes[shape]);

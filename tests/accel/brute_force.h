@@ -31,7 +31,7 @@ inline bool brute_intersect(const SceneGeometry& g, const Ray& ray, Hit& hit) {
                      if constexpr (std::is_same_v<std::decay_t<decltype(s)>, TriangleMesh>) {
                        return false;
                      } else {
-                       return intersect(s, r, h);
+                       return intersect_primitive(s, 0, r, h);  // whole shapes, and the infinite plane
                      }
                    },
                    g.shapes[i])) {

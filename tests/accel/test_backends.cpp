@@ -105,6 +105,36 @@ SceneGeometry mixed_scene(uint32_t seed) {
   return g;
 }
 
+// The mixed scene with discs (and annuli), convex polygons, cones (pointed
+// and truncated) and two infinite planes added.
+SceneGeometry mixed_scene_with_new_shapes(uint32_t seed) {
+  SceneGeometry g = mixed_scene(seed);
+  test::Rng rng(seed + 1);
+  for (int i = 0; i < 16; ++i) {
+    const Vec3f c{rng.uniform(-8, 8), rng.uniform(-8, 8), rng.uniform(-8, 8)};
+    const Vec3f n = rng.unit_vector();
+    const float r = rng.uniform(0.3f, 1.5f);
+    switch (i % 4) {
+      case 0: g.shapes.push_back(make_disc(c, n, r, i % 8 == 0 ? 0.0f : 0.4f * r)); break;
+      case 1: {
+        Vec3f t, b;
+        orthonormal_basis(n, t, b);
+        std::vector<Vec3f> corners;
+        for (int k = 0; k < 3 + i % 5; ++k) {
+          const float phi = 2.0f * kPi * static_cast<float>(k) / static_cast<float>(3 + i % 5);
+          corners.push_back(c + r * (std::cos(phi) * t + std::sin(phi) * b));
+        }
+        g.shapes.push_back(make_polygon(std::move(corners)));
+        break;
+      }
+      default: g.shapes.push_back(Cone{c, c + rng.uniform(0.5f, 3.0f) * n, r, i % 4 == 2 ? 0.0f : 0.5f * r});
+    }
+  }
+  g.shapes.push_back(make_plane({0, -11, 0}, {0.05f, 1, 0.02f}, {}, 1.0f));
+  g.shapes.push_back(make_plane({0, 0, 15}, {0, 0.1f, -1}, {}, 1.0f));
+  return g;
+}
+
 std::vector<Ray> random_rays(test::Rng& rng, int n, float extent) {
   std::vector<Ray> rays;
   for (int i = 0; i < n; ++i) {
@@ -141,7 +171,11 @@ TEST_P(Backends, OnePrimitiveOfEachType) {
   triangle.indices = {0, 1, 2};
   const std::vector<Shape> shapes = {Sphere{{0.2f, -0.1f, 0.3f}, 1.1f, {0, 0, 1}},
                                      Quad{{{-1, -1, 0}, {1, -1, 0.2f}, {1, 1, 0.2f}, {-1, 1, 0}}},
-                                     Cylinder{{0, -1, 0}, {0.3f, 1, 0.1f}, 0.6f}, triangle};
+                                     Cylinder{{0, -1, 0}, {0.3f, 1, 0.1f}, 0.6f}, triangle,
+                                     make_disc({0.1f, 0, 0.2f}, {0.2f, 0.3f, 1}, 1.2f, 0.3f),
+                                     make_polygon({{-1, -1, 0}, {1, -1, 0.1f}, {1.3f, 0.2f, 0.15f}, {0, 1, 0.05f}, {-1.2f, 0.5f, -0.06f}}),
+                                     Cone{{0, -1, 0}, {0.3f, 1, 0.1f}, 0.9f, 0.0f},
+                                     Cone{{0, -1, 0.2f}, {0.3f, 1, 0.1f}, 0.5f, 0.8f}};
   for (const Shape& shape : shapes) {
     SceneGeometry g;
     g.shapes.push_back(shape);
@@ -164,6 +198,44 @@ TEST_P(Backends, MatchBruteForceOnAMixedScene) {
   ASSERT_NE(accel, nullptr);
   test::Rng rng(42);
   EXPECT_GT(check_rays(g, *accel, random_rays(rng, 8000, 12.0f)).hits, 2000);
+}
+
+TEST_P(Backends, MatchBruteForceWithDiscsPolygonsConesAndPlanes) {
+  const SceneGeometry g = mixed_scene_with_new_shapes(43);
+  auto accel = build(g);
+  ASSERT_NE(accel, nullptr);
+  test::Rng rng(44);
+  EXPECT_GT(check_rays(g, *accel, random_rays(rng, 8000, 12.0f)).hits, 4000);
+}
+
+// An infinite plane is no primitive of the backend (its bounds would be
+// infinite): the scene's box and primitive count are the other shapes', and
+// the plane is hit to the horizon.
+TEST_P(Backends, InfinitePlaneStaysOutOfTheTree) {
+  SceneGeometry g;
+  g.shapes.push_back(Sphere{{0, 1, 0}, 1.0f, {0, 0, 1}});
+  g.shapes.push_back(make_plane({0, 0, 0}, {0, 1, 0}, {}, 1.0f));
+  auto accel = build(g);
+  ASSERT_NE(accel, nullptr);
+  EXPECT_EQ(accel->stats().primitive_count, 1u);
+  EXPECT_LT(accel->bounds().hi.x, 1.01f);
+  Hit hit;
+  ASSERT_TRUE(accel->intersect(Ray{{0, 1, 0}, normalize(Vec3f(1, -1e-6f, 0))}, hit));  // from inside the sphere
+  EXPECT_EQ(hit.shape, 0u);
+  ASSERT_TRUE(accel->intersect(Ray{{0, 5, 0}, normalize(Vec3f(1e6f, -5, 0))}, hit));
+  EXPECT_EQ(hit.shape, 1u);
+  EXPECT_NEAR(hit.t, 1e6f, 1.0f);
+  EXPECT_TRUE(accel->occluded(Ray{{3, 5, 0}, {0, -1, 0}}));
+  EXPECT_FALSE(accel->occluded(Ray{{3, 5, 0}, {0, -1, 0}, 0.0f, 4.9f}));
+  EXPECT_FALSE(accel->intersect(Ray{{0, -1, 0}, {0, -1, 0}}, hit));  // below, looking away
+  // Only a plane: the backend is empty.
+  g.shapes.erase(g.shapes.begin());
+  auto planes = build(g);
+  ASSERT_NE(planes, nullptr);
+  EXPECT_TRUE(planes->bounds().empty());
+  ASSERT_TRUE(planes->intersect(Ray{{0, 2, 0}, {0, -1, 0}}, hit));
+  EXPECT_EQ(hit.shape, 0u);
+  EXPECT_FLOAT_EQ(hit.t, 2.0f);
 }
 
 TEST_P(Backends, ManyCoincidentPrimitives) {

@@ -13,12 +13,7 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
 const Cylinder kZ{{0, 0, 0}, {0, 0, 2}, 1.0f};
 
-SurfaceGeometry hit_surface(const Cylinder& c, const Ray& ray, float expected_t) {
-  PrimHit hit;
-  EXPECT_TRUE(intersect(c, ray, hit));
-  EXPECT_NEAR(hit.t, expected_t, 1e-5f);
-  return surface(c, ray, hit);
-}
+using test::hit_surface;
 
 TEST(Cylinder, SideHitHasOutwardNormalAndTextureCoordinates) {
   const SurfaceGeometry sg = hit_surface(kZ, Ray{{5, 0, 0.5f}, {-1, 0, 0}}, 4.0f);

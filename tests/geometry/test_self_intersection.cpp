@@ -146,33 +146,77 @@ TEST(SelfIntersection, TrianglesAtEveryScale) {
   }
 }
 
+// A convex solid of parts (the cylinder, the cone; PrimHit::uv.x is the
+// part): rays leaving never re-hit it, rays entering reach the far side.
+template <class S>
+void check_capped_solid(test::Rng& rng, const Placement& pl, const S& c) {
+  int rehits = 0, leaks = 0, samples = 0;
+  for (int i = 0; i < kPoints; ++i) {
+    const Ray cam = probe(rng, 0.5f * (c.p0 + c.p1), pl.scale, 1.0f);
+    PrimHit hit;
+    if (!intersect(c, cam, hit)) continue;
+    const SurfaceGeometry sg = surface(c, cam, hit);
+    for (int k = 0; k < kDirections; ++k) {
+      ++samples;
+      const Vec3f w = rng.hemisphere(sg.ng, kMinCos);
+      PrimHit h;
+      if (intersect(c, spawn_ray(sg, w), h)) ++rehits;
+      const Ray in = spawn_ray(sg, -w);
+      if (!intersect(c, in, h)) {
+        ++leaks;
+      } else if (h.uv.x == hit.uv.x && h.t < 1e-4f * pl.scale) {
+        ++rehits;  // the same part right where the ray started
+      }
+    }
+  }
+  EXPECT_GT(samples, kPoints * kDirections / 4) << pl.name();
+  EXPECT_EQ(rehits, 0) << pl.name();
+  EXPECT_EQ(leaks, 0) << pl.name();
+}
+
 TEST(SelfIntersection, CylindersAtEveryScale) {
   test::Rng rng(24);
   for (const Placement& pl : placements()) {
     const Vec3f p0 = pl.offset + pl.scale * Vec3f(0.2f, -0.1f, 0.3f);
     const Cylinder c{p0, p0 + 2.0f * pl.scale * normalize(Vec3f(0.4f, 0.9f, -0.3f)), 0.5f * pl.scale};
-    int rehits = 0, leaks = 0, samples = 0;
-    for (int i = 0; i < kPoints; ++i) {
-      const Ray cam = probe(rng, 0.5f * (c.p0 + c.p1), pl.scale, 1.0f);
-      PrimHit hit;
-      if (!intersect(c, cam, hit)) continue;
-      const SurfaceGeometry sg = surface(c, cam, hit);
-      for (int k = 0; k < kDirections; ++k) {
-        ++samples;
-        const Vec3f w = rng.hemisphere(sg.ng, kMinCos);
-        PrimHit h;
-        if (intersect(c, spawn_ray(sg, w), h)) ++rehits;
-        const Ray in = spawn_ray(sg, -w);
-        if (!intersect(c, in, h)) {
-          ++leaks;
-        } else if (h.uv.x == hit.uv.x && h.t < 1e-4f * pl.scale) {
-          ++rehits;  // the same part right where the ray started
-        }
-      }
+    check_capped_solid(rng, pl, c);
+  }
+}
+
+TEST(SelfIntersection, ConesAtEveryScale) {
+  test::Rng rng(26);
+  for (const Placement& pl : placements()) {
+    const Vec3f p0 = pl.offset + pl.scale * Vec3f(0.2f, -0.1f, 0.3f);
+    const Vec3f p1 = p0 + 2.0f * pl.scale * normalize(Vec3f(0.4f, 0.9f, -0.3f));
+    check_capped_solid(rng, pl, Cone{p0, p1, 0.7f * pl.scale, 0.0f});
+    check_capped_solid(rng, pl, Cone{p0, p1, 0.7f * pl.scale, 0.3f * pl.scale});
+  }
+}
+
+// Discs (and annuli), polygons and infinite planes are double-sided like quads.
+TEST(SelfIntersection, DiscsPolygonsAndPlanesAtEveryScale) {
+  test::Rng rng(27);
+  for (const Placement& pl : placements()) {
+    const Vec3f c = pl.offset;
+    const float s = pl.scale;
+    const Vec3f n = normalize(Vec3f(0.3f, -0.8f, 0.52f));
+    for (const float inner : {0.0f, 0.3f}) {
+      const Disc d = make_disc(c, n, 1.2f * s, inner * s);
+      check_planar(
+          rng, pl, c, [&](const Ray& r, PrimHit& h) { return intersect(d, r, h); },
+          [&](const Ray& r, const PrimHit& h) { return surface(d, r, h); });
     }
-    EXPECT_GT(samples, kPoints * kDirections / 4) << pl.name();
-    EXPECT_EQ(rehits, 0) << pl.name();
-    EXPECT_EQ(leaks, 0) << pl.name();
+    Vec3f t, b;
+    orthonormal_basis(n, t, b);
+    const ConvexPolygon p = make_polygon({c - s * t - s * b, c + s * t - s * b, c + 1.3f * s * t + 0.2f * s * b,
+                                          c + 0.5f * s * t + s * b, c - 0.8f * s * t + 0.7f * s * b});
+    check_planar(
+        rng, pl, c, [&](const Ray& r, PrimHit& h) { return intersect(p, r, h); },
+        [&](const Ray& r, const PrimHit& h) { return surface(p, r, h); });
+    const InfinitePlane plane = make_plane(c, n, {}, 1.0f);
+    check_planar(
+        rng, pl, c, [&](const Ray& r, PrimHit& h) { return intersect(plane, 0, r, h); },
+        [&](const Ray& r, const PrimHit& h) { return surface(plane, 0, r, h); });
   }
 }
 
@@ -336,6 +380,27 @@ TEST(Watertight, CylinderDoesNotLeakAtTheRims) {
     if (!intersect(c, Ray{origin, rim - origin}, h)) ++escapes;
   }
   EXPECT_EQ(escapes, 0);
+}
+
+// Rays from inside aimed exactly at the rims (and the apex) of cones: none
+// escapes between side and cap.
+TEST(Watertight, ConeDoesNotLeakAtTheRimsOrTheApex) {
+  test::Rng rng(34);
+  for (const float top : {0.0f, 0.2f}) {
+    const Cone c{{0.1f, 0.2f, 0.3f}, {0.9f, 2.1f, -0.4f}, 0.45f, top};
+    const Vec3f axis = normalize(c.p1 - c.p0);
+    Vec3f e0, e1;
+    orthonormal_basis(axis, e0, e1);
+    int escapes = 0;
+    for (int i = 0; i < 20000; ++i) {
+      const float phi = rng.uniform(0.0f, 2.0f * kPi);
+      const Vec3f rim = (i % 2 ? c.p1 : c.p0) + (i % 2 ? top : c.radius) * (std::cos(phi) * e0 + std::sin(phi) * e1);
+      const Vec3f origin = c.p0 + 0.3f * (c.p1 - c.p0) + 0.1f * c.radius * rng.unit_vector();
+      PrimHit h;
+      if (!intersect(c, Ray{origin, rim - origin}, h)) ++escapes;
+    }
+    EXPECT_EQ(escapes, 0) << "top radius " << top;
+  }
 }
 
 }  // namespace

@@ -5,6 +5,9 @@
 #include <cmath>
 #include <cstdint>
 #include <random>
+#include <string>
+
+#include <gtest/gtest.h>
 
 #include "geometry/shapes.h"
 
@@ -90,6 +93,43 @@ inline Quad box_face_quad(Vec3f lo, Vec3f hi, int face) {
   Quad q;
   for (int k = 0; k < 4; ++k) q.v[k] = box_corner(lo, hi, kBoxFaces[face][k]);
   return q;
+}
+
+// For a convex shape S (whole shape): points its area sampler draws, seen
+// along their normal from distance 0.5, are hit at t = 0.5 with the sampler's
+// point and normal; the mean of the points is returned (for centroid checks).
+template <class S>
+Vec3f expect_samples_hit_along_normal(const S& shape, int n = 2000, float tol = 1e-4f) {
+  const auto sampler = make_area_sampler(shape);
+  Rng rng(7);
+  Vec3f sum(0.0f);
+  int failures = 0;
+  for (int i = 0; i < n; ++i) {
+    Vec3f q, nq;
+    sampler.sample({rng.uniform(), rng.uniform()}, q, nq);
+    sum += q;
+    const Ray ray{q + 0.5f * nq, -nq};
+    PrimHit hit;
+    const bool found = intersect(shape, ray, hit);
+    SurfaceGeometry sg;
+    if (found) sg = surface(shape, ray, hit);
+    const bool ok = found && std::fabs(hit.t - 0.5f) < tol && length(sg.p - q) < 10 * tol &&
+                    dot(sg.ng, nq) > 1.0f - 1e-4f && sg.uv.x >= 0 && sg.uv.x <= 1 && sg.uv.y >= 0 && sg.uv.y <= 1;
+    if (!ok && failures++ < 3) {
+      ADD_FAILURE() << "sample " << i << " at (" << q.x << ", " << q.y << ", " << q.z << ")"
+                    << (found ? " hit at t " + std::to_string(hit.t) : std::string(" missed"));
+    }
+  }
+  return sum / static_cast<float>(n);
+}
+
+// The hit of `ray` on a whole shape, expected at t = expected_t; its surface.
+template <class S>
+SurfaceGeometry hit_surface(const S& shape, const Ray& ray, float expected_t) {
+  PrimHit hit;
+  EXPECT_TRUE(intersect(shape, ray, hit));
+  EXPECT_NEAR(hit.t, expected_t, 1e-5f);
+  return surface(shape, ray, hit);
 }
 
 }  // namespace pt::test

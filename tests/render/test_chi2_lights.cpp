@@ -1,6 +1,7 @@
 // Light sampling against the densities the integrator uses for MIS
 // (chi-square, chi2.h): sphere lights by solid angle (outside) and by area
-// (inside), quads, meshes and cylinders by area (parallelograms directly),
+// (inside), quads, meshes, cylinders, discs, polygons and cones by area
+// (parallelograms directly),
 // rectangles by solid angle, and the environment map.
 #include <cmath>
 #include <vector>
@@ -55,7 +56,7 @@ float light_pdf(const ShapeLight& light, const Shape& shape, Vec3f p, Vec3f wi) 
           if constexpr (std::is_same_v<std::decay_t<decltype(s)>, TriangleMesh>) {
             return false;
           } else {
-            return intersect(s, ray, h);
+            return intersect_primitive(s, 0, ray, h);
           }
         },
         shape);
@@ -322,6 +323,68 @@ TEST(LightChi2, CylinderByArea) {
   t.pdf = [&](Vec2f q) { return q.y < 1.0f ? side : cap; };
   const auto r = t.run();
   EXPECT_TRUE(r.passed) << r.message;
+}
+
+TEST(LightChi2, DiscAndAnnulusByArea) {
+  for (const float inner : {0.0f, 0.35f}) {
+    const Disc d = make_disc({0.2f, 0.1f, 2.0f}, {0.3f, -0.2f, -1.0f}, 0.8f, inner);
+    const auto r = light_chi2(d, Vec3f(0.1f, 0.2f, 0.0f));
+    EXPECT_TRUE(r.passed) << "inner radius " << inner << ": " << r.message;
+  }
+}
+
+TEST(LightChi2, PolygonByArea) {
+  // A pentagon with triangles of its fan of different areas.
+  const ConvexPolygon p = make_polygon({{-1, -0.5f, 2}, {1, -0.5f, 2}, {1.2f, 0.4f, 2.18f}, {0.2f, 1.0f, 2.3f}, {-0.9f, 0.6f, 2.22f}});
+  const auto r = light_chi2(p, Vec3f(0.1f, 0.2f, 0.0f));
+  EXPECT_TRUE(r.passed) << r.message;
+}
+
+TEST(LightChi2, ConeByArea) {
+  // As the cylinder's: points on the unrolled surface, x = phi / 2 pi; on the
+  // side y = the area fraction below the point's slant fraction s,
+  // (r0 s + (r1 - r0) s^2 / 2) / ((r0 + r1) / 2), in [0, 1); on the caps
+  // 1 + (r / r0)^2 and 2 + (r / r1)^2; uniform in (x, y) by part.
+  for (const float top : {0.0f, 0.25f}) {
+    const Cone c{{-0.5f, 0.0f, 1.0f}, {0.5f, 0.3f, 1.6f}, 0.45f, top};
+    const Shape shape = c;
+    const Material m = emitter();
+    const ShapeLight light(shape, 0, m);
+    const Vec3f axis = c.p1 - c.p0;
+    const float h = length(axis), r0 = c.radius, r1 = c.top_radius;
+    const Frame frame = Frame::from_normal(axis / h);
+    const float side = kPi * (r0 + r1) * std::sqrt(h * h + (r0 - r1) * (r0 - r1)) / light.area();
+    const float cap0 = kPi * r0 * r0 / light.area(), cap1 = kPi * r1 * r1 / light.area();
+    const Vec3f p(0.2f, -1.0f, 0.0f);
+    test::PlaneChi2 t;
+    t.x1 = 1.0f;
+    t.y1 = top > 0.0f ? 3.0f : 2.0f;
+    t.nx = 24;
+    t.ny = top > 0.0f ? 36 : 24;
+    t.sample = [&](Vec2f u, Vec2f& out) {
+      LightSample s;
+      if (!light.sample(p, u, s)) return false;
+      if (std::fabs(s.pdf - light.pdf(p, s.wi, s.p_light, s.n_light)) > 1e-3f * s.pdf) return false;
+      const Vec3f q = frame.to_local(s.p_light - c.p0);
+      const float r = std::sqrt(q.x * q.x + q.y * q.y);
+      const float phi = spherical_phi(Vec3f(q.x, q.y, 0.0f)) * kInv2Pi;
+      const float sf = q.z / h;
+      if (std::fabs(q.z) < 1e-4f && std::fabs(dot(s.n_light, frame.n) + 1.0f) < 1e-4f) {
+        out = Vec2f(phi, 1.0f + std::min(r * r / (r0 * r0), 0.99999f));
+      } else if (std::fabs(q.z - h) < 1e-4f && std::fabs(dot(s.n_light, frame.n) - 1.0f) < 1e-4f) {
+        out = Vec2f(phi, 2.0f + std::min(r * r / (r1 * r1), 0.99999f));
+      } else if (std::fabs(r - (r0 + (r1 - r0) * sf)) < 1e-4f && sf > -1e-4f && sf < 1.0f + 1e-4f) {
+        const float y = (r0 * sf + 0.5f * (r1 - r0) * sf * sf) / (0.5f * (r0 + r1));
+        out = Vec2f(phi, std::clamp(y, 0.0f, 0.99999f));
+      } else {
+        return false;  // not on the cone
+      }
+      return true;
+    };
+    t.pdf = [&](Vec2f q) { return q.y < 1.0f ? side : (q.y < 2.0f ? cap0 : cap1); };
+    const auto r = t.run();
+    EXPECT_TRUE(r.passed) << "top radius " << top << ": " << r.message;
+  }
 }
 
 // A synthetic environment: a smooth gradient, a bright spot and a black band.

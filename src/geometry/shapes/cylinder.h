@@ -14,6 +14,7 @@
 
 #include "geometry/float_util.h"
 #include "geometry/shape_base.h"
+#include "geometry/shapes/capped_solid.h"
 
 namespace pt {
 
@@ -23,24 +24,13 @@ struct Cylinder {
   float radius = 1;
 };
 
-namespace cylinder_detail {
-
-enum Part { kSide = 0, kCap0 = 1, kCap1 = 2 };
-
-}  // namespace cylinder_detail
-
 inline Bounds3f bounds(const Cylinder& c) {
   Bounds3f b;
   const Vec3f axis = c.p1 - c.p0;
   const float len = length(axis);
   const float r = c.radius > 0.0f ? c.radius : 0.0f;
   Vec3f ext(r);
-  if (len > 0.0f && std::isfinite(len)) {
-    const Vec3f a = axis / len;
-    // A disc of radius r with unit normal a spans r * sqrt(1 - a_i^2) along axis i.
-    ext = {r * std::sqrt(std::max(0.0f, 1.0f - a.x * a.x)), r * std::sqrt(std::max(0.0f, 1.0f - a.y * a.y)),
-           r * std::sqrt(std::max(0.0f, 1.0f - a.z * a.z))};
-  }
+  if (len > 0.0f && std::isfinite(len)) ext = fp::circle_extent(axis / len, r);  // each cap
   b.extend(min(c.p0, c.p1) - ext);
   b.extend(max(c.p0, c.p1) + ext);
   return fp::pad(b);
@@ -57,22 +47,8 @@ inline bool intersect(const Cylinder& cyl, const Ray& ray, PrimHit& hit) {
   const float da = dot(d, a);
 
   // Interval inside the slab 0 <= h <= len, and which cap bounds each end.
-  float s_in = -kInfinity, s_out = kInfinity;
-  cylinder_detail::Part cap_in = cylinder_detail::kCap0, cap_out = cylinder_detail::kCap1;
-  if (da != 0.0f) {
-    const float t0 = -fa / da;
-    const float t1 = (len - fa) / da;
-    if (da > 0.0f) {
-      s_in = t0;
-      s_out = t1;
-    } else {
-      s_in = t1;
-      s_out = t0;
-      std::swap(cap_in, cap_out);
-    }
-  } else if (!(fa >= 0.0f && fa <= len)) {
-    return false;  // parallel to the caps and outside the slab (or NaN)
-  }
+  capped_detail::Slab slab;
+  if (!capped_detail::slab_interval(fa, da, len, slab)) return false;
 
   // Interval inside the infinite cylinder: the stable quadratic of the sphere
   // applied to the components perpendicular to the axis.
@@ -95,52 +71,31 @@ inline bool intersect(const Cylinder& cyl, const Ray& ray, PrimHit& hit) {
     return false;  // parallel to the axis and outside the cylinder (or NaN)
   }
 
-  const bool side_in = c_in > s_in;
-  const bool side_out = c_out < s_out;
-  const float t_enter = side_in ? c_in : s_in;
-  const float t_exit = side_out ? c_out : s_out;
-  if (!(t_enter <= t_exit)) return false;
-  cylinder_detail::Part part;
-  if (t_enter > ray.tmin && t_enter < ray.tmax) {
-    hit.t = t_enter;
-    part = side_in ? cylinder_detail::kSide : cap_in;
-  } else if (t_exit > ray.tmin && t_exit < ray.tmax) {
-    hit.t = t_exit;
-    part = side_out ? cylinder_detail::kSide : cap_out;
-  } else {
-    return false;
-  }
+  capped_detail::Part part;
+  if (!capped_detail::pick_hit(c_in, c_out, slab, ray, hit, part)) return false;
   hit.uv = {static_cast<float>(part), 0.0f};
   return true;
 }
 
 inline SurfaceGeometry surface(const Cylinder& cyl, const Ray& ray, const PrimHit& hit) {
-  const Vec3f axis = cyl.p1 - cyl.p0;
-  const float len = length(axis);
-  const Vec3f a = axis / len;
-  Vec3f e0, e1;
-  fp::axis_frame(a, e0, e1);
-
   // Reproject the ray's point onto the part it hit.
-  const Vec3f q = ray.at(hit.t) - cyl.p0;
-  const float h = dot(q, a);
-  const Vec3f radial = q - a * h;
-  const float rl = length(radial);
-  const Vec3f dir = (rl > 0.0f && std::isfinite(rl)) ? radial / rl : e0;
+  const capped_detail::AxisPoint ap = capped_detail::axis_point(cyl.p0, cyl.p1, ray.at(hit.t));
+  const float len = ap.len, h = ap.h, rl = ap.rl;
+  const Vec3f a = ap.a, e0 = ap.e0, e1 = ap.e1, dir = ap.dir;
 
   SurfaceGeometry sg;
   const int part = static_cast<int>(hit.uv.x);
   float v;
-  if (part == cylinder_detail::kSide) {
+  if (part == capped_detail::kSide) {
     const float hc = std::clamp(h, 0.0f, len);
     sg.p = cyl.p0 + a * hc + dir * cyl.radius;
     sg.ng = dir;
     v = hc / len;
   } else {
     const float rc = std::min(rl, cyl.radius);
-    sg.p = (part == cylinder_detail::kCap0 ? cyl.p0 : cyl.p1) + dir * rc;
-    sg.ng = part == cylinder_detail::kCap0 ? -a : a;
-    v = part == cylinder_detail::kCap0 ? 0.0f : 1.0f;
+    sg.p = (part == capped_detail::kCap0 ? cyl.p0 : cyl.p1) + dir * rc;
+    sg.ng = part == capped_detail::kCap0 ? -a : a;
+    v = part == capped_detail::kCap0 ? 0.0f : 1.0f;
   }
   sg.ns = sg.ng;
   sg.uv = {fp::longitude_fraction(dot(dir, e0), dot(dir, e1)), v};
