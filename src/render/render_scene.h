@@ -46,6 +46,7 @@ struct RenderScene {
   RGB background;
   SceneGeometry geometry;
   std::vector<int> shape_material;   // per shape, index into materials
+  std::vector<int> instance_material;  // per instance: index into materials, or -1 for its shapes' own
   std::vector<Material> materials;
   std::vector<std::unique_ptr<Texture>> textures;  // stable addresses (materials point in)
   // Owns the environment map (its sampling distribution included) when the
@@ -57,6 +58,11 @@ struct RenderScene {
   std::unique_ptr<Accelerator> accel;
   double texture_load_seconds = 0;  // decoding the textures and the environment map; 0 if there are none
 
+  // The material of a shape hit through `instance` (or placed directly, kNoInstance).
+  int material_of(uint32_t shape, uint32_t instance) const {
+    if (instance != kNoInstance && instance_material[instance] >= 0) return instance_material[instance];
+    return shape_material[shape];
+  }
   // Both count the ray in the calling thread's rays_traced_by_this_thread().
   bool intersect(const Ray& ray, Intersection& out) const;
   bool occluded(const Ray& ray) const {

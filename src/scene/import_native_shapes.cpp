@@ -1,6 +1,7 @@
 // Native-format shapes: sphere, quad, triangle, cylinder, mesh.
 #include <string>
 
+#include "scene/import_transform.h"
 #include "scene/json_lists.h"
 #include "scene/native_shapes.h"
 #include "scene/suggest.h"
@@ -98,7 +99,8 @@ void read_mesh(ImportContext& ctx, ObjectReader& r, ShapeDesc& shape) {
   if (!ok) r.fail();
 }
 
-// The material a shape names: index into `materials`, -1 for none, -2 if unknown.
+}  // namespace
+
 int resolve_material(ImportContext& ctx, ObjectReader& r, std::vector<NativeMaterial>& materials) {
   Sourced<std::string> name;
   const JsonValue* v = r.get("material");
@@ -121,11 +123,10 @@ int resolve_material(ImportContext& ctx, ObjectReader& r, std::vector<NativeMate
   return -2;
 }
 
-}  // namespace
-
 void read_native_shape(ImportContext& ctx, const JsonValue& v, std::size_t index,
                        std::vector<NativeMaterial>& materials, std::vector<int>& shape_material) {
   if (!expect_object(ctx.read, v, "shapes[" + std::to_string(index) + "]")) return;
+  if (is_instance(v)) return read_native_instance(ctx, v, materials);
   ObjectReader r(ctx.read, v, "shape");
   static const std::vector<std::string> kTypes = {"sphere", "quad", "triangle", "cylinder", "mesh"};
   const int type = read_choice(r, "type", kTypes);
@@ -147,6 +148,7 @@ void read_native_shape(ImportContext& ctx, const JsonValue& v, std::size_t index
     case 3: read_cylinder(r, shape); break;
     default: read_mesh(ctx, r, shape); break;
   }
+  if (const JsonValue* t = r.get("transform"); t && !read_transform(ctx.read, *t, shape.transform)) r.fail();
   r.finish();
   if (!r.ok()) return;
   // An unknown material is already an error; the shape is kept (with the

@@ -132,17 +132,40 @@ void validate_scene(const SceneDescription& scene, const LoadOptions& options, D
   for (const MaterialDesc& m : scene.materials) v.material(m);
   for (const LightDesc& l : scene.lights) std::visit([&](const auto& light) { v.light(light); }, l);
   for (const ShapeDesc& s : scene.shapes) v.shape(s);
+  for (const ObjectDesc& o : scene.objects) {
+    for (const ShapeDesc& s : o.shapes) v.shape(s);
+  }
   if (scene.environment) v.environment(*scene.environment);
 }
 
-bool check_shapes_usable(const SceneDescription& scene, Diagnostics& diag) {
+namespace {
+
+bool shapes_usable(const std::vector<ShapeDesc>& shapes, const std::string& where, Diagnostics& diag) {
   bool ok = true;
-  for (std::size_t i = 0; i < scene.shapes.size(); ++i) {
-    const ShapeDesc& s = scene.shapes[i];
+  for (std::size_t i = 0; i < shapes.size(); ++i) {
+    const ShapeDesc& s = shapes[i];
     for (const ShapeProblem& p : shape_problems(s)) {
       if (!p.unusable) continue;
-      diag.error(s.at(p.field), "shape " + std::to_string(i) + (s.name.empty() ? "" : " ('" + s.name + "')") +
-                                    ": " + p.message);
+      diag.error(s.at(p.field), where + "shape " + std::to_string(i) +
+                                    (s.name.empty() ? "" : " ('" + s.name + "')") + ": " + p.message);
+      ok = false;
+    }
+    if (s.transform && !s.transform->value.finite()) {
+      diag.error(s.transform->where, where + "shape " + std::to_string(i) + ": its transform is singular or not finite");
+      ok = false;
+    }
+  }
+  return ok;
+}
+
+}  // namespace
+
+bool check_shapes_usable(const SceneDescription& scene, Diagnostics& diag) {
+  bool ok = shapes_usable(scene.shapes, "", diag);
+  for (const ObjectDesc& o : scene.objects) ok = shapes_usable(o.shapes, "object '" + o.name + "': ", diag) && ok;
+  for (const InstanceDesc& inst : scene.instances) {
+    if (inst.transform && !inst.transform->value.finite()) {
+      diag.error(inst.transform->where, "instance: its transform is singular or not finite");
       ok = false;
     }
   }

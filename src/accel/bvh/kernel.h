@@ -143,17 +143,39 @@ inline bool traverse_blas(const Ops& ops, const BlasData& b, RayQuery& q, HitRec
   });
 }
 
+// One top-level leaf item: a bottom level placed directly, or one placement
+// of it (the ray taken to its object space, with the same t parameter, and
+// traversed with a kernel state of its own).
+template <bool kAnyHit, bool kCount, class Ops>
+inline bool traverse_placed(const Ops& ops, const BlasData& b, RayQuery& q, HitRecord& hit, Counters* counters) {
+  if (b.transform == nullptr) {
+    if (!traverse_blas<kAnyHit, kCount>(ops, b, q, hit, counters)) return false;
+  } else {
+    RayQuery local;
+    if (!to_object_space(*b.transform, q, local)) return false;
+    const Ops local_ops(local);
+    if (!traverse_blas<kAnyHit, kCount>(local_ops, b, local, hit, counters)) return false;
+    q.tmax = local.tmax;
+  }
+  hit.instance = b.instance;
+  return true;
+}
+
 template <bool kAnyHit, bool kCount, class Ops>
 inline bool traverse_scene(const SceneData& s, RayQuery& q, HitRecord& hit, Counters* counters) {
   if (s.blas_count == 0) return false;
   const Ops ops(q);
-  if (s.blas_count == 1) return traverse_blas<kAnyHit, kCount>(ops, s.blas[0], q, hit, counters);
+  if (s.blas_count == 1 && s.blas[0].transform == nullptr) {
+    if (!traverse_blas<kAnyHit, kCount>(ops, s.blas[0], q, hit, counters)) return false;
+    hit.instance = kNoInstanceId;
+    return true;
+  }
   return traverse<kAnyHit, kCount>(ops, s.nodes, s.root, q, counters, [&](uint32_t ref) {
     const BlasData* blas = s.blas + (ref & kLeafIndexMask);
     const uint32_t count = item_count(ref);
     bool found = false;
     for (uint32_t i = 0; i < count; ++i) {
-      if (traverse_blas<kAnyHit, kCount>(ops, blas[i], q, hit, counters)) {
+      if (traverse_placed<kAnyHit, kCount>(ops, blas[i], q, hit, counters)) {
         found = true;
         if constexpr (kAnyHit) return true;
       }
