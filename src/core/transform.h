@@ -199,16 +199,18 @@ struct Transform {
   }
 
   // Bound on the absolute error of point(p) for a p known to within p_error
-  // (pbrt-v4: (1 + gamma3) |M| p_error + gamma3 (|M| |p| + |t|)).
+  // (pbrt-v4's (1 + g) |M| p_error + g (|M| |p| + |t|), with g = gamma(5)
+  // rather than pbrt's gamma(3): a row is four terms, the first rounded four
+  // times, and the bound itself is computed in float; tests/core checks it).
   Vec3f point_error(Vec3f p, Vec3f p_error) const {
-    constexpr float g3 = (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
+    constexpr float g5 = (5.0f * 0x1p-24f) / (1.0f - 5.0f * 0x1p-24f);
     float e[3];
     for (int i = 0; i < 3; ++i) {
       const float ap = std::fabs(m[i][0] * p.x) + std::fabs(m[i][1] * p.y) + std::fabs(m[i][2] * p.z) +
                        std::fabs(m[i][3]);
       const float ae = std::fabs(m[i][0]) * p_error.x + std::fabs(m[i][1]) * p_error.y +
                        std::fabs(m[i][2]) * p_error.z;
-      e[i] = (1.0f + g3) * ae + g3 * ap;
+      e[i] = (1.0f + g5) * ae + g5 * ap;
     }
     return {e[0], e[1], e[2]};
   }
