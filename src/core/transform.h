@@ -215,6 +215,24 @@ struct Transform {
     return {e[0], e[1], e[2]};
   }
 
+  // Bound, in world space, on the error of taking world point p to object
+  // space (inverse_point): a ray leaving p is transformed back there before
+  // it is intersected, so a spawned ray's offset must also cover this
+  // (|M| gamma(5) (|M^-1| |p| + |t^-1|)); it dominates far from the origin.
+  Vec3f inverse_error(Vec3f p) const {
+    constexpr float g5 = (5.0f * 0x1p-24f) / (1.0f - 5.0f * 0x1p-24f);
+    float e[3];
+    for (int j = 0; j < 3; ++j) {
+      e[j] = g5 * (std::fabs(inv[j][0] * p.x) + std::fabs(inv[j][1] * p.y) + std::fabs(inv[j][2] * p.z) +
+                   std::fabs(inv[j][3]));
+    }
+    float w[3];
+    for (int i = 0; i < 3; ++i) {
+      w[i] = (1.0f + g5) * (std::fabs(m[i][0]) * e[0] + std::fabs(m[i][1]) * e[1] + std::fabs(m[i][2]) * e[2]);
+    }
+    return {w[0], w[1], w[2]};
+  }
+
  private:
   static Vec3f apply(const float (&a)[3][4], Vec3f p, bool translate) {
     const float w = translate ? 1.0f : 0.0f;

@@ -45,7 +45,9 @@ Vec3f unit_normal(const Transform& t, Vec3f n) {
 SurfaceGeometry to_world(const SurfaceGeometry& s, const Transform& t) {
   SurfaceGeometry w = s;
   w.p = t.point(s.p);
-  w.p_error = t.point_error(s.p, s.p_error);
+  // The rounding of the transform to world space, and of the way back that
+  // every ray leaving the point takes before it meets the shape again.
+  w.p_error = t.point_error(s.p, s.p_error) + t.inverse_error(w.p);
   w.ng = unit_normal(t, s.ng);
   w.ns = unit_normal(t, s.ns);
   return w;
