@@ -16,16 +16,22 @@ bool RenderScene::intersect(const Ray& ray, Intersection& out) const {
   PrimHit prim_hit;
   prim_hit.t = out.hit.t;
   prim_hit.uv = out.hit.uv;
-  if (out.hit.instance == kNoInstance) {
-    out.geo = surface(shape, out.hit.prim, ray, prim_hit);
-    out.material = &materials[static_cast<std::size_t>(shape_material[out.hit.shape])];
+  if (out.hit.instance != kNoInstance) {
+    instanced_surface(ray, prim_hit, out);
     return true;
   }
-  // Found in the instance's object space (same t): the surface there, carried to world space.
-  const Transform& t = geometry.instances[out.hit.instance].transform;
-  out.geo = to_world(surface(shape, out.hit.prim, t.to_object(ray), prim_hit), t);
-  out.material = &materials[static_cast<std::size_t>(material_of(out.hit.shape, out.hit.instance))];
+  out.geo = surface(shape, out.hit.prim, ray, prim_hit);
+  out.material = &materials[static_cast<std::size_t>(shape_material[out.hit.shape])];
   return true;
+}
+
+// Found in the instance's object space (same t): the surface there, carried to
+// world space, and the instance's material. Out of line: scenes without
+// instances never come here.
+void RenderScene::instanced_surface(const Ray& ray, const PrimHit& prim_hit, Intersection& out) const {
+  const Transform& t = geometry.instances[out.hit.instance].transform;
+  out.geo = to_world(surface(geometry.shapes[out.hit.shape], out.hit.prim, t.to_object(ray), prim_hit), t);
+  out.material = &materials[static_cast<std::size_t>(material_of(out.hit.shape, out.hit.instance))];
 }
 
 // ---------------------------------------------------------------- resolution

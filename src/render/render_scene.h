@@ -69,6 +69,8 @@ struct RenderScene {
     ++detail::t_rays_traced;
     return accel->occluded(ray);
   }
+  // The rest of intersect() for a hit through an instance.
+  [[gnu::noinline]] void instanced_surface(const Ray& ray, const PrimHit& prim_hit, Intersection& out) const;
   // Radiance seen by a ray that leaves the scene in direction `dir`: the
   // environment light's (the map, or the background colour), or else the
   // background colour (black).

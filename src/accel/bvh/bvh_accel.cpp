@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include "accel/bvh/kernels.h"
+#include "accel/bvh/ray_frame.h"
 #include "core/parallel.h"
 #include "geometry/float_util.h"
 
@@ -97,7 +98,7 @@ class BvhAccelerator final : public Accelerator {
   std::vector<BlasData> views_;  // the top level's items
   std::vector<Bounds3f> boxes_;  // their world bounds, while building
   TopLevel top_;
-  SceneData scene_{nullptr, kEmptyRef, nullptr, 0};
+  SceneData scene_{nullptr, kEmptyRef, nullptr, 0, 0};
   KernelTable kernels_{};
   Bounds3f bounds_;
   AccelStats stats_;
@@ -272,7 +273,8 @@ bool BvhAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, Diag
   boxes_.shrink_to_fit();
 
   for (const Blas& b : blas_) tree_stats_.bottom.add(b.stats);
-  scene_ = SceneData{top_.nodes.data(), top_.root, views_.data(), static_cast<uint32_t>(views_.size())};
+  const auto instanced = static_cast<uint32_t>(views_.size() - groups[0].blas_count);
+  scene_ = SceneData{top_.nodes.data(), top_.root, views_.data(), static_cast<uint32_t>(views_.size()), instanced};
   tree_stats_.top = top_.stats;
   tree_stats_.bottom_levels = blas_.size();
   tree_stats_.isa = kernels_.isa;

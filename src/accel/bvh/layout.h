@@ -82,6 +82,7 @@ struct SceneData {
   uint32_t root;
   const BlasData* blas;
   uint32_t blas_count;
+  uint32_t instanced;  // items placed by instances (0: the top level's items need no transform test)
 };
 
 // ---------------------------------------------------------------- rays
@@ -105,7 +106,7 @@ struct HitRecord {
   uint32_t object;
   uint32_t prim;
   float u, v;
-  uint32_t instance;  // set by the top level (kNoInstanceId for shapes placed directly)
+  uint32_t instance = kNoInstanceId;  // set by the top level for a hit through an instance
 };
 
 struct Counters {
@@ -123,8 +124,5 @@ bool intersect_analytic(const AnalyticPrim* prims, uint32_t index, RayQuery& q, 
 // interval, the direction not renormalised), prepared as bvh_accel.cpp's
 // prepare() prepares a ray. False if the ray cannot hit anything there.
 bool to_object_space(const Transform& t, const RayQuery& world, RayQuery& local);
-// Fills the derived members of q (rdir, near, the triangle test's ray frame)
-// from org and dir.
-void set_ray_frame(RayQuery& q);
 
 }  // namespace pt::bvh

@@ -7,6 +7,7 @@
 #include "accel/bvh/analytic.h"
 #include "accel/bvh/kernels.h"
 #include "accel/bvh/layout.h"
+#include "accel/bvh/ray_frame.h"
 #include "core/transform.h"
 #include "geometry/float_util.h"
 #include "geometry/shapes.h"
@@ -50,26 +51,6 @@ bool intersect_analytic(const AnalyticPrim* prims, uint32_t index, RayQuery& q, 
       },
       prim.shape);
   return found && record(h, prim.object, 0, q, hit);
-}
-
-void set_ray_frame(RayQuery& q) {
-  for (int a = 0; a < 3; ++a) {
-    q.rdir[a] = 1.0f / q.dir[a];  // +-inf for +-0: the sign picks the entry plane
-    q.near[a] = std::signbit(q.dir[a]) ? 1u : 0u;
-  }
-  // The ray frame of the watertight triangle test, computed exactly as
-  // intersect_triangle() computes it (geometry/triangle.cpp).
-  const Vec3f dir(q.dir[0], q.dir[1], q.dir[2]);
-  const int kz = fp::max_dimension(abs(dir));
-  const int kx = kz == 2 ? 0 : kz + 1;
-  const int ky = kx == 2 ? 0 : kx + 1;
-  const Vec3f d = fp::permute(dir, kx, ky, kz);
-  q.kx = static_cast<uint32_t>(kx);
-  q.ky = static_cast<uint32_t>(ky);
-  q.kz = static_cast<uint32_t>(kz);
-  q.sz = 1.0f / d.z;
-  q.sx = -d.x * q.sz;
-  q.sy = -d.y * q.sz;
 }
 
 bool to_object_space(const Transform& t, const RayQuery& world, RayQuery& local) {
