@@ -35,6 +35,14 @@ bool geometry_usable(const SceneGeometry& geometry) {
     check(shape, checker);
     if (!checker.usable()) return false;
   }
+  for (const std::vector<uint32_t>& proto : geometry.prototypes) {
+    for (uint32_t s : proto) {
+      if (s >= geometry.shapes.size()) return false;
+    }
+  }
+  for (const Instance& inst : geometry.instances) {
+    if (inst.prototype >= geometry.prototypes.size()) return false;
+  }
   return true;
 }
 

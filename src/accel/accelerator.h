@@ -30,6 +30,9 @@ struct Hit {
   uint32_t shape = UINT32_MAX;  // object id: index into SceneGeometry::shapes
   uint32_t prim = 0;            // triangle index within a mesh, else 0
   Vec2f uv;                     // as PrimHit::uv
+  // The instance through which the shape was hit (SceneGeometry::instances),
+  // or kNoInstance for a shape placed directly; `t` is the world ray's parameter.
+  uint32_t instance = kNoInstance;
 };
 
 struct AccelStats {

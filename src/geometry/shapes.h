@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "core/math.h"
+#include "core/transform.h"
 #include "geometry/shape_base.h"
 #include "geometry/shapes/cone.h"
 #include "geometry/shapes/cylinder.h"
@@ -45,9 +46,33 @@ namespace pt {
 // (Embree geomID == object id; prim id is the triangle index for meshes, 0 otherwise).
 using Shape = std::variant<Sphere, Quad, Cylinder, TriangleMesh, Disc, ConvexPolygon, Cone, InfinitePlane>;
 
+// No instance: a shape placed directly in world space.
+inline constexpr uint32_t kNoInstance = UINT32_MAX;
+
+// One placement of a prototype (a group of shapes defined in object space).
+struct Instance {
+  uint32_t prototype = 0;  // index into SceneGeometry::prototypes
+  Transform transform;     // object to world
+};
+
+// Every shape, and how it is placed. A shape listed in a prototype is in that
+// prototype's object space and appears in the world only through instances;
+// every other shape is in world space and placed directly (a scene without
+// instances is exactly that, with no cost for the instancing).
 struct SceneGeometry {
   std::vector<Shape> shapes;
+  std::vector<std::vector<uint32_t>> prototypes;  // each: the object ids of its shapes
+  std::vector<Instance> instances;
 };
+
+// Per shape: whether it is placed directly (listed in no prototype).
+std::vector<bool> placed_directly(const SceneGeometry& g);
+// World bounds of everything in the scene: direct shapes and every instance.
+Bounds3f world_bounds(const SceneGeometry& g);
+// A surface point found in object space, carried to world space by `t`:
+// position (its error bound grown by the transform's rounding), normals by the
+// inverse transpose (renormalised; the outward side survives a mirroring map).
+SurfaceGeometry to_world(const SurfaceGeometry& s, const Transform& t);
 
 // ---------------------------------------------------------------- generic over shapes
 // A shape intersected as a whole (one primitive), as opposed to one made of

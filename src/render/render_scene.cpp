@@ -17,9 +17,22 @@ bool RenderScene::intersect(const Ray& ray, Intersection& out) const {
   PrimHit prim_hit;
   prim_hit.t = out.hit.t;
   prim_hit.uv = out.hit.uv;
+  if (out.hit.instance != kNoInstance) {
+    instanced_surface(ray, prim_hit, out);
+    return true;
+  }
   out.geo = surface(shape, out.hit.prim, ray, prim_hit);
   out.material = &materials[static_cast<std::size_t>(shape_material[out.hit.shape])];
   return true;
+}
+
+// Found in the instance's object space (same t): the surface there, carried to
+// world space, and the instance's material. Out of line: scenes without
+// instances never come here.
+void RenderScene::instanced_surface(const Ray& ray, const PrimHit& prim_hit, Intersection& out) const {
+  const Transform& t = geometry.instances[out.hit.instance].transform;
+  out.geo = to_world(surface(geometry.shapes[out.hit.shape], out.hit.prim, t.to_object(ray), prim_hit), t);
+  out.material = &materials[static_cast<std::size_t>(material_of(out.hit.shape, out.hit.instance))];
 }
 
 // ---------------------------------------------------------------- resolution
@@ -123,9 +136,19 @@ void add_light(std::vector<Light>&, const AmbientLightDesc&) {}
 LightSet build_light_set(const SceneDescription& desc, const RenderScene& scene) {
   std::vector<Light> lights;
   for (const LightDesc& l : desc.lights) std::visit([&](const auto& light) { add_light(lights, light); }, l);
-  for (std::size_t i = 0; i < scene.geometry.shapes.size(); ++i) {
+  const SceneGeometry& g = scene.geometry;
+  const std::vector<bool> direct = placed_directly(g);
+  for (std::size_t i = 0; i < g.shapes.size(); ++i) {
     const Material& m = scene.materials[static_cast<std::size_t>(scene.shape_material[i])];
-    if (m.emits()) lights.emplace_back(ShapeLight(scene.geometry.shapes[i], static_cast<uint32_t>(i), m));
+    if (direct[i] && m.emits()) lights.emplace_back(ShapeLight(g.shapes[i], static_cast<uint32_t>(i), m));
+  }
+  // Each emissive shape of each instance: a light of its own.
+  for (std::size_t i = 0; i < g.instances.size(); ++i) {
+    const Instance& inst = g.instances[i];
+    for (uint32_t s : g.prototypes[inst.prototype]) {
+      const Material& m = scene.materials[static_cast<std::size_t>(scene.material_of(s, static_cast<uint32_t>(i)))];
+      if (m.emits()) lights.emplace_back(ShapeLight(g.shapes[s], s, m, inst.transform, static_cast<uint32_t>(i)));
+    }
   }
   if (scene.environment_map) {
     lights.emplace_back(EnvironmentLight{scene.environment_map.get()});
@@ -136,6 +159,70 @@ LightSet build_light_set(const SceneDescription& desc, const RenderScene& scene)
   float radius = b.empty() ? 1.0f : 0.5f * length(b.extent());
   if (!(radius > 0.0f) || !std::isfinite(radius)) radius = 1.0f;
   return LightSet(std::move(lights), scene.geometry.shapes.size(), radius);
+}
+
+// ---------------------------------------------------------------- geometry
+// The shape's material index, or -1 after reporting one out of range.
+int shape_material_index(const SceneDescription& desc, const ShapeDesc& s, bool need_default, Diagnostics& diag) {
+  if (need_default) return 0;
+  if (s.material < 0 || static_cast<std::size_t>(s.material) >= desc.materials.size()) {
+    diag.error(s.where, "shape refers to material " + std::to_string(s.material) + ", but the scene has " +
+                            std::to_string(desc.materials.size()));
+    return -1;
+  }
+  return s.material;
+}
+
+// The shapes (object id = index in desc.shapes, then the objects' shapes in
+// order); a transformed shape becomes the one instance of a one-shape
+// prototype, each object a prototype, each instance an Instance.
+bool add_geometry(const SceneDescription& desc, bool need_default, RenderScene& scene, Diagnostics& diag) {
+  SceneGeometry& g = scene.geometry;
+  bool ok = true;
+  auto add_shape = [&](const ShapeDesc& s) {
+    const int material = shape_material_index(desc, s, need_default, diag);
+    ok = ok && material >= 0;
+    g.shapes.push_back(s.geometry);
+    scene.shape_material.push_back(std::max(material, 0));
+    return static_cast<uint32_t>(g.shapes.size() - 1);
+  };
+  auto add_instance = [&](uint32_t prototype, const std::optional<Sourced<Transform>>& t, int material) {
+    g.instances.push_back(Instance{prototype, t ? t->value : Transform()});
+    scene.instance_material.push_back(material);
+  };
+  g.shapes.reserve(desc.shapes.size());
+  scene.shape_material.reserve(desc.shapes.size());
+  for (const ShapeDesc& s : desc.shapes) {
+    const uint32_t id = add_shape(s);
+    if (!s.transform) continue;
+    g.prototypes.push_back({id});
+    add_instance(static_cast<uint32_t>(g.prototypes.size() - 1), s.transform, -1);
+  }
+  const auto first_object = static_cast<uint32_t>(g.prototypes.size());
+  for (const ObjectDesc& o : desc.objects) {
+    std::vector<uint32_t> ids;
+    for (const ShapeDesc& s : o.shapes) ids.push_back(add_shape(s));
+    g.prototypes.push_back(std::move(ids));
+  }
+  for (const InstanceDesc& inst : desc.instances) {
+    if (inst.object < 0 || static_cast<std::size_t>(inst.object) >= desc.objects.size()) {
+      diag.error(inst.where, "instance refers to object " + std::to_string(inst.object) + ", but the scene has " +
+                                 std::to_string(desc.objects.size()));
+      ok = false;
+      continue;
+    }
+    int material = -1;
+    if (inst.material && !need_default) {
+      material = *inst.material;
+      if (material < 0 || static_cast<std::size_t>(material) >= desc.materials.size()) {
+        diag.error(inst.where, "instance refers to material " + std::to_string(material));
+        ok = false;
+        material = -1;
+      }
+    }
+    add_instance(first_object + static_cast<uint32_t>(inst.object), inst.transform, material);
+  }
+  return ok;
 }
 
 }  // namespace
@@ -186,22 +273,7 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDescription& desc, co
   // Loaded scenes were validated; one built in code is checked here for what
   // the accelerators and lights rely on.
   if (!check_shapes_usable(desc, diag)) ok = false;
-  scene->geometry.shapes.reserve(desc.shapes.size());
-  scene->shape_material.reserve(desc.shapes.size());
-  for (std::size_t i = 0; i < desc.shapes.size(); ++i) {
-    const ShapeDesc& s = desc.shapes[i];
-    int material = s.material;
-    if (need_default) {
-      material = 0;
-    } else if (material < 0 || static_cast<std::size_t>(material) >= desc.materials.size()) {
-      diag.error(s.where, "shape " + std::to_string(i) + " refers to material " + std::to_string(material) +
-                              ", but the scene has " + std::to_string(desc.materials.size()));
-      ok = false;
-      continue;
-    }
-    scene->geometry.shapes.push_back(s.geometry);
-    scene->shape_material.push_back(material);
-  }
+  if (!add_geometry(desc, need_default, *scene, diag)) ok = false;
 
   if (desc.environment) {
     const auto environment_start = Clock::now();

@@ -47,6 +47,7 @@ struct RenderScene {
   RGB ambient;  // the sum of the ambient lights: the classic integrators' constant term (whitted.cpp)
   SceneGeometry geometry;
   std::vector<int> shape_material;   // per shape, index into materials
+  std::vector<int> instance_material;  // per instance: index into materials, or -1 for its shapes' own
   std::vector<Material> materials;
   std::vector<std::unique_ptr<Texture>> textures;  // stable addresses (materials point in)
   std::unique_ptr<Texture> background_image;       // render.background_image, if any
@@ -59,12 +60,19 @@ struct RenderScene {
   std::unique_ptr<Accelerator> accel;
   double texture_load_seconds = 0;  // decoding the textures and the environment map; 0 if there are none
 
+  // The material of a shape hit through `instance` (or placed directly, kNoInstance).
+  int material_of(uint32_t shape, uint32_t instance) const {
+    if (instance != kNoInstance && instance_material[instance] >= 0) return instance_material[instance];
+    return shape_material[shape];
+  }
   // Both count the ray in the calling thread's rays_traced_by_this_thread().
   bool intersect(const Ray& ray, Intersection& out) const;
   bool occluded(const Ray& ray) const {
     ++detail::t_rays_traced;
     return accel->occluded(ray);
   }
+  // The rest of intersect() for a hit through an instance.
+  [[gnu::noinline]] void instanced_surface(const Ray& ray, const PrimHit& prim_hit, Intersection& out) const;
   // Radiance seen by a ray that leaves the scene in direction `dir`: the
   // environment light's (the map, or the background colour), or else the
   // background colour (black).

@@ -8,6 +8,7 @@
 
 #include "scene/detect.h"
 #include "scene/importers.h"
+#include "scene/import_transform.h"
 #include "scene/native_shapes.h"
 
 namespace pt {
@@ -80,6 +81,13 @@ void read_camera(ImportContext& ctx, const JsonValue& v) {
                        "give view_height or view_width, not both: the other follows from the image's aspect ratio");
       r.fail();
     }
+  }
+  // The camera's transform moves its position, target and up at import.
+  std::optional<Sourced<Transform>> transform;
+  if (const JsonValue* t = r.get("transform"); t && read_transform(ctx.read, *t, transform) && transform) {
+    cam.position.value = transform->value.point(cam.position.value);
+    cam.look_at.value = transform->value.point(cam.look_at.value);
+    cam.up.value = transform->value.vector(cam.up.value);
   }
   r.finish();
 }
@@ -288,7 +296,7 @@ void read_environment(ImportContext& ctx, const JsonValue& v) {
 // Keeps the materials some shape uses (in declaration order), registers their
 // textures, and renumbers the shapes' material indices.
 void assemble_materials(ImportContext& ctx, std::vector<NativeMaterial>& materials,
-                        const std::vector<int>& shape_material) {
+                        const std::vector<int>& shape_material, const std::vector<std::vector<int>>& object_material) {
   std::vector<int> final_index(materials.size(), -1);
   for (std::size_t i = 0; i < materials.size(); ++i) {
     NativeMaterial& m = materials[i];
@@ -303,6 +311,16 @@ void assemble_materials(ImportContext& ctx, std::vector<NativeMaterial>& materia
   for (std::size_t s = 0; s < ctx.scene.shapes.size(); ++s) {
     const int m = shape_material[s];
     ctx.scene.shapes[s].material = m >= 0 ? final_index[static_cast<std::size_t>(m)] : default_material(ctx);
+  }
+  for (std::size_t o = 0; o < ctx.scene.objects.size(); ++o) {
+    for (std::size_t s = 0; s < ctx.scene.objects[o].shapes.size(); ++s) {
+      const int m = object_material[o][s];
+      ctx.scene.objects[o].shapes[s].material =
+          m >= 0 ? final_index[static_cast<std::size_t>(m)] : default_material(ctx);
+    }
+  }
+  for (InstanceDesc& inst : ctx.scene.instances) {
+    if (inst.material) inst.material = final_index[static_cast<std::size_t>(*inst.material)];
   }
 }
 
@@ -336,13 +354,15 @@ void import_native(ImportContext& ctx) {
     for (std::size_t i = 0; i < lights.size(); ++i) read_light(ctx, lights[i], i);
   }
 
+  std::vector<std::vector<int>> object_material;  // as shape_material, per object
+  if (const JsonValue* v = top.get("objects")) read_native_objects(ctx, *v, materials, object_material);
   std::vector<int> shape_material;  // per shape: index into `materials`, -1 for the default
   if (const JsonValue* v = top.get("shapes"); v && expect_array(ctx.read, *v, "shapes")) {
     const JsonValue::Array& shapes = v->as_array();
     for (std::size_t i = 0; i < shapes.size(); ++i) read_native_shape(ctx, shapes[i], i, materials, shape_material);
   }
   top.finish();
-  assemble_materials(ctx, materials, shape_material);
+  assemble_materials(ctx, materials, shape_material, object_material);
 }
 
 }  // namespace pt

@@ -1,12 +1,25 @@
 // Native-format shapes: sphere, quad, triangle, cylinder, mesh, disc, polygon, cone, plane.
 #include <string>
 
+#include "scene/import_transform.h"
 #include "scene/json_lists.h"
 #include "scene/native_shapes.h"
 #include "scene/suggest.h"
 
 namespace pt {
 namespace {
+
+// An infinite plane is no primitive of either backend (geometry/shapes/plane.h),
+// so it cannot be an instance: its transform is applied to it here (point as a
+// point, normal by the inverse transpose, tangent as a vector; uv_scale kept).
+void bake_plane_transform(ShapeDesc& shape) {
+  auto* plane = std::get_if<InfinitePlane>(&shape.geometry);
+  if (plane == nullptr || !shape.transform) return;
+  const Transform& t = shape.transform->value;
+  shape.geometry = make_plane(t.point(plane->point), t.normal(plane->normal), t.vector(plane->tangent), plane->uv_scale);
+  shape.transform.reset();
+}
+
 
 // "vertices": exactly n points, or (at_least) n or more.
 bool read_vertices(ObjectReader& r, std::size_t n, std::vector<Sourced<Vec3f>>& out, bool at_least = false) {
@@ -143,7 +156,8 @@ void read_mesh(ImportContext& ctx, ObjectReader& r, ShapeDesc& shape) {
   if (!ok) r.fail();
 }
 
-// The material a shape names: index into `materials`, -1 for none, -2 if unknown.
+}  // namespace
+
 int resolve_material(ImportContext& ctx, ObjectReader& r, std::vector<NativeMaterial>& materials) {
   Sourced<std::string> name;
   const JsonValue* v = r.get("material");
@@ -166,11 +180,10 @@ int resolve_material(ImportContext& ctx, ObjectReader& r, std::vector<NativeMate
   return -2;
 }
 
-}  // namespace
-
 void read_native_shape(ImportContext& ctx, const JsonValue& v, std::size_t index,
                        std::vector<NativeMaterial>& materials, std::vector<int>& shape_material) {
   if (!expect_object(ctx.read, v, "shapes[" + std::to_string(index) + "]")) return;
+  if (is_instance(v)) return read_native_instance(ctx, v, materials);
   ObjectReader r(ctx.read, v, "shape");
   static const std::vector<std::string> kTypes = {"sphere", "quad", "triangle", "cylinder", "mesh",
                                                   "disc", "polygon", "cone", "plane"};
@@ -197,6 +210,8 @@ void read_native_shape(ImportContext& ctx, const JsonValue& v, std::size_t index
     case 7: read_cone(r, shape); break;
     default: read_plane(r, shape); break;
   }
+  if (const JsonValue* t = r.get("transform"); t && !read_transform(ctx.read, *t, shape.transform)) r.fail();
+  bake_plane_transform(shape);
   r.finish();
   if (!r.ok()) return;
   // An unknown material is already an error; the shape is kept (with the

@@ -216,6 +216,8 @@ struct ShapeDesc {
   Shape geometry;
   std::vector<FieldLocation> fields;  // filled by the importers
   int material = 0;   // index into SceneDescription::materials
+  // Object to world ("transform"); absent for the identity, which costs nothing.
+  std::optional<Sourced<Transform>> transform;
 
   // Records where `field` was written and returns its value.
   template <class T>
@@ -232,6 +234,23 @@ struct ShapeDesc {
   }
 };
 
+// ---------------------------------------------------------------- instancing
+// A named object ("objects"): shapes defined once, in object space, placed
+// only by instances.
+struct ObjectDesc {
+  SourceLocation where;
+  std::string name;
+  std::vector<ShapeDesc> shapes;
+};
+
+// One placement of an object (a shape of type "instance").
+struct InstanceDesc {
+  SourceLocation where;
+  int object = 0;                                // index into SceneDescription::objects
+  std::optional<Sourced<Transform>> transform;   // object to world; absent: identity
+  std::optional<int> material;                   // replaces the object's materials
+};
+
 // ---------------------------------------------------------------- the scene
 enum class SceneFormat { Native, PathOfLight, Cgr };
 
@@ -245,6 +264,8 @@ struct SceneDescription {
   std::vector<TextureDesc> textures;  // each file once; referenced by index
   std::vector<LightDesc> lights;
   std::vector<ShapeDesc> shapes;
+  std::vector<ObjectDesc> objects;      // instancing: what instances place
+  std::vector<InstanceDesc> instances;
   std::optional<EnvironmentDesc> environment;  // replaces render.background for rays that leave
   double mesh_load_seconds = 0;  // time the loader spent reading mesh files (PLY, OBJ), for run records
 };

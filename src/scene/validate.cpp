@@ -156,6 +156,15 @@ bool emitting_plane(const SceneDescription& scene, const ShapeDesc& s, Diagnosti
   return true;
 }
 
+// An object is placed through instances, which hold bounded geometry: an
+// infinite plane in one is refused (a plane is placed directly, transformed or not).
+bool plane_in_object(const ObjectDesc& o, const ShapeDesc& s, Diagnostics& diag) {
+  if (!std::holds_alternative<InfinitePlane>(s.geometry)) return false;
+  diag.error(s.where, "an infinite plane cannot be part of object '" + o.name +
+                          "' (instances hold bounded geometry); place the plane under \"shapes\" instead");
+  return true;
+}
+
 }  // namespace
 
 void validate_scene(const SceneDescription& scene, const LoadOptions& options, Diagnostics& diag) {
@@ -169,20 +178,53 @@ void validate_scene(const SceneDescription& scene, const LoadOptions& options, D
     v.shape(s);
     emitting_plane(scene, s, diag);
   }
+  for (const ObjectDesc& o : scene.objects) {
+    for (const ShapeDesc& s : o.shapes) {
+      v.shape(s);
+      plane_in_object(o, s, diag);
+    }
+  }
   if (scene.environment) v.environment(*scene.environment);
 }
 
-bool check_shapes_usable(const SceneDescription& scene, Diagnostics& diag) {
+namespace {
+
+bool shapes_usable(const std::vector<ShapeDesc>& shapes, const std::string& where, Diagnostics& diag) {
   bool ok = true;
-  for (std::size_t i = 0; i < scene.shapes.size(); ++i) {
-    const ShapeDesc& s = scene.shapes[i];
+  for (std::size_t i = 0; i < shapes.size(); ++i) {
+    const ShapeDesc& s = shapes[i];
     for (const ShapeProblem& p : shape_problems(s)) {
       if (!p.unusable) continue;
-      diag.error(s.at(p.field), "shape " + std::to_string(i) + (s.name.empty() ? "" : " ('" + s.name + "')") +
-                                    ": " + p.message);
+      diag.error(s.at(p.field), where + "shape " + std::to_string(i) +
+                                    (s.name.empty() ? "" : " ('" + s.name + "')") + ": " + p.message);
       ok = false;
     }
+    if (s.transform && !s.transform->value.finite()) {
+      diag.error(s.transform->where, where + "shape " + std::to_string(i) + ": its transform is singular or not finite");
+      ok = false;
+    }
+  }
+  return ok;
+}
+
+}  // namespace
+
+bool check_shapes_usable(const SceneDescription& scene, Diagnostics& diag) {
+  bool ok = shapes_usable(scene.shapes, "", diag);
+  for (const ObjectDesc& o : scene.objects) ok = shapes_usable(o.shapes, "object '" + o.name + "': ", diag) && ok;
+  for (const InstanceDesc& inst : scene.instances) {
+    if (inst.transform && !inst.transform->value.finite()) {
+      diag.error(inst.transform->where, "instance: its transform is singular or not finite");
+      ok = false;
+    }
+  }
+  for (const ShapeDesc& s : scene.shapes) {
     if (emitting_plane(scene, s, diag)) ok = false;
+  }
+  for (const ObjectDesc& o : scene.objects) {
+    for (const ShapeDesc& s : o.shapes) {
+      if (plane_in_object(o, s, diag)) ok = false;
+    }
   }
   return ok;
 }

@@ -56,7 +56,14 @@ inline std::unique_ptr<Accelerator> build_backend(const Backend& b, const SceneG
 }
 
 // The hit of one given primitive, through the src/geometry routines.
-inline bool primitive_hit(const SceneGeometry& g, uint32_t shape, uint32_t prim, const Ray& ray, PrimHit& h) {
+// The ray in the space of the shapes `instance` places (the world for kNoInstance).
+inline Ray ray_in(const SceneGeometry& g, uint32_t instance, const Ray& ray) {
+  return instance == kNoInstance ? ray : g.instances[instance].transform.to_object(ray);
+}
+
+inline bool primitive_hit(const SceneGeometry& g, uint32_t shape, uint32_t prim, const Ray& world, PrimHit& h,
+                          uint32_t instance = kNoInstance) {
+  const Ray ray = ray_in(g, instance, world);
   return std::visit(
       [&](const auto& s) {
         if constexpr (std::is_same_v<std::decay_t<decltype(s)>, TriangleMesh>) {
@@ -71,8 +78,9 @@ inline bool primitive_hit(const SceneGeometry& g, uint32_t shape, uint32_t prim,
 // Where the ray's line meets the plane of mesh triangle (shape, prim), in
 // double precision: its parameter t and smallest barycentric coordinate (0 on
 // an edge, negative outside). False for analytic shapes and parallel rays.
-inline bool plane_hit(const SceneGeometry& g, uint32_t shape, uint32_t prim, const Ray& ray, double& t,
-                      double& min_bary) {
+inline bool plane_hit(const SceneGeometry& g, uint32_t shape, uint32_t prim, const Ray& world, double& t,
+                      double& min_bary, uint32_t instance = kNoInstance) {
+  const Ray ray = ray_in(g, instance, world);
   const auto* m = std::get_if<TriangleMesh>(&g.shapes[shape]);
   if (m == nullptr) return false;
   struct D3 {
@@ -118,25 +126,25 @@ inline Agreement classify(const SceneGeometry& g, const Ray& ray, bool exact, bo
   const float t_tol = exact ? 0.0f : tol.t_relative * scale;
   auto near_boundary = [&](const Hit& h) {
     double t = 0, b = 0;
-    return !exact && plane_hit(g, h.shape, h.prim, ray, t, b) && std::fabs(b) <= tol.boundary;
+    return !exact && plane_hit(g, h.shape, h.prim, ray, t, b, h.instance) && std::fabs(b) <= tol.boundary;
   };
   const bool backend_nearer = have && (!want || got.t < expected.t - t_tol);
   if (!exact && backend_nearer) {
     if (got.t * length(ray.dir) <= 1e-4f * (length(ray.origin) + 1.0f)) return Agreement::AtOrigin;
     double t = 0, b = 0;
-    if (plane_hit(g, got.shape, got.prim, ray, t, b) && b > tol.boundary && std::fabs(t - got.t) <= t_tol) {
+    if (plane_hit(g, got.shape, got.prim, ray, t, b, got.instance) && b > tol.boundary && std::fabs(t - got.t) <= t_tol) {
       return Agreement::ReferenceMiss;
     }
   }
   if (have != want) return near_boundary(have ? got : expected) ? Agreement::Boundary : Agreement::Different;
   if (!want) return Agreement::Same;
-  if (got.shape == expected.shape && got.prim == expected.prim) {
+  if (got.shape == expected.shape && got.prim == expected.prim && got.instance == expected.instance) {
     if (std::fabs(got.t - expected.t) > t_tol) return Agreement::Different;
     if (exact && !(got.uv == expected.uv)) return Agreement::Different;
     return Agreement::Same;
   }
   PrimHit h;
-  if (primitive_hit(g, got.shape, got.prim, ray, h) && std::fabs(h.t - expected.t) <= t_tol &&
+  if (primitive_hit(g, got.shape, got.prim, ray, h, got.instance) && std::fabs(h.t - expected.t) <= t_tol &&
       std::fabs(got.t - expected.t) <= t_tol) {
     return Agreement::Tie;
   }

@@ -41,6 +41,8 @@ std::vector<std::string> scene_files() {
     if (e.path().extension() == ".json") native.push_back(e.path().string());
   std::sort(native.begin(), native.end());
   out.insert(out.end(), native.begin(), native.end());
+  // Transforms and instancing (not under scenes/: builds before them cannot read it).
+  out.push_back((fs::path(PT_TEST_DATA_DIR) / "data" / "scenes" / "instances.json").string());
   return out;
 }
 

@@ -238,6 +238,77 @@ TEST_P(Backends, InfinitePlaneStaysOutOfTheTree) {
   EXPECT_FLOAT_EQ(hit.t, 2.0f);
 }
 
+// Transforms and instancing (docs/bvh.md, "Instances"): the mixed scene's
+// shapes split into shapes placed directly and two prototypes, placed by
+// instances under non-uniform scale, rotation, a mirror (negative
+// determinant) and a translation far from the origin, and each analytic
+// shape once more alone, squashed into an ellipsoid-like shape.
+SceneGeometry instanced_scene(uint32_t seed) {
+  SceneGeometry g = mixed_scene(seed);
+  const auto n = static_cast<uint32_t>(g.shapes.size());
+  g.prototypes.push_back({});
+  g.prototypes.push_back({});
+  for (uint32_t i = 0; i < n; ++i) {
+    if (i % 3 == 1) g.prototypes[0].push_back(i);
+    if (i % 3 == 2) g.prototypes[1].push_back(i);
+  }
+  auto place = [&](uint32_t proto, const Affine& a) { g.instances.push_back(Instance{proto, Transform(a)}); };
+  place(0, Affine::translate(3, -2, 1) * Affine::rotate(1, 2, 3, 37) * Affine::scale(0.5, 1.5, 0.8));
+  place(0, Affine::scale(-1, 1, 1));                                   // mirrored
+  place(1, Affine::rotate(0, 1, 0, 90) * Affine::scale(0.7, 0.7, 0.7));  // a similarity
+  place(1, Affine::translate(1e4, -2e4, 5e3) * Affine::rotate(1, 0, 0, 20) * Affine::translate(-1e4, 2e4, -5e3));
+  for (uint32_t i = 0; i < n; i += 4) {  // the analytic ones (mixed_scene: types cycle every 4)
+    if (std::holds_alternative<TriangleMesh>(g.shapes[i])) continue;
+    g.prototypes.push_back({i});
+    place(static_cast<uint32_t>(g.prototypes.size() - 1),
+          Affine::translate(0.5, 0.5, 0.5) * Affine::rotate(1, 1, 0, 15.0 * i) * Affine::scale(1.7, 0.3, 1.0));
+  }
+  return g;
+}
+
+TEST_P(Backends, MatchBruteForceWithTransformsAndInstances) {
+  const SceneGeometry g = instanced_scene(41);
+  auto accel = build(g);
+  ASSERT_NE(accel, nullptr);
+  test::Rng rng(43);
+  const Counts c = check_rays(g, *accel, random_rays(rng, 8000, 12.0f));
+  EXPECT_GT(c.hits, 2000);
+  int instanced = 0;
+  for (const Ray& r : random_rays(rng, 2000, 10.0f)) {
+    Hit h;
+    if (accel->intersect(r, h) && h.instance != kNoInstance) ++instanced;
+  }
+  EXPECT_GT(instanced, 200);
+  // The fourth instance, rotated about a point far from the origin, lies
+  // thousands of units away: rays from around it, aimed at its shapes.
+  const Transform& far = g.instances[3].transform;
+  std::vector<Ray> rays;
+  for (int i = 0; i < 3000; ++i) {
+    const Vec3f target = far.point(Vec3f(rng.uniform(-9, 9), rng.uniform(-9, 9), rng.uniform(-9, 9)));
+    const Vec3f origin = target + rng.uniform(5.0f, 20.0f) * rng.unit_vector();
+    rays.push_back(Ray{origin, target - origin});
+  }
+  EXPECT_GT(check_rays(g, *accel, rays).hits, 100);
+}
+
+TEST_P(Backends, ASingleInstanceAlone) {
+  // One instance and nothing placed directly: the top level holds one placed item.
+  SceneGeometry g;
+  g.shapes.push_back(Sphere{{0, 0, 0}, 1.0f, {0, 1, 0}});
+  g.prototypes.push_back({0});
+  g.instances.push_back(Instance{0, Transform(Affine::translate(0, 0, -5) * Affine::scale(2, 1, 1))});
+  auto accel = build(g);
+  ASSERT_NE(accel, nullptr);
+  Hit h;
+  ASSERT_TRUE(accel->intersect(Ray{{1.5f, 0, 0}, {0, 0, -1}}, h));
+  EXPECT_EQ(h.instance, 0u);
+  // The ellipsoid x^2/4 + y^2 + (z+5)^2 = 1 at x = 1.5: z + 5 = sqrt(1 - 0.5625).
+  EXPECT_NEAR(h.t, 5.0f - std::sqrt(1.0f - 0.5625f), 1e-5f);
+  EXPECT_FALSE(accel->intersect(Ray{{2.1f, 0, 0}, {0, 0, -1}}, h));
+  test::Rng rng(7);
+  check_rays(g, *accel, random_rays(rng, 2000, 6.0f));
+}
+
 TEST_P(Backends, ManyCoincidentPrimitives) {
   // 300 copies of one triangle, 40 of one sphere, 40 of one quad, and a
   // mesh whose triangles all collapse onto one point (never hit): the builder

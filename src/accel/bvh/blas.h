@@ -42,7 +42,9 @@ struct Blas {
   Bounds3f bounds;
   TreeStats stats;
 
-  BlasData view() const { return BlasData{nodes.data(), root, kind, blocks.data(), prims.data(), object}; }
+  BlasData view() const {
+    return BlasData{nodes.data(), root, kind, blocks.data(), prims.data(), object, kNoInstanceId, nullptr};
+  }
 };
 
 // The mesh must have valid indices (geometry_usable) and fewer than kMaxItems triangles.

@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include "accel/bvh/kernels.h"
+#include "accel/bvh/ray_frame.h"
 #include "core/parallel.h"
 #include "geometry/float_util.h"
 
@@ -29,21 +30,8 @@ bool prepare(const Ray& ray, RayQuery& q) {
   for (int a = 0; a < 3; ++a) {
     q.org[a] = ray.origin[a];
     q.dir[a] = ray.dir[a];
-    q.rdir[a] = 1.0f / ray.dir[a];  // +-inf for +-0: the sign picks the entry plane below
-    q.near[a] = std::signbit(ray.dir[a]) ? 1u : 0u;
   }
-  // The ray frame of the watertight triangle test, computed exactly as
-  // intersect_triangle() computes it (geometry/triangle.cpp).
-  const int kz = fp::max_dimension(abs(ray.dir));
-  const int kx = kz == 2 ? 0 : kz + 1;
-  const int ky = kx == 2 ? 0 : kx + 1;
-  const Vec3f d = fp::permute(ray.dir, kx, ky, kz);
-  q.kx = static_cast<uint32_t>(kx);
-  q.ky = static_cast<uint32_t>(ky);
-  q.kz = static_cast<uint32_t>(kz);
-  q.sz = 1.0f / d.z;
-  q.sx = -d.x * q.sz;
-  q.sy = -d.y * q.sz;
+  set_ray_frame(q);
   return true;
 }
 
@@ -53,8 +41,17 @@ Hit to_hit(const HitRecord& h) {
   hit.shape = h.object;
   hit.prim = h.prim;
   hit.uv = {h.u, h.v};
+  hit.instance = h.instance;
   return hit;
 }
+
+// The shapes of one group: those placed directly, or one prototype's.
+struct Group {
+  std::vector<uint32_t> meshes;  // non-empty meshes: a bottom level each
+  std::vector<AnalyticPrim> analytic;  // every analytic shape: one bottom level
+  std::vector<Bounds3f> analytic_boxes;
+  std::size_t first_blas = 0, blas_count = 0;  // its bottom levels in blas_
+};
 
 class BvhAccelerator final : public Accelerator {
  public:
@@ -93,10 +90,15 @@ class BvhAccelerator final : public Accelerator {
   uint64_t fingerprint() const;
 
  private:
+  void build_bottom_levels(const SceneGeometry& geometry, std::vector<Group>& groups,
+                           const BuildSettings& settings);
+  void place(const SceneGeometry& geometry, const std::vector<Group>& groups);
+
   std::vector<Blas> blas_;
-  std::vector<BlasData> views_;
+  std::vector<BlasData> views_;  // the top level's items
+  std::vector<Bounds3f> boxes_;  // their world bounds, while building
   TopLevel top_;
-  SceneData scene_{nullptr, kEmptyRef, nullptr, 0};
+  SceneData scene_{nullptr, kEmptyRef, nullptr, 0, 0};
   KernelTable kernels_{};
   Bounds3f bounds_;
   AccelStats stats_;
@@ -135,6 +137,7 @@ uint64_t BvhAccelerator::fingerprint() const {
     h.add(&b.root, sizeof(b.root));
     h.add(&b.object, sizeof(b.object));
   }
+  for (const BlasData& v : views_) h.add(&v.instance, sizeof(v.instance));
   return h.value();
 }
 
@@ -168,55 +171,110 @@ bool check_sizes(const SceneGeometry& geometry, Diagnostics& diag) {
   return ok;
 }
 
+void add_to_group(const SceneGeometry& geometry, uint32_t object, Group& g) {
+  std::visit(
+      [&](const auto& shape) {
+        if constexpr (WholeShape<std::decay_t<decltype(shape)>>) {
+          g.analytic.push_back(AnalyticPrim{ShapeRef(&shape), object});
+          g.analytic_boxes.push_back(pt::bounds(shape));
+        } else if (primitive_count(shape) > 0) {
+          g.meshes.push_back(object);
+        }
+      },
+      geometry.shapes[object]);
+}
+
+// Group 0: the shapes placed directly; group 1 + p: prototype p.
+std::vector<Group> make_groups(const SceneGeometry& geometry) {
+  std::vector<Group> groups(1 + geometry.prototypes.size());
+  const std::vector<bool> direct = placed_directly(geometry);
+  for (std::size_t i = 0; i < geometry.shapes.size(); ++i) {
+    if (direct[i]) add_to_group(geometry, static_cast<uint32_t>(i), groups[0]);
+  }
+  for (std::size_t p = 0; p < geometry.prototypes.size(); ++p) {
+    for (uint32_t s : geometry.prototypes[p]) add_to_group(geometry, s, groups[1 + p]);
+  }
+  std::size_t next = 0;
+  for (Group& g : groups) {
+    g.first_blas = next;
+    g.blas_count = g.meshes.size() + (g.analytic.empty() ? 0 : 1);
+    next += g.blas_count;
+  }
+  return groups;
+}
+
+void BvhAccelerator::build_bottom_levels(const SceneGeometry& geometry, std::vector<Group>& groups,
+                                         const BuildSettings& settings) {
+  blas_.resize(groups.empty() ? 0 : groups.back().first_blas + groups.back().blas_count);
+  for (Group& g : groups) {
+    tbb::parallel_for(std::size_t{0}, g.meshes.size(), [&](std::size_t k) {
+      blas_[g.first_blas + k] =
+          build_mesh_blas(std::get<TriangleMesh>(geometry.shapes[g.meshes[k]]), g.meshes[k], settings);
+    });
+    if (!g.analytic.empty()) {
+      blas_[g.first_blas + g.meshes.size()] = build_analytic_blas(std::move(g.analytic), g.analytic_boxes, settings);
+    }
+  }
+}
+
+// The top level's items: each bottom level placed directly, then each
+// instance's placement of its prototype's bottom levels.
+void BvhAccelerator::place(const SceneGeometry& geometry, const std::vector<Group>& groups) {
+  std::size_t count = groups[0].blas_count;
+  for (const Instance& inst : geometry.instances) count += groups[1 + inst.prototype].blas_count;
+  views_.reserve(count);
+  boxes_.reserve(count);
+  for (std::size_t b = 0; b < groups[0].blas_count; ++b) {
+    views_.push_back(blas_[b].view());
+    boxes_.push_back(blas_[b].bounds);
+  }
+  for (std::size_t i = 0; i < geometry.instances.size(); ++i) {
+    const Instance& inst = geometry.instances[i];
+    const Group& g = groups[1 + inst.prototype];
+    for (std::size_t b = g.first_blas; b < g.first_blas + g.blas_count; ++b) {
+      BlasData v = blas_[b].view();
+      v.instance = static_cast<uint32_t>(i);
+      v.transform = &inst.transform;
+      views_.push_back(v);
+      boxes_.push_back(inst.transform.bounds(blas_[b].bounds));
+    }
+  }
+  bounds_ = world_bounds(geometry);
+}
+
 bool BvhAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, Diagnostics& diag,
                            const Options& options) {
   assert(geometry_usable(geometry));
   if (!check_sizes(geometry, diag)) return false;
   if (!choose_kernels(options.isa, kernels_, diag)) return false;
 
-  // One bottom level per non-empty mesh, one over every analytic shape.
-  std::vector<uint32_t> meshes;
-  std::vector<AnalyticPrim> analytic;
-  std::vector<Bounds3f> analytic_boxes;
+  // One bottom level per non-empty mesh, one over every analytic shape, for
+  // the shapes placed directly and for each prototype.
+  std::vector<Group> groups = make_groups(geometry);
   std::size_t primitives = 0;
-  for (std::size_t i = 0; i < geometry.shapes.size(); ++i) {
-    const auto object = static_cast<uint32_t>(i);
-    std::visit(
-        [&](const auto& shape) {
-          primitives += primitive_count(shape);
-          if constexpr (WholeShape<std::decay_t<decltype(shape)>>) {
-            analytic.push_back(AnalyticPrim{ShapeRef(&shape), object});
-            analytic_boxes.push_back(pt::bounds(shape));
-          } else if (primitive_count(shape) > 0) {
-            meshes.push_back(object);
-          }
-        },
-        geometry.shapes[i]);
-    bounds_.extend(pt::bounds(geometry.shapes[i]));
-  }
+  for (const Shape& s : geometry.shapes) primitives += primitive_count(s);
 
   const auto start = std::chrono::steady_clock::now();
+  bool placed = false;
   pool.run([&] {
-    blas_.resize(meshes.size() + (analytic.empty() ? 0 : 1));
-    tbb::parallel_for(std::size_t{0}, meshes.size(), [&](std::size_t k) {
-      blas_[k] = build_mesh_blas(std::get<TriangleMesh>(geometry.shapes[meshes[k]]), meshes[k], options.build);
-    });
-    if (!analytic.empty()) blas_.back() = build_analytic_blas(std::move(analytic), analytic_boxes, options.build);
-    if (blas_.size() > 1) {
-      std::vector<Bounds3f> boxes;
-      boxes.reserve(blas_.size());
-      for (const Blas& b : blas_) boxes.push_back(b.bounds);
-      top_ = build_top_level(boxes, options.build);
-    }
+    build_bottom_levels(geometry, groups, options.build);
+    place(geometry, groups);
+    placed = views_.size() > 1 || !geometry.instances.empty();
+    if (placed && views_.size() >= kMaxItems) return;
+    if (placed) top_ = build_top_level(boxes_, options.build);
   });
   const auto stop = std::chrono::steady_clock::now();
-
-  views_.reserve(blas_.size());
-  for (const Blas& b : blas_) {
-    views_.push_back(b.view());
-    tree_stats_.bottom.add(b.stats);
+  if (views_.size() >= kMaxItems) {
+    diag.error(SourceLocation{}, std::to_string(views_.size()) + " placed bottom levels; the bvh backend takes at most " +
+                                     std::to_string(kMaxItems - 1));
+    return false;
   }
-  scene_ = SceneData{top_.nodes.data(), top_.root, views_.data(), static_cast<uint32_t>(views_.size())};
+  boxes_.clear();
+  boxes_.shrink_to_fit();
+
+  for (const Blas& b : blas_) tree_stats_.bottom.add(b.stats);
+  const auto instanced = static_cast<uint32_t>(views_.size() - groups[0].blas_count);
+  scene_ = SceneData{top_.nodes.data(), top_.root, views_.data(), static_cast<uint32_t>(views_.size()), instanced};
   tree_stats_.top = top_.stats;
   tree_stats_.bottom_levels = blas_.size();
   tree_stats_.isa = kernels_.isa;

@@ -143,22 +143,50 @@ inline bool traverse_blas(const Ops& ops, const BlasData& b, RayQuery& q, HitRec
   });
 }
 
+// A top-level item placed by an instance: the ray taken to its object space
+// (same t parameter), traversed with a kernel state of its own. Out of line,
+// so the loop over items placed directly compiles as it did before instancing.
 template <bool kAnyHit, bool kCount, class Ops>
-inline bool traverse_scene(const SceneData& s, RayQuery& q, HitRecord& hit, Counters* counters) {
-  if (s.blas_count == 0) return false;
-  const Ops ops(q);
-  if (s.blas_count == 1) return traverse_blas<kAnyHit, kCount>(ops, s.blas[0], q, hit, counters);
+__attribute__((noinline)) bool traverse_instance(const BlasData& b, RayQuery& q, HitRecord& hit,
+                                                 Counters* counters) {
+  RayQuery local;
+  if (!to_object_space(*b.transform, q, local)) return false;
+  const Ops local_ops(local);
+  if (!traverse_blas<kAnyHit, kCount>(local_ops, b, local, hit, counters)) return false;
+  q.tmax = local.tmax;
+  hit.instance = b.instance;
+  return true;
+}
+
+// The top level, its leaf items tested by `item(blas, q, hit)`.
+template <bool kAnyHit, bool kCount, class Ops, class Item>
+inline bool traverse_top(const Ops& ops, const SceneData& s, RayQuery& q, Counters* counters, Item&& item) {
   return traverse<kAnyHit, kCount>(ops, s.nodes, s.root, q, counters, [&](uint32_t ref) {
     const BlasData* blas = s.blas + (ref & kLeafIndexMask);
     const uint32_t count = item_count(ref);
     bool found = false;
     for (uint32_t i = 0; i < count; ++i) {
-      if (traverse_blas<kAnyHit, kCount>(ops, blas[i], q, hit, counters)) {
+      if (item(blas[i])) {
         found = true;
         if constexpr (kAnyHit) return true;
       }
     }
     return found;
+  });
+}
+
+template <bool kAnyHit, bool kCount, class Ops>
+inline bool traverse_scene(const SceneData& s, RayQuery& q, HitRecord& hit, Counters* counters) {
+  if (s.blas_count == 0) return false;
+  const Ops ops(q);
+  // A hit recorded by a leaf test has instance kNoInstanceId (HitRecord's default).
+  auto direct = [&](const BlasData& b) { return traverse_blas<kAnyHit, kCount>(ops, b, q, hit, counters); };
+  if (s.instanced == 0) {  // nothing placed by instances: as before instancing existed
+    if (s.blas_count == 1) return direct(s.blas[0]);
+    return traverse_top<kAnyHit, kCount>(ops, s, q, counters, direct);
+  }
+  return traverse_top<kAnyHit, kCount>(ops, s, q, counters, [&](const BlasData& b) {
+    return b.transform == nullptr ? direct(b) : traverse_instance<kAnyHit, kCount, Ops>(b, q, hit, counters);
   });
 }
 

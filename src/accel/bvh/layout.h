@@ -11,6 +11,10 @@
 
 #include <cstdint>
 
+namespace pt {
+struct Transform;  // core/transform.h; the kernels only pass it on (to_object_space)
+}
+
 namespace pt::bvh {
 
 // ---------------------------------------------------------------- references
@@ -54,7 +58,12 @@ struct AnalyticPrim;
 
 enum class BlasKind : uint32_t { Triangles, Analytic };
 
-// One bottom-level BVH as the kernels see it.
+// The instance id of a hit on a shape placed directly (geometry's kNoInstance).
+inline constexpr uint32_t kNoInstanceId = 0xFFFFFFFFu;
+
+// One bottom-level BVH as the kernels see it: placed directly (transform
+// nullptr, instance kNoInstanceId), or one placement of it (an instance of a
+// prototype: the ray goes to object space, the BVH is shared).
 struct BlasData {
   const Node8* nodes;
   uint32_t root;                 // a node or a leaf reference
@@ -62,15 +71,18 @@ struct BlasData {
   const TriangleBlock* blocks;   // Triangles
   const AnalyticPrim* prims;     // Analytic
   uint32_t object;               // Triangles: the mesh's object id
+  uint32_t instance;             // the instance id, or kNoInstanceId
+  const Transform* transform;    // object to world, or nullptr when placed directly
 };
 
 // The whole scene: a top-level BVH whose leaves are bottom-level BVHs. With a
-// single bottom-level BVH the top level is skipped.
+// single bottom-level BVH placed directly the top level is skipped.
 struct SceneData {
   const Node8* nodes;
   uint32_t root;
   const BlasData* blas;
   uint32_t blas_count;
+  uint32_t instanced;  // items placed by instances (0: the top level's items need no transform test)
 };
 
 // ---------------------------------------------------------------- rays
@@ -94,6 +106,7 @@ struct HitRecord {
   uint32_t object;
   uint32_t prim;
   float u, v;
+  uint32_t instance = kNoInstanceId;  // set by the top level for a hit through an instance
 };
 
 struct Counters {
@@ -107,5 +120,9 @@ struct Counters {
 // Each updates `hit` and q.tmax on a hit with q.tmin < t < q.tmax.
 bool intersect_block_lane(const TriangleBlock& block, uint32_t lane, uint32_t object, RayQuery& q, HitRecord& hit);
 bool intersect_analytic(const AnalyticPrim* prims, uint32_t index, RayQuery& q, HitRecord& hit);
+// The world query `world` in the object space of `t` (same t parameter and
+// interval, the direction not renormalised), prepared as bvh_accel.cpp's
+// prepare() prepares a ray. False if the ray cannot hit anything there.
+bool to_object_space(const Transform& t, const RayQuery& world, RayQuery& local);
 
 }  // namespace pt::bvh

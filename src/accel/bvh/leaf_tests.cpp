@@ -1,11 +1,14 @@
 // The leaf tests every kernel ends in: the src/geometry routines (the same
 // ones the Embree backend's user geometry calls), compiled for the baseline ISA.
+#include <cmath>
 #include <type_traits>
 #include <variant>
 
 #include "accel/bvh/analytic.h"
 #include "accel/bvh/kernels.h"
 #include "accel/bvh/layout.h"
+#include "accel/bvh/ray_frame.h"
+#include "core/transform.h"
 #include "geometry/float_util.h"
 #include "geometry/shapes.h"
 
@@ -49,6 +52,21 @@ bool intersect_analytic(const AnalyticPrim* prims, uint32_t index, RayQuery& q, 
       prim.shape);
   return found && record(h, prim.object, 0, q, hit);
 }
+
+bool to_object_space(const Transform& t, const RayQuery& world, RayQuery& local) {
+  const Ray r = t.to_object(to_ray(world));
+  if (!is_finite(r.origin) || !is_finite(r.dir) || r.dir == Vec3f(0.0f)) return false;
+  for (int a = 0; a < 3; ++a) {
+    local.org[a] = r.origin[a];
+    local.dir[a] = r.dir[a];
+  }
+  local.tmin = world.tmin;
+  local.tmax = world.tmax;
+  set_ray_frame(local);
+  return true;
+}
+
+static_assert(kNoInstanceId == kNoInstance);
 
 bool cpu_has_avx2_fma() { return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"); }
 

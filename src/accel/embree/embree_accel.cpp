@@ -82,6 +82,9 @@ class EmbreeAccelerator final : public Accelerator {
   explicit EmbreeAccelerator(MeshTriangles meshes) : meshes_(meshes) {}
   ~EmbreeAccelerator() override {
     if (scene_ != nullptr) rtcReleaseScene(scene_);
+    for (RTCScene s : prototypes_) {
+      if (s != nullptr) rtcReleaseScene(s);
+    }
   }
   EmbreeAccelerator(const EmbreeAccelerator&) = delete;
   EmbreeAccelerator& operator=(const EmbreeAccelerator&) = delete;
@@ -102,6 +105,7 @@ class EmbreeAccelerator final : public Accelerator {
     hit.shape = rh.hit.geomID;
     hit.prim = rh.hit.primID;
     hit.uv = {rh.hit.u, rh.hit.v};
+    hit.instance = rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID ? kNoInstance : rh.hit.instID[0] - instance_base_;
     return true;
   }
 
@@ -118,9 +122,17 @@ class EmbreeAccelerator final : public Accelerator {
   AccelStats stats() const override { return stats_; }
 
  private:
+  RTCScene new_scene(Diagnostics& diag);
+  bool attach_shape(RTCScene scene, const SceneGeometry& geometry, uint32_t object, Diagnostics& diag);
+  bool attach_instance(const SceneGeometry& geometry, uint32_t instance, Diagnostics& diag);
+
   MeshTriangles meshes_;
-  Device device_;  // destroyed after scene_ is released
+  Device device_;  // destroyed after the scenes are released
   RTCScene scene_ = nullptr;
+  // One scene per prototype, placed in scene_ by instance geometries with
+  // geomID instance_base_ + instance id (the shapes keep their object ids).
+  std::vector<RTCScene> prototypes_;
+  uint32_t instance_base_ = 0;
   Bounds3f bounds_;
   AccelStats stats_;
 };
@@ -131,45 +143,87 @@ bool report_device_errors(const Device& device, Diagnostics& diag) {
   return true;
 }
 
+// A scene with the flags every scene of this backend has. ROBUST: the
+// traversal avoids accuracy-reducing shortcuts (node boxes touched only at a
+// corner, where a ray aimed at a mesh vertex passes). HIGH: the best tree
+// Embree builds over user geometry.
+RTCScene EmbreeAccelerator::new_scene(Diagnostics& diag) {
+  RTCScene scene = rtcNewScene(device_.get());
+  if (scene == nullptr) {
+    if (!report_device_errors(device_, diag)) diag.error(SourceLocation{}, "Embree: cannot create a scene");
+    return nullptr;
+  }
+  rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+  return scene;
+}
+
+bool EmbreeAccelerator::attach_shape(RTCScene scene, const SceneGeometry& geometry, uint32_t object,
+                                     Diagnostics& diag) {
+  const Shape& shape = geometry.shapes[object];
+  const auto* mesh = std::get_if<TriangleMesh>(&shape);
+  RTCGeometry geom = mesh != nullptr && meshes_ == MeshTriangles::Native ? native_triangles(device_.get(), *mesh)
+                                                                        : new_user_geometry(device_.get(), shape);
+  if (geom == nullptr) {
+    if (!report_device_errors(device_, diag)) {
+      diag.error(SourceLocation{}, "Embree: cannot create the geometry of shape " + std::to_string(object));
+    }
+    return false;
+  }
+  rtcAttachGeometryByID(scene, geom, object);
+  rtcReleaseGeometry(geom);
+  return true;
+}
+
+bool EmbreeAccelerator::attach_instance(const SceneGeometry& geometry, uint32_t instance, Diagnostics& diag) {
+  const Instance& inst = geometry.instances[instance];
+  RTCGeometry geom = rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_INSTANCE);
+  if (geom == nullptr) {
+    if (!report_device_errors(device_, diag)) diag.error(SourceLocation{}, "Embree: cannot create an instance");
+    return false;
+  }
+  rtcSetGeometryInstancedScene(geom, prototypes_[inst.prototype]);
+  rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, &inst.transform.m[0][0]);
+  rtcSetGeometryMask(geom, kMask);
+  rtcCommitGeometry(geom);
+  rtcAttachGeometryByID(scene_, geom, instance_base_ + instance);
+  rtcReleaseGeometry(geom);
+  return true;
+}
+
 bool EmbreeAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, Diagnostics& diag) {
   if (report_device_errors(device_, diag) || !device_.valid()) return false;
   assert(geometry_usable(geometry));  // Embree must never see NaN bounds or bad indices
-
-  RTCDevice device = device_.get();
-  scene_ = rtcNewScene(device);
-  if (scene_ == nullptr) {
-    if (!report_device_errors(device_, diag)) diag.error(SourceLocation{}, "Embree: cannot create a scene");
-    return false;
-  }
-  // ROBUST: the traversal avoids accuracy-reducing shortcuts (node boxes
-  // touched only at a corner, where a ray aimed at a mesh vertex passes).
-  // HIGH: the best tree Embree builds over user geometry.
-  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
-  rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
-
+  scene_ = new_scene(diag);
+  if (scene_ == nullptr) return false;
   std::size_t primitives = 0;
+  const std::vector<bool> direct = placed_directly(geometry);
   for (std::size_t i = 0; i < geometry.shapes.size(); ++i) {
-    const Shape& shape = geometry.shapes[i];
-    primitives += primitive_count(shape);
-    const auto* mesh = std::get_if<TriangleMesh>(&shape);
-    RTCGeometry geom = mesh != nullptr && meshes_ == MeshTriangles::Native ? native_triangles(device, *mesh)
-                                                                          : new_user_geometry(device, shape);
-    if (geom == nullptr) {
-      if (!report_device_errors(device_, diag)) {
-        diag.error(SourceLocation{}, "Embree: cannot create the geometry of shape " + std::to_string(i));
-      }
-      return false;
-    }
-    rtcAttachGeometryByID(scene_, geom, static_cast<unsigned>(i));
-    rtcReleaseGeometry(geom);
-    bounds_.extend(pt::bounds(geometry.shapes[i]));
+    primitives += primitive_count(geometry.shapes[i]);
+    if (direct[i] && !attach_shape(scene_, geometry, static_cast<uint32_t>(i), diag)) return false;
   }
+  for (const std::vector<uint32_t>& proto : geometry.prototypes) {
+    prototypes_.push_back(new_scene(diag));
+    if (prototypes_.back() == nullptr) return false;
+    for (uint32_t s : proto) {
+      if (!attach_shape(prototypes_.back(), geometry, s, diag)) return false;
+    }
+  }
+  instance_base_ = static_cast<uint32_t>(geometry.shapes.size());
+  bounds_ = world_bounds(geometry);
 
   const auto start = std::chrono::steady_clock::now();
   // Embree's TBB tasking runs the parallel build inside the pool's arena.
-  pool.run([&] { rtcCommitScene(scene_); });
+  bool ok = true;
+  pool.run([&] {
+    for (RTCScene p : prototypes_) rtcCommitScene(p);
+    for (std::size_t i = 0; i < geometry.instances.size() && ok; ++i) {
+      ok = attach_instance(geometry, static_cast<uint32_t>(i), diag);
+    }
+    if (ok) rtcCommitScene(scene_);
+  });
   const auto stop = std::chrono::steady_clock::now();
-  if (report_device_errors(device_, diag)) return false;
+  if (!ok || report_device_errors(device_, diag)) return false;
 
   stats_.backend = device_.description() + (meshes_ == MeshTriangles::Native ? " native triangles" : "");
   stats_.build_seconds = std::chrono::duration<double>(stop - start).count();

@@ -121,7 +121,7 @@ class PathTracer {
 
   // MIS weight of an emitter hit through a BSDF-sampled direction.
   float emitter_weight(const Intersection& isect, Vec3f dir, bool specular, float prev_pdf, Vec3f prev_p) const {
-    const int index = lights_.shape_light(isect.hit.shape);
+    const int index = lights_.shape_light(isect.hit.shape, isect.hit.instance);
     if (specular || index < 0 || strategy_ == LightStrategy::BsdfOnly) return 1.0f;
     if (strategy_ == LightStrategy::LightOnly) return 0.0f;
     const Light& light = lights_[static_cast<std::size_t>(index)];

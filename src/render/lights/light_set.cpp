@@ -51,13 +51,20 @@ LightSet::LightSet(std::vector<Light> lights, std::size_t shape_count, float sce
           } else if constexpr (L::infinite) {
             environment_ = static_cast<int>(i);
           } else {  // finite and not delta: an area light
-            if (shape_light_.empty()) shape_light_.assign(shape_count, -1);
-            if (l.shape_id() < shape_count) shape_light_[l.shape_id()] = static_cast<int>(i);
+            uint32_t instance = kNoInstance;
+            if constexpr (requires { l.instance(); }) instance = l.instance();
+            if (instance != kNoInstance) {
+              instance_light_.push_back({(uint64_t{instance} << 32) | l.shape_id(), static_cast<int>(i)});
+            } else {
+              if (shape_light_.empty()) shape_light_.assign(shape_count, -1);
+              if (l.shape_id() < shape_count) shape_light_[l.shape_id()] = static_cast<int>(i);
+            }
           }
           return l.power(scene_radius);
         },
         lights_[i]);
   }
+  std::sort(instance_light_.begin(), instance_light_.end());
   selection_ = Distribution1D(power);
   int positive = 0;
   for (std::size_t i = 0; i < power.size(); ++i) {
@@ -67,6 +74,12 @@ LightSet::LightSet(std::vector<Light> lights, std::size_t shape_count, float sce
     }
   }
   if (positive != 1) only_ = -1;
+}
+
+int LightSet::instance_light(uint32_t shape, uint32_t instance) const {
+  const std::pair<uint64_t, int> key{(uint64_t{instance} << 32) | shape, -1};
+  const auto it = std::lower_bound(instance_light_.begin(), instance_light_.end(), key);
+  return it != instance_light_.end() && it->first == key.first ? it->second : -1;
 }
 
 int LightSet::choose(float u, float& pmf) const {

@@ -10,6 +10,7 @@
 #include <concepts>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -74,8 +75,10 @@ class LightSet {
     return lights_.size() == 1 ? 1.0f : selection_.pmf(static_cast<std::size_t>(light));
   }
 
-  // The area light of shape i, or -1.
-  int shape_light(uint32_t shape) const {
+  // The area light of shape i placed directly, or of shape i placed by
+  // `instance` (Hit::instance), or -1.
+  int shape_light(uint32_t shape, uint32_t instance = kNoInstance) const {
+    if (instance != kNoInstance) return instance_light(shape, instance);
     return shape < shape_light_.size() ? shape_light_[shape] : -1;
   }
   // The environment's light index (the infinite light that is not delta), or -1.
@@ -87,7 +90,11 @@ class LightSet {
  private:
   std::vector<Light> lights_;
   Distribution1D selection_;
+  int instance_light(uint32_t shape, uint32_t instance) const;
+
   std::vector<int> shape_light_;  // empty when no shape emits
+  // (instance << 32 | shape, light) for the area lights placed by instances, sorted.
+  std::vector<std::pair<uint64_t, int>> instance_light_;
   int environment_ = -1;
   std::size_t delta_count_ = 0;
   int only_ = -1;  // the one light with positive power when exactly one has it, else -1

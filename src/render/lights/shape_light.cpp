@@ -23,6 +23,37 @@ ShapeLight::ShapeLight(const Shape& shape, uint32_t shape_id, const Material& ma
                std::fabs(dot(para_.e1, para_.e2)) <= 1e-4f * length(para_.e1) * length(para_.e2);
 }
 
+ShapeLight::ShapeLight(const Shape& shape, uint32_t shape_id, const Material& material, const Transform& transform,
+                       uint32_t instance)
+    : ShapeLight(shape, shape_id, material) {
+  instance_ = instance;
+  transform_ = &transform;
+  if (const auto* sphere = std::get_if<Sphere>(&shape); sphere && transform.similarity) {
+    world_sphere_ = *sphere;
+    world_sphere_.center = transform.point(sphere->center);
+    world_sphere_.radius = sphere->radius * transform.scale;
+    has_world_sphere_ = true;
+  }
+  if (parallelogram_) {  // an affine map keeps a parallelogram one
+    para_.p0 = transform.point(para_.p0);
+    para_.e1 = transform.vector(para_.e1);
+    para_.e2 = transform.vector(para_.e2);
+    para_.n = normalize(transform.normal(para_.n));
+    area_ = length(cross(para_.e1, para_.e2));
+    if (!(area_ > 0.0f) || !std::isfinite(area_)) area_ = 0.0f;
+  }
+}
+
+const Sphere* ShapeLight::cone_sphere() const {
+  if (transform_ == nullptr) return std::get_if<Sphere>(shape_);
+  return has_world_sphere_ ? &world_sphere_ : nullptr;
+}
+
+float ShapeLight::area_at(Vec3f n) const {
+  if (transform_ == nullptr || parallelogram_) return area_;
+  return area_ * std::fabs(transform_->det) / length(transform_->transpose_vector(n));
+}
+
 bool ShapeLight::spherical_rectangle(Vec3f p, SphericalRectangle& r) const {
   return rectangle_ && make_spherical_rectangle(p, para_.p0, para_.e1, para_.e2, r) &&
          r.solid_angle >= kMinSphericalRectangle;
@@ -82,7 +113,12 @@ void ShapeLight::detect_parallelogram() {
 
 float ShapeLight::power() const {
   const RGB& L = material_->emission;
-  return kPi * area_ * (L.r + L.g + L.b) / 3.0f * (material_->two_sided ? 2.0f : 1.0f);
+  // A transformed shape's world area is estimated (exact for similarities):
+  // the power only sets how often the light is chosen.
+  const float area = transform_ == nullptr || parallelogram_
+                         ? area_
+                         : area_ * std::cbrt(transform_->det * transform_->det);
+  return kPi * area * (L.r + L.g + L.b) / 3.0f * (material_->two_sided ? 2.0f : 1.0f);
 }
 
 void ShapeLight::sample_area(Vec2f u, Vec3f& q, Vec3f& n) const {
@@ -92,6 +128,10 @@ void ShapeLight::sample_area(Vec2f u, Vec3f& q, Vec3f& n) const {
     return;
   }
   std::visit([&](const auto& sampler) { sampler.sample(u, q, n); }, sampler_);
+  if (transform_ != nullptr) {
+    q = transform_->point(q);
+    n = normalize(transform_->normal(n));
+  }
 }
 
 bool ShapeLight::sample_sphere_cone(const Sphere& s, Vec3f p, Vec2f u, LightSample& out) const {
@@ -130,7 +170,7 @@ bool ShapeLight::sample(Vec3f p, Vec2f u, LightSample& s) const {
   if (!(area_ > 0.0f)) return false;
   // A one-sided flat light sends nothing to the points behind its plane.
   if (parallelogram_ && !material_->two_sided && !(dot(p - para_.p0, para_.n) > 0.0f)) return false;
-  const auto* sphere = std::get_if<Sphere>(shape_);
+  const Sphere* sphere = cone_sphere();
   SphericalRectangle rect;
   if (sphere && length_squared(p - sphere->center) > sphere->radius * sphere->radius * 1.0001f) {
     sample_sphere_cone(*sphere, p, u, s);
@@ -150,7 +190,7 @@ bool ShapeLight::sample(Vec3f p, Vec2f u, LightSample& s) const {
     s.wi = d / std::sqrt(d2);
     const float cos_l = std::fabs(dot(s.n_light, s.wi));
     if (!(cos_l > 0.0f)) return false;
-    s.pdf = d2 / (cos_l * area_);
+    s.pdf = d2 / (cos_l * area_at(s.n_light));
   }
   if (!(s.pdf > 0.0f) || !std::isfinite(s.pdf)) return false;
   s.L = material_->emitted(s.n_light, -s.wi);
@@ -159,7 +199,7 @@ bool ShapeLight::sample(Vec3f p, Vec2f u, LightSample& s) const {
 
 float ShapeLight::pdf(Vec3f p, Vec3f wi, Vec3f q, Vec3f n) const {
   if (!(area_ > 0.0f)) return 0.0f;
-  if (const auto* sphere = std::get_if<Sphere>(shape_)) {
+  if (const Sphere* sphere = cone_sphere()) {
     const float dc2 = length_squared(p - sphere->center);
     const float r2 = sphere->radius * sphere->radius;
     if (dc2 > r2 * 1.0001f) {
@@ -174,7 +214,7 @@ float ShapeLight::pdf(Vec3f p, Vec3f wi, Vec3f q, Vec3f n) const {
   const float d2 = length_squared(q - p);
   const float cos_l = std::fabs(dot(n, wi));
   if (!(cos_l > 0.0f)) return 0.0f;
-  return d2 / (cos_l * area_);
+  return d2 / (cos_l * area_at(n));
 }
 
 }  // namespace pt

@@ -12,6 +12,14 @@
 //    uniformly by solid angle (spherical rectangle sampling) when
 //    `solid_angle_rectangles` is on and it subtends at least
 //    kMinSphericalRectangle sr (below that, float precision fails; by area).
+// A shape placed by an instance (SceneGeometry::instances) is a light of its
+// own for each instance: a sphere under a similarity transform is still a
+// sphere (sampled by solid angle, its world centre and radius); a quad or
+// two-triangle parallelogram stays a parallelogram (its corners and edges
+// transformed); any other shape, or a sphere under a non-uniform scale, is
+// sampled by area in object space and mapped to world space, its density
+// divided by the area scale at the point, |det M| / |M^T n| (n the unit world
+// normal; constant for flat shapes).
 // Emission is one-sided (the side of the shape's geometric normal) unless the
 // material is two-sided; see Material::emitted.
 #pragma once
@@ -35,9 +43,14 @@ class ShapeLight {
   static constexpr bool infinite = false;
 
   ShapeLight(const Shape& shape, uint32_t shape_id, const Material& material, bool solid_angle_rectangles = false);
+  // The shape placed by `instance` with object-to-world `transform` (which
+  // must outlive the light).
+  ShapeLight(const Shape& shape, uint32_t shape_id, const Material& material, const Transform& transform,
+             uint32_t instance);
 
   uint32_t shape_id() const { return shape_id_; }
-  float area() const { return area_; }
+  uint32_t instance() const { return instance_; }
+  float area() const { return area_; }  // in object space for a light sampled there (see above)
   // Samples a point of the light as seen from p; false if nothing can be sampled.
   bool sample(Vec3f p, Vec2f u, LightSample& s) const;
   // The solid-angle density with which sample(p, ...) produces direction wi
@@ -52,6 +65,11 @@ class ShapeLight {
  private:
   // A point uniformly distributed by area (the density is 1 / area_).
   void sample_area(Vec2f u, Vec3f& q, Vec3f& n) const;
+  // The area of the shape around a point with unit normal n, as the density
+  // 1 / that of sample_area() there: area_, scaled for a transformed shape.
+  float area_at(Vec3f n) const;
+  // The sphere sampled by solid angle, if any (in world space).
+  const Sphere* cone_sphere() const;
   bool sample_sphere_cone(const Sphere& s, Vec3f p, Vec2f u, LightSample& out) const;
 
   // A triangle ready to sample: a corner, its two edges and the unit normal.
@@ -70,6 +88,10 @@ class ShapeLight {
 
   const Shape* shape_;
   uint32_t shape_id_;
+  uint32_t instance_ = kNoInstance;
+  const Transform* transform_ = nullptr;  // object to world, for an instance's light
+  Sphere world_sphere_{};                 // a sphere under a similarity transform, in world space
+  bool has_world_sphere_ = false;
   const Material* material_;
   float area_ = 0.0f;
   ShapeAreaSampler sampler_;  // the shape's own sampling by area (geometry/shapes/*.h)

@@ -1,0 +1,130 @@
+// The native format's transforms and instancing (docs/scene-format.md,
+// "Transforms" and "Instancing"): steps composed in order on every shape and
+// the camera, errors at the step's file:line:col, objects placed by
+// instances with their own material, unknown names with "did you mean".
+#include <gtest/gtest.h>
+
+#include "scene_test_util.h"
+
+namespace pt {
+namespace {
+
+using test::near;
+
+std::string scene(const std::string& body) {
+  return R"({ "format": "pathtracer-scene", "version": 1,
+  "camera": { "position": [0, 1, 5], "look_at": [0, 1, 0] },
+  "materials": { "white": { "type": "lambert" }, "red": { "type": "lambert", "diffuse": [1, 0, 0] } },
+)" + body + "\n}\n";
+}
+
+std::optional<SceneDescription> load(const std::string& text, Diagnostics& diag) {
+  return load_scene_from_string("t.json", text, LoadOptions{}, diag);
+}
+
+TEST(Transforms, StepsApplyInTheOrderListed) {
+  Diagnostics diag;
+  const auto s = load(scene(R"("shapes": [
+    { "type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white",
+      "transform": [ { "scale": [2, 1, 1] }, { "rotate": { "axis": [0, 0, 1], "angle": 90 } },
+                     { "translate": [0, 0, 5] } ] },
+    { "type": "quad", "vertices": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]], "material": "white",
+      "transform": [ { "matrix": [1,0,0,3, 0,1,0,0, 0,0,1,0, 0,0,0,1] } ] },
+    { "type": "triangle", "vertices": [[0,0,0],[1,0,0],[0,1,0]], "material": "white",
+      "transform": [ { "scale": 1 } ] } ])"),
+                      diag);
+  ASSERT_TRUE(s) << diag.format();
+  ASSERT_TRUE(s->shapes[0].transform);
+  const Transform& t = s->shapes[0].transform->value;
+  // (1, 0, 0) -> scale (2, 0, 0) -> rotate (0, 2, 0) -> translate (0, 2, 5).
+  EXPECT_TRUE(near(t.point({1, 0, 0}), {0, 2, 5}));
+  EXPECT_EQ(s->shapes[0].transform->where.line, 6);
+  ASSERT_TRUE(s->shapes[1].transform);
+  EXPECT_TRUE(near(s->shapes[1].transform->value.point({0, 0, 0}), {3, 0, 0}));
+  EXPECT_FALSE(s->shapes[2].transform) << "the identity is no transform";
+}
+
+TEST(Transforms, TheCameraMovesAtImport) {
+  Diagnostics diag;
+  const auto s = load(R"({ "format": "pathtracer-scene", "version": 1,
+  "camera": { "position": [0, 0, 5], "look_at": [0, 0, 0], "up": [0, 1, 0],
+              "transform": [ { "rotate": { "axis": [0, 1, 0], "angle": 90 } }, { "translate": [1, 0, 0] } ] } })",
+                      diag);
+  ASSERT_TRUE(s) << diag.format();
+  EXPECT_TRUE(near(s->camera.position, {6, 0, 0}));
+  EXPECT_TRUE(near(s->camera.look_at, {1, 0, 0}));
+  EXPECT_TRUE(near(s->camera.up, {0, 1, 0}));
+}
+
+TEST(Transforms, BadStepsAreRefusedAtTheirLocation) {
+  struct Case {
+    const char* step;
+    const char* message;
+  };
+  const Case cases[] = {
+      {R"({ "scale": [1, 0, 1] })", "singular"},
+      {R"({ "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,1,1] })", "affine"},
+      {R"({ "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0] })", "16 numbers"},
+      {R"({ "rotate": { "axis": [0, 0, 0], "angle": 3 } })", "axis"},
+      {R"({ "rotate": { "axis": [0, 1, 0] } })", "angle"},
+      {R"({ "translat": [1, 2, 3] })", "did you mean 'translate'"},
+      {R"({ "scale": 1e30 }, { "scale": 1e30 })", "float range"},
+  };
+  for (const Case& c : cases) {
+    Diagnostics diag;
+    const auto s = load(scene(std::string(R"("shapes": [ { "type": "sphere", "center": [0, 0, 0], "radius": 1,
+      "transform": [ )") + c.step + " ] } ]"),
+                        diag);
+    EXPECT_FALSE(s) << c.step;
+    EXPECT_NE(diag.format().find(c.message), std::string::npos) << c.step << "\n" << diag.format();
+    EXPECT_NE(diag.format().find("t.json:5:"), std::string::npos) << diag.format();
+  }
+}
+
+TEST(Instancing, ObjectsArePlacedByInstancesWithTheirOwnMaterial) {
+  Diagnostics diag;
+  const auto s = load(scene(R"("objects": [ { "name": "pair", "shapes": [
+      { "type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white" },
+      { "type": "mesh", "positions": [[0,0,0],[1,0,0],[0,1,0]], "indices": [[0,1,2]], "material": "white" } ] } ],
+  "shapes": [
+    { "type": "instance", "object": "pair" },
+    { "type": "instance", "object": "pair", "material": "red", "transform": [ { "translate": [3, 0, 0] } ] } ])"),
+                      diag);
+  ASSERT_TRUE(s) << diag.format();
+  EXPECT_TRUE(s->shapes.empty());
+  ASSERT_EQ(s->objects.size(), 1u);
+  EXPECT_EQ(s->objects[0].shapes.size(), 2u);
+  ASSERT_EQ(s->instances.size(), 2u);
+  EXPECT_FALSE(s->instances[0].transform);
+  EXPECT_FALSE(s->instances[0].material);
+  ASSERT_TRUE(s->instances[1].material);
+  EXPECT_EQ(s->materials[static_cast<std::size_t>(*s->instances[1].material)].name, "red");
+  EXPECT_TRUE(near(s->instances[1].transform->value.point({0, 0, 0}), {3, 0, 0}));
+}
+
+TEST(Instancing, UnknownObjectsAndNestingAreRefused) {
+  Diagnostics diag;
+  EXPECT_FALSE(load(scene(R"("objects": [ { "name": "bunny", "shapes": [] } ],
+  "shapes": [ { "type": "instance", "object": "buny" } ])"),
+                    diag));
+  EXPECT_NE(diag.format().find("did you mean 'bunny'"), std::string::npos) << diag.format();
+  Diagnostics nested;
+  EXPECT_FALSE(load(scene(R"("objects": [ { "name": "a", "shapes": [] },
+      { "name": "b", "shapes": [ { "type": "instance", "object": "a" } ] } ])"),
+                    nested));
+  EXPECT_NE(nested.format().find("one level of instancing"), std::string::npos) << nested.format();
+  Diagnostics twice;
+  EXPECT_FALSE(load(scene(R"("objects": [ { "name": "a", "shapes": [] }, { "name": "a", "shapes": [] } ])"), twice));
+  EXPECT_NE(twice.format().find("already defined"), std::string::npos) << twice.format();
+}
+
+TEST(Instancing, ObjectShapesAreValidatedLikeOthers) {
+  Diagnostics diag;
+  EXPECT_FALSE(load(scene(R"("objects": [ { "name": "a", "shapes": [
+      { "type": "sphere", "center": [0, 0, 0], "radius": -1 } ] } ])"),
+                    diag));
+  EXPECT_NE(diag.format().find("radius"), std::string::npos) << diag.format();
+}
+
+}  // namespace
+}  // namespace pt
