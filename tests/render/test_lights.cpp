@@ -147,8 +147,10 @@ TEST(SpotLight, PathAndWhittedAgreeOnAHardEdgedSpot) {
       const float w = whitted.at(x, y).r, p = path.at(x, y).r;
       lit += rho < edge;
       dark += rho > edge;
-      if (rho > edge) ASSERT_EQ(w, 0.0f);
-      if (rho > edge) ASSERT_EQ(p, 0.0f);
+      if (rho > edge) {
+        ASSERT_EQ(w, 0.0f);
+        ASSERT_EQ(p, 0.0f);
+      }
       // Inside, the shading varies by a few per cent across a pixel: both average it.
       ASSERT_NEAR(p, w, 2e-3f * w + 1e-7f) << x << ", " << y;
     }
