@@ -37,6 +37,7 @@ class ShapeLight {
   ShapeLight(const Shape& shape, uint32_t shape_id, const Material& material, bool solid_angle_rectangles = false);
 
   uint32_t shape_id() const { return shape_id_; }
+  const Material& material() const { return *material_; }
   float area() const { return area_; }
   // Samples a point of the light as seen from p; false if nothing can be sampled.
   bool sample(Vec3f p, Vec2f u, LightSample& s) const;
