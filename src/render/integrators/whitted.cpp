@@ -1,5 +1,6 @@
 // The classic recursive (Whitted-style) integrator of the course scene files:
-// Blinn-Phong direct lighting from point lights with hard shadows, mirror
+// Blinn-Phong direct lighting from point lights with hard shadows and from
+// area lights (emissive shapes) with soft shadows, mirror
 // reflection blended by the material's reflectivity, and Fresnel-weighted
 // reflection/refraction for dielectrics. Equations: docs/rendering.md.
 #include <algorithm>
@@ -23,9 +24,9 @@ struct DirectParts {
 
 // The classic shading of each delta light at one surface point: Blinn-Phong
 // with hard shadows, added to `result` (and, when `parts` is set, to its
-// diffuse or specular part). Lights that are not delta (area lights, the
-// environment) are not shaded: the integrator's rays see them (a material's
-// emission, the escaped radiance). The ambient term is the caller's.
+// diffuse or specular part); area lights through shade_area(). The
+// environment is not shaded: the integrator's rays see it (the escaped
+// radiance). The ambient term is the caller's.
 // `n` is the shading normal facing the viewer, `wo` the unit direction to the viewer.
 struct ClassicShading {
   const RenderScene& scene;
