@@ -296,6 +296,41 @@ TEST(Aov, WhittedSplitSumsToTheBeauty) {
   for (bool area_light : {false, true}) whitted_split_sums_to_the_beauty(area_light);
 }
 
+// Whitted's area-light samples come from the pixel sampler: replaying each
+// sample of a pixel on its own (--pixel X,Y --sample N) gives the samples the
+// full render averaged.
+TEST(Aov, WhittedAreaLightSamplesReplayExactly) {
+  WorkerPool pool(2);
+  const auto scene = classic_scene(pool, true);
+  const auto without = classic_scene(pool, false);
+  ASSERT_TRUE(scene && without);
+  constexpr int kSpp = 4;
+  IntegratorSettings settings;
+  settings.spp = kSpp;
+  std::string error;
+  Film film(kW, kH), dark(kW, kH);
+  make_integrator("whitted", settings, error)->render(*scene, film, pool);
+  make_integrator("whitted", settings, error)->render(*without, dark, pool);
+  int x = -1, y = -1;  // the pixel the lamp brightens most
+  float gain = 0.0f;
+  for (int j = 0; j < kH; ++j)
+    for (int i = 0; i < kW; ++i)
+      if (film.pixel(i, j).r - dark.pixel(i, j).r > gain) {
+        gain = film.pixel(i, j).r - dark.pixel(i, j).r;
+        x = i, y = j;
+      }
+  ASSERT_GT(gain, 0.05f);
+  double sum[3] = {};
+  for (int s = 0; s < kSpp; ++s) {
+    IntegratorSettings one = settings;
+    one.only_sample = s;
+    Film replay(kW, kH, PixelRect{x, y, x + 1, y + 1});
+    make_integrator("whitted", one, error)->render(*scene, replay, pool);
+    for (int c = 0; c < 3; ++c) sum[c] += replay.pixel(x, y)[c];
+  }
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(film.pixel(x, y)[c], static_cast<float>(sum[c] / kSpp)) << c;
+}
+
 TEST(Aov, DiffuseOnlySceneHasNoSpecularLight) {
   WorkerPool pool(2);
   const auto scene = plane_scene(pool);  // Lambert and kd-only Phong: no glossy or mirror lobe
