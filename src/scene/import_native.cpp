@@ -130,10 +130,11 @@ void read_render(ImportContext& ctx, const JsonValue& v) {
 // key the type does not read is an error rather than silently ignored.
 const std::vector<std::string>& material_keys(MaterialType type) {
   static const std::vector<std::string> kPhong = {"diffuse", "kd", "ka", "specular", "ks", "exponent", "reflectivity",
-                                                  "refractive", "ior", "emission", "two_sided", "texture"};
-  static const std::vector<std::string> kLambert = {"diffuse", "kd", "ka", "texture", "emission", "two_sided"};
-  static const std::vector<std::string> kMirror = {"specular", "emission", "two_sided"};
-  static const std::vector<std::string> kGlass = {"ior", "emission", "two_sided"};
+                                                  "refractive", "ior", "emission", "two_sided", "light_samples", "texture"};
+  static const std::vector<std::string> kLambert = {"diffuse",  "kd",        "ka", "texture",
+                                                    "emission", "two_sided", "light_samples"};
+  static const std::vector<std::string> kMirror = {"specular", "emission", "two_sided", "light_samples"};
+  static const std::vector<std::string> kGlass = {"ior", "emission", "two_sided", "light_samples"};
   switch (type) {
     case MaterialType::Lambert: return kLambert;
     case MaterialType::Mirror: return kMirror;
@@ -188,6 +189,10 @@ NativeMaterial read_material(ImportContext& ctx, const JsonMember& member) {
   r.read("ior", m.ior);
   r.read("emission", m.emission);
   r.read("two_sided", m.two_sided);
+  if (r.get("light_samples") && r.read("light_samples", m.light_samples) && m.light_samples.value < 1) {
+    ctx.diag().error(m.light_samples.where, "'light_samples' must be at least 1");
+    r.fail();
+  }
   Sourced<std::string> texture;
   if (r.get("texture") && r.read("texture", texture)) out.texture = texture;
   r.finish();

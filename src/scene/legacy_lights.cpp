@@ -105,12 +105,14 @@ bool read_light_shape(ImportContext& ctx, ObjectReader& r, ShapeDesc& shape) {
   return false;
 }
 
-// The black, two-sided emissive material of a light shape.
+// The emissive material of a light shape: `base` emitting `radiance`, sampled
+// at `samples` points by the classic integrator (0: its default).
 int add_light_material(ImportContext& ctx, const MaterialDesc& base, const RGB& radiance, bool two_sided,
-                       SourceLocation where) {
+                       const Sourced<int>& samples, SourceLocation where) {
   MaterialDesc m = base;
   m.emission = Sourced<RGB>(radiance, where);
   m.two_sided = Sourced<bool>(two_sided, where);
+  m.light_samples = samples;
   m.name = "material " + std::to_string(ctx.scene.materials.size());
   ctx.scene.materials.push_back(std::move(m));
   return static_cast<int>(ctx.scene.materials.size() - 1);
@@ -118,7 +120,7 @@ int add_light_material(ImportContext& ctx, const MaterialDesc& base, const RGB& 
 
 // "shapeid": the named shape emits (its own material is kept for reflection).
 void make_shape_emit(ImportContext& ctx, ObjectReader& r, const Sourced<std::string>& id,
-                     const Sourced<RGB>& intensity) {
+                     const Sourced<RGB>& intensity, const Sourced<int>& samples) {
   std::vector<std::string> names;
   for (ShapeDesc& shape : ctx.scene.shapes) {
     if (shape.name != id.value) {
@@ -128,7 +130,8 @@ void make_shape_emit(ImportContext& ctx, ObjectReader& r, const Sourced<std::str
     const bool flat = is_flat(shape.geometry);
     const MaterialDesc base = ctx.scene.materials[static_cast<std::size_t>(shape.material)];
     shape.material = add_light_material(ctx, base, radiance_for(intensity.value, shape.geometry),
-                                        flat || std::holds_alternative<TriangleMesh>(shape.geometry), r.where());
+                                        flat || std::holds_alternative<TriangleMesh>(shape.geometry), samples,
+                                        r.where());
     return;
   }
   std::string message = "no shape has the id '" + id.value + "' named by this area light's 'shapeid'";
@@ -142,14 +145,19 @@ void make_shape_emit(ImportContext& ctx, ObjectReader& r, const Sourced<std::str
 
 void read_area_light(ImportContext& ctx, ObjectReader& r) {
   r.set_what("area light");
-  r.allow({"samples", "method", "sampling"});  // the integrator's own light sampling decides
+  r.allow({"method", "sampling"});  // the integrator's own light sampling decides
   Sourced<RGB> intensity;
   const bool have_intensity = read_intensity(r, intensity);
+  Sourced<int> samples{0};  // the classic integrator's samples per shading point
+  if (r.get("samples") && r.read("samples", samples) && samples.value < 1) {
+    ctx.diag().error(samples.where, "an area light's 'samples' must be at least 1");
+    r.fail();
+  }
   Sourced<std::string> id;
   if (r.get("shapeid")) {
     const bool ok = r.read("shapeid", id);
     r.finish();
-    if (ok && have_intensity && r.ok()) make_shape_emit(ctx, r, id, intensity);
+    if (ok && have_intensity && r.ok()) make_shape_emit(ctx, r, id, intensity, samples);
     return;
   }
   ShapeDesc shape;
@@ -161,7 +169,8 @@ void read_area_light(ImportContext& ctx, ObjectReader& r) {
   MaterialDesc black;  // the lamp reflects nothing
   black.kd = Sourced<float>(0.0f, r.where());
   black.where = r.where();
-  shape.material = add_light_material(ctx, black, radiance_for(intensity.value, shape.geometry), true, r.where());
+  shape.material =
+      add_light_material(ctx, black, radiance_for(intensity.value, shape.geometry), true, samples, r.where());
   shape.name = "area light";
   ctx.scene.shapes.push_back(std::move(shape));
 }

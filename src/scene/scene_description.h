@@ -139,6 +139,9 @@ struct MaterialDesc {
   std::optional<Sourced<float>> ka;     // weight of the classic ambient term; absent: kd (the path equivalent's)
   Sourced<RGB> emission{RGB(0, 0, 0)};  // emitted radiance, on the front (ng) side only unless two_sided
   Sourced<bool> two_sided{false};       // emission from both sides
+  // The classic (whitted) integrator's samples of this emitter per shading
+  // point (a Path of Light area light's "samples"); 0: its default (16).
+  Sourced<int> light_samples{0};
   std::optional<int> texture;           // index into SceneDescription::textures; modulates diffuse
 };
 

@@ -228,8 +228,9 @@ TEST(Aov, PathLightingSplitSumsToTheBeauty) {
 
 // The classic integrator's scene: the lighting scene's floor, a glossy Phong
 // sphere that also reflects, a glass sphere, a point, a spot and an ambient
-// light, and a background the camera sees.
-std::unique_ptr<RenderScene> classic_scene(WorkerPool& pool) {
+// light, and a background the camera sees; with `area_light`, an emissive
+// quad above them too (sampled by whitted: its diffuse and specular terms).
+std::unique_ptr<RenderScene> classic_scene(WorkerPool& pool, bool area_light = false) {
   SceneDescription d = test::empty_scene(kW, kH, Vec3f(0, 1.5f, 6), Vec3f(0, 0.5f, 0), Vec3f(0, 1, 0), 55.0f);
   d.render.background = RGB(0.1f, 0.2f, 0.3f);
   Quad q;
@@ -257,12 +258,25 @@ std::unique_ptr<RenderScene> classic_scene(WorkerPool& pool) {
   AmbientLightDesc ambient;
   ambient.intensity = RGB(0.2f, 0.25f, 0.3f);
   d.lights.emplace_back(ambient);
+  if (area_light) {
+    MaterialDesc lamp = test::diffuse_material(RGB(0.0f), 0.0f);
+    lamp.emission = RGB(6.0f, 5.0f, 4.0f);
+    lamp.two_sided = true;
+    lamp.light_samples = 4;
+    Quad l;
+    l.v[0] = Vec3f(-0.5f, 3, -0.5f);
+    l.v[1] = Vec3f(0.5f, 3, -0.5f);
+    l.v[2] = Vec3f(0.5f, 3, 0.5f);
+    l.v[3] = Vec3f(-0.5f, 3, 0.5f);
+    test::add_shape(d, l, test::add_material(d, lamp));
+  }
   return test::build(d, pool);
 }
 
-TEST(Aov, WhittedSplitSumsToTheBeauty) {
+void whitted_split_sums_to_the_beauty(bool area_light) {
+  SCOPED_TRACE(area_light ? "with an area light" : "delta lights");
   WorkerPool pool(2);
-  const auto scene = classic_scene(pool);
+  const auto scene = classic_scene(pool, area_light);
   ASSERT_TRUE(scene);
   IntegratorSettings settings;
   settings.spp = 4;
@@ -276,6 +290,45 @@ TEST(Aov, WhittedSplitSumsToTheBeauty) {
   make_integrator("whitted", settings, error)->render(*scene, plain, pool);
   for (int y = 0; y < kH; ++y)
     for (int x = 0; x < kW; ++x) ASSERT_EQ(plain.pixel(x, y), film.pixel(x, y)) << x << "," << y;
+}
+
+TEST(Aov, WhittedSplitSumsToTheBeauty) {
+  for (bool area_light : {false, true}) whitted_split_sums_to_the_beauty(area_light);
+}
+
+// Whitted's area-light samples come from the pixel sampler: replaying each
+// sample of a pixel on its own (--pixel X,Y --sample N) gives the samples the
+// full render averaged.
+TEST(Aov, WhittedAreaLightSamplesReplayExactly) {
+  WorkerPool pool(2);
+  const auto scene = classic_scene(pool, true);
+  const auto without = classic_scene(pool, false);
+  ASSERT_TRUE(scene && without);
+  constexpr int kSpp = 4;
+  IntegratorSettings settings;
+  settings.spp = kSpp;
+  std::string error;
+  Film film(kW, kH), dark(kW, kH);
+  make_integrator("whitted", settings, error)->render(*scene, film, pool);
+  make_integrator("whitted", settings, error)->render(*without, dark, pool);
+  int x = -1, y = -1;  // the pixel the lamp brightens most
+  float gain = 0.0f;
+  for (int j = 0; j < kH; ++j)
+    for (int i = 0; i < kW; ++i)
+      if (film.pixel(i, j).r - dark.pixel(i, j).r > gain) {
+        gain = film.pixel(i, j).r - dark.pixel(i, j).r;
+        x = i, y = j;
+      }
+  ASSERT_GT(gain, 0.05f);
+  double sum[3] = {};
+  for (int s = 0; s < kSpp; ++s) {
+    IntegratorSettings one = settings;
+    one.only_sample = s;
+    Film replay(kW, kH, PixelRect{x, y, x + 1, y + 1});
+    make_integrator("whitted", one, error)->render(*scene, replay, pool);
+    for (int c = 0; c < 3; ++c) sum[c] += replay.pixel(x, y)[c];
+  }
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(film.pixel(x, y)[c], static_cast<float>(sum[c] / kSpp)) << c;
 }
 
 TEST(Aov, DiffuseOnlySceneHasNoSpecularLight) {

@@ -149,6 +149,25 @@ TEST(CourseAreaLights, DiffuseAndSpecularIntensitiesMustAgree) {
   EXPECT_TRUE(l.has(Severity::Warning, "'is' differs from 'id'")) << l.diag.format();
 }
 
+// "samples": the classic integrator's samples of the lamp per shading point
+// (kept on its material; 0 when absent: the integrator's default).
+TEST(CourseAreaLights, SamplesAreTheClassicIntegratorsLightSamples) {
+  const std::string corners = R"("type": "arealight", "v0": [0, 0, 3], "v1": [2, 0, 3], "v2": [0, 2, 3], "id": [1, 1, 1])";
+  const Loaded nine = load_lit("{ " + corners + R"(, "samples": 9 })");
+  ASSERT_TRUE(nine.scene) << nine.diag.format();
+  EXPECT_EQ(material_of(*nine.scene, 1).light_samples.value, 9);
+  const Loaded plain = load_lit("{ " + corners + " }");
+  ASSERT_TRUE(plain.scene) << plain.diag.format();
+  EXPECT_EQ(material_of(*plain.scene, 1).light_samples.value, 0);
+  const Loaded shape = load(pol(R"({ "type": "arealight", "shapeid": "lamp", "id": [4, 4, 4], "samples": 4 })",
+                                R"({ "type": "sphere", "id": "lamp", "center": [0, 2, 0], "radius": 0.5 })"));
+  ASSERT_TRUE(shape.scene) << shape.diag.format();
+  EXPECT_EQ(material_of(*shape.scene, 0).light_samples.value, 4);
+  const Loaded none = load_lit("{ " + corners + R"(, "samples": 0 })");
+  EXPECT_FALSE(none.scene);
+  EXPECT_TRUE(none.has(Severity::Error, "'samples' must be at least 1")) << none.diag.format();
+}
+
 // ---------------------------------------------------------------- lights and types: messages
 
 TEST(CourseMessages, AScenelWithoutLightWarnsThatItWillBeDark) {

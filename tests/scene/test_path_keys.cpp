@@ -33,6 +33,25 @@ TEST(PathKeys, DefaultsAreTheClassicModel) {
   EXPECT_FALSE(s->environment.has_value());
 }
 
+// An emitter's "light_samples": the classic integrator's samples of it per
+// shading point (docs/rendering.md); absent: 0, the integrator's default.
+TEST(PathKeys, LightSamplesOfAnEmitter) {
+  const std::string head = R"({ "format": "pathtracer-scene", "version": 1,
+  "camera": { "position": [0, 1, 5], "look_at": [0, 1, 0] }, "materials": { "m": )";
+  const std::string tail = R"( }, "shapes": [ { "type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m" } ] })";
+  Diagnostics diag;
+  const auto s = load_text("s.json", head + R"({ "type": "lambert", "emission": [1, 1, 1], "light_samples": 9 })" + tail,
+                           diag);
+  ASSERT_TRUE(s) << diag.format();
+  EXPECT_EQ(s->materials[0].light_samples.value, 9);
+  const auto plain = load_text("s.json", head + R"({ "emission": [1, 1, 1] })" + tail, diag);
+  ASSERT_TRUE(plain) << diag.format();
+  EXPECT_EQ(plain->materials[0].light_samples.value, 0);
+  Diagnostics bad;
+  EXPECT_FALSE(load_text("s.json", head + R"({ "emission": [1, 1, 1], "light_samples": 0 })" + tail, bad));
+  EXPECT_NE(bad.format().find("'light_samples' must be at least 1"), std::string::npos) << bad.format();
+}
+
 TEST(PathKeys, EveryKeyIsRead) {
   const fs::path dir = fs::temp_directory_path() / ("pt-path-keys-" + std::to_string(::getpid()));
   fs::create_directories(dir);

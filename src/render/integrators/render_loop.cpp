@@ -106,16 +106,16 @@ void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, cons
 }
 
 void render_pixels_with_split(const RenderScene& scene, Film& film, WorkerPool& pool,
-                              const IntegratorSettings& settings, SplitRadianceFn radiance) {
+                              const IntegratorSettings& settings, SampleRadianceFn radiance) {
   const StratifiedPixelSampler sampler(settings.spp, settings.seed, film.width());
   const PixelFilter box(PixelFilterType::Box);
-  render_samples(scene, film, pool, settings, sampler, box,
-                 [&](const Ray& ray, Sampler&, AovSample* aov) { return radiance(ray, aov); });
+  render_samples(scene, film, pool, settings, sampler, box, radiance);
 }
 
 void render_pixels(const RenderScene& scene, Film& film, WorkerPool& pool, const IntegratorSettings& settings,
                    RadianceFn radiance) {
-  render_pixels_with_split(scene, film, pool, settings, [&](const Ray& ray, AovSample*) { return radiance(ray); });
+  render_pixels_with_split(scene, film, pool, settings,
+                           [&](const Ray& ray, Sampler&, AovSample*) { return radiance(ray); });
 }
 
 }  // namespace pt

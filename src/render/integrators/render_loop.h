@@ -60,8 +60,9 @@ void render_pixels(const RenderScene& scene, Film& film, WorkerPool& pool, const
 
 // The same for an integrator that splits its estimate into the lighting AOVs
 // (whitted): `aov` is null unless the film asks for them (Film::wants_lighting()).
-using SplitRadianceFn = FunctionRef<RGB(const Ray&, AovSample* aov)>;
+// Further sample dimensions (area lights' samples) come from the sampler, whose
+// numbers depend on (seed, pixel, sample index) only (StratifiedPixelSampler).
 void render_pixels_with_split(const RenderScene& scene, Film& film, WorkerPool& pool,
-                              const IntegratorSettings& settings, SplitRadianceFn radiance);
+                              const IntegratorSettings& settings, SampleRadianceFn radiance);
 
 }  // namespace pt

@@ -1,5 +1,6 @@
 // The classic recursive (Whitted-style) integrator of the course scene files:
-// Blinn-Phong direct lighting from point lights with hard shadows, mirror
+// Blinn-Phong direct lighting from point lights with hard shadows and from
+// area lights (emissive shapes) with soft shadows, mirror
 // reflection blended by the material's reflectivity, and Fresnel-weighted
 // reflection/refraction for dielectrics. Equations: docs/rendering.md.
 #include <algorithm>
@@ -23,9 +24,9 @@ struct DirectParts {
 
 // The classic shading of each delta light at one surface point: Blinn-Phong
 // with hard shadows, added to `result` (and, when `parts` is set, to its
-// diffuse or specular part). Lights that are not delta (area lights, the
-// environment) are not shaded: the integrator's rays see them (a material's
-// emission, the escaped radiance). The ambient term is the caller's.
+// diffuse or specular part); area lights through shade_area(). The
+// environment is not shaded: the integrator's rays see it (the escaped
+// radiance). The ambient term is the caller's.
 // `n` is the shading normal facing the viewer, `wo` the unit direction to the viewer.
 struct ClassicShading {
   const RenderScene& scene;
@@ -66,12 +67,48 @@ struct ClassicShading {
     const float falloff = falloff_of(r2, l);
     if (falloff == 0.0f) return;
     if (scene.occluded(spawn_ray_to(geo, position))) return;
+    shade_lobes(l, cos_theta, falloff, intensity, specular_intensity);
+  }
+
+  // The Blinn-Phong lobes of light arriving from unit direction l (cos_theta =
+  // dot(n, l) > 0, unoccluded), each intensity times `falloff`.
+  void shade_lobes(Vec3f l, float cos_theta, float falloff, const RGB& intensity, const RGB& specular_intensity) const {
     add(m.kd * cos_theta * falloff * (m.diffuse_at(geo.uv) * intensity), true);
     if (m.ks > 0.0f) {
       const Vec3f h = normalize(l + wo);
       const float spec = std::pow(std::max(0.0f, dot(n, h)), m.exponent);
       add(m.ks * spec * falloff * (m.specular * specular_intensity), false);
     }
+  }
+
+  // An area light (an emissive shape), sampled at `count` points by its own
+  // sample() (the path integrator's), stratified on a k x k grid when count is
+  // k^2, soft shadows from one shadow ray each. Each sample acts as a point
+  // light at the sampled point with I / r^2 = L / (pi count pdf), pdf the
+  // sample's solid-angle density: then the diffuse term kd Cd (1/count) sum
+  // L cos / (pi pdf) estimates kd Cd E / pi, E the light's irradiance, the
+  // classic units of the point lights above (docs/rendering.md).
+  void shade_area(const Light& light, int count, Sampler& sampler) const {
+    const int k = grid_side(count);
+    const float inv_k = k > 0 ? 1.0f / static_cast<float>(k) : 1.0f;
+    const float weight = kInvPi / static_cast<float>(count);
+    for (int i = 0; i < count; ++i) {
+      Vec2f u = sampler.get_2d();
+      if (k > 0) u = Vec2f((static_cast<float>(i % k) + u.x) * inv_k, (static_cast<float>(i / k) + u.y) * inv_k);
+      LightSample s;
+      if (!sample_light(light, geo.p, u, s) || s.L.is_black() || !(s.pdf > 0.0f)) continue;
+      const float cos_theta = dot(n, s.wi);
+      if (cos_theta <= 0.0f) continue;
+      if (scene.occluded(spawn_ray_to(geo, offset_ray_origin(s.p_light, s.n_light, -s.wi)))) continue;
+      shade_lobes(s.wi, cos_theta, weight / s.pdf, s.L, s.L);
+    }
+  }
+
+  // k if count = k^2 (k > 1), else 0.
+  static int grid_side(int count) {
+    int k = 1;
+    while ((k + 1) * (k + 1) <= count) ++k;
+    return k > 1 && k * k == count ? k : 0;
   }
 
   // Directional lights deliver irradiance E; in the classic units above (where a
@@ -104,6 +141,23 @@ RGB direct_lighting(const RenderScene& scene, const Intersection& isect, Vec3f n
   return result;
 }
 
+// The classic integrator's samples per shading point of an area light whose
+// material does not say (a Path of Light area light's "samples" does).
+constexpr int kDefaultAreaLightSamples = 16;
+
+// Direct light from every area light (emissive shape), added to `direct` (and
+// `parts`) after the delta lights' (the set keeps area lights after them).
+void area_lighting(const RenderScene& scene, const Intersection& isect, Vec3f n, Vec3f wo, Sampler& sampler,
+                   RGB& direct, DirectParts* parts) {
+  const ClassicShading shade{scene, *isect.material, isect.geo, n, wo, direct, parts};
+  for (std::size_t i = scene.lights.delta_lights().size(); i < scene.lights.size(); ++i) {
+    const ShapeLight* area = std::get_if<ShapeLight>(&scene.lights[i]);
+    if (area == nullptr) continue;
+    const int count = area->material().light_samples;
+    shade.shade_area(scene.lights[i], count > 0 ? count : kDefaultAreaLightSamples, sampler);
+  }
+}
+
 // Refraction direction of unit `d` through a surface with unit normal `n`
 // facing the incoming ray (dot(d, n) < 0); eta = eta_i / eta_t; cos_t > 0.
 Vec3f refract_dir(Vec3f d, Vec3f n, float eta, float cos_i, float cos_t) {
@@ -112,7 +166,9 @@ Vec3f refract_dir(Vec3f d, Vec3f n, float eta, float cos_i, float cos_t) {
 
 class Whitted {
  public:
-  Whitted(const RenderScene& scene, int max_depth) : scene_(scene), max_depth_(max_depth) {}
+  // `sampler` gives the area lights' sample points (render_loop.h: reproducible per pixel and sample).
+  Whitted(const RenderScene& scene, int max_depth, Sampler& sampler)
+      : scene_(scene), max_depth_(max_depth), sampler_(sampler) {}
 
   // `aov` (the camera ray's only, else null) receives the terms of the
   // result: emission (the surface's own, or what the ray sees leaving the
@@ -138,7 +194,8 @@ class Whitted {
     if (dot(isect.geo.ng, wo) < 0.0f) n = -n;
 
     DirectParts parts;
-    const RGB direct = direct_lighting(scene_, isect, n, wo, aov != nullptr ? &parts : nullptr);
+    RGB direct = direct_lighting(scene_, isect, n, wo, aov != nullptr ? &parts : nullptr);
+    area_lighting(scene_, isect, n, wo, sampler_, direct, aov != nullptr ? &parts : nullptr);
     RGB ambient;
     RGB local;
     if (scene_.ambient.is_black()) {
@@ -193,6 +250,7 @@ class Whitted {
 
   const RenderScene& scene_;
   int max_depth_;
+  Sampler& sampler_;
 };
 
 class WhittedIntegrator final : public Integrator {
@@ -200,9 +258,9 @@ class WhittedIntegrator final : public Integrator {
   explicit WhittedIntegrator(const IntegratorSettings& settings) : settings_(settings) {}
 
   void render(const RenderScene& scene, Film& film, WorkerPool& pool) const override {
-    const Whitted whitted(scene, settings_.max_depth);
-    render_pixels_with_split(scene, film, pool, settings_,
-                             [&](const Ray& ray, AovSample* aov) { return whitted.trace(ray, 0, aov); });
+    render_pixels_with_split(scene, film, pool, settings_, [&](const Ray& ray, Sampler& sampler, AovSample* aov) {
+      return Whitted(scene, settings_.max_depth, sampler).trace(ray, 0, aov);
+    });
   }
 
  private:
@@ -212,7 +270,9 @@ class WhittedIntegrator final : public Integrator {
 }  // namespace
 
 RGB whitted_radiance(const RenderScene& scene, const Ray& ray, int max_depth) {
-  return Whitted(scene, max_depth).trace(ray, 0);
+  Sampler sampler = StratifiedPixelSampler(1, 0, 1);
+  sampler.start_pixel_sample(0, 0, 0);
+  return Whitted(scene, max_depth, sampler).trace(ray, 0);
 }
 
 std::unique_ptr<Integrator> make_whitted_integrator(const IntegratorSettings& settings) {

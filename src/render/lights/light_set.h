@@ -4,7 +4,7 @@
 // black). The path integrator chooses one light per next-event estimate, in
 // proportion to its power (an estimate for infinite lights, from the scene's
 // bounding sphere; docs/path-tracing.md); the classic integrator shades the
-// delta lights.
+// delta lights and samples every area light (docs/rendering.md).
 #pragma once
 
 #include <concepts>

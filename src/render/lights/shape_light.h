@@ -50,6 +50,7 @@ class ShapeLight {
 
   uint32_t shape_id() const { return shape_id_; }
   uint32_t instance() const { return instance_; }
+  const Material& material() const { return *material_; }
   float area() const { return area_; }  // in object space for a light sampled there (see above)
   // Samples a point of the light as seen from p; false if nothing can be sampled.
   bool sample(Vec3f p, Vec2f u, LightSample& s) const;

@@ -15,6 +15,7 @@ Material make_material(const MaterialDesc& d, const Texture* texture) {
   m.ior = d.ior;
   m.emission = d.emission;
   m.two_sided = d.two_sided;
+  m.light_samples = d.light_samples;
   m.type = d.type;
   // The classic integrator reads only the course fields: give the physical
   // types their closest classic meaning (docs/path-tracing.md).

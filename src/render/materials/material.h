@@ -33,6 +33,7 @@ struct Material {
   float ior = 1;
   RGB emission;
   bool two_sided = false;            // emission from both sides (else only on the ng side)
+  int light_samples = 0;             // the classic integrator's samples of this emitter; 0: its default
   const Texture* texture = nullptr;  // modulates `diffuse` when set
 
   bool glass() const { return type == MaterialType::Glass; }
