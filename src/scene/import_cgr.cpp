@@ -27,6 +27,7 @@ void read_camera(ImportContext& ctx, const JsonValue& v) {
   r.read_required("upVector", cam.up);
   r.read_required("fov", cam.fov_y_deg);   // vertical, degrees
   cam.left_handed = true;                  // image right = up x forward
+  cam.film_offset = Vec2f(-1.0f, 0.0f);    // the course's pixel x looks through our x - 1 (docs/rendering.md)
   if (cam.type == CameraType::ThinLens) read_lens(ctx, r, cam);  // "finite-aperture": docs/scene-format.md
   // The course never defines "exposure"; its display mapping (DisplayTransform::CgrCourse)
   // is fitted to reference images that all use 0.1, so the value is not applied.
@@ -130,6 +131,19 @@ void read_shape(ImportContext& ctx, const JsonValue& v, std::size_t index) {
   finish_legacy_shape(ctx, r, v, std::move(shape), read_material);
 }
 
+// The course's Phong renderer lights every surface with an ambient term whose
+// light is the background colour: ka Cd backgroundcolor with ka = kd (fitted
+// to the course's reference images, docs/rendering.md "The CGR course's model").
+// Not for "rendermode": "pathtracer" (the path integrator has no such term; its
+// background already lights the scene); the binary mode ignores lights.
+void add_course_ambient(SceneDescription& scene) {
+  if (scene.render.integrator.value == "path") return;
+  AmbientLightDesc ambient;
+  ambient.where = scene.render.background.where;
+  ambient.intensity = scene.render.background;
+  scene.lights.emplace_back(std::move(ambient));
+}
+
 }  // namespace
 
 void import_cgr(ImportContext& ctx) {
@@ -149,6 +163,7 @@ void import_cgr(ImportContext& ctx) {
   if (const JsonValue* v = top.require("scene")) read_legacy_scene(ctx, *v, read_light, read_shape);
   top.finish();
   warn_if_unlit(ctx);
+  add_course_ambient(scene);
 }
 
 }  // namespace pt

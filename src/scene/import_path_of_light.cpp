@@ -98,6 +98,15 @@ void read_transmission(ImportContext& ctx, ObjectReader& r, MaterialDesc& m) {
   }
 }
 
+// A textured surface as the course's reference render shows it (docs/rendering.md,
+// "The course reference images"): the texels, read as they are (no sRGB decoding),
+// take the place of "diffusecolor", and the surface has no specular highlight.
+void use_course_texture(ImportContext& ctx, MaterialDesc& m) {
+  ctx.scene.textures[static_cast<std::size_t>(*m.texture)].raw = true;
+  m.diffuse = Sourced<RGB>(RGB(1.0f), m.diffuse.where);
+  m.ks = Sourced<float>(0.0f, m.ks.where);
+}
+
 // An inline material; returns its index in scene.materials, or -1 if it was bad.
 int read_material(ImportContext& ctx, const JsonValue& v) {
   if (!expect_object(ctx.read, v, "material")) return -1;
@@ -112,6 +121,7 @@ int read_material(ImportContext& ctx, const JsonValue& v) {
   read_transmission(ctx, r, m);
   Sourced<std::string> texture;
   if (r.get("tPath") && r.read("tPath", texture)) m.texture = add_texture(ctx, texture);
+  if (m.texture) use_course_texture(ctx, m);
   r.allow({"tWidth", "tHeight"});  // the course's claimed image size; the real size is used
   r.finish();
   if (!r.ok()) return -1;

@@ -65,6 +65,10 @@ struct CameraDesc {
   // image's aspect ratio.
   Sourced<float> view_height{2.0f};
   Sourced<float> view_width{0.0f};
+  // Added to every film position (pixels) before the camera maps it to a ray:
+  // (0, 0) samples pixel (x, y) at its centre (x + 0.5, y + 0.5). Set only by the
+  // CGR importer, whose course renders sample one pixel to the left (docs/rendering.md).
+  Vec2f film_offset{0.0f, 0.0f};
 };
 
 // ---------------------------------------------------------------- film / output
@@ -91,6 +95,9 @@ struct TextureDesc {
   SourceLocation where;
   std::string written;   // the path as written in the scene file
   std::string resolved;  // the file that exists on disk
+  // Texel values used as they are, without sRGB decoding (the Path of Light
+  // course's linear pipeline: docs/rendering.md). Set only by that importer.
+  bool raw = false;
 };
 
 // ---------------------------------------------------------------- render settings

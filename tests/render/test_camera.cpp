@@ -103,6 +103,22 @@ TEST(Camera, ProjectInvertsGenerateRay) {
   }
 }
 
+// The CGR courses' pixel convention (CameraDesc::film_offset): film position p
+// looks where p + offset looks without one, and project() gives p back.
+TEST(Camera, FilmOffsetShiftsEveryRay) {
+  CameraDesc shifted = make_desc({0, 0, 0}, {0, 0, 1}, {0, 1, 0}, 45, /*left_handed=*/true);
+  const Camera plain(shifted, 120, 80);
+  shifted.film_offset = Vec2f(-1.0f, 0.25f);
+  const Camera cam(shifted, 120, 80);
+  for (Vec2f px : {Vec2f(0.5f, 0.5f), Vec2f(60, 40), Vec2f(119.5f, 3.25f)}) {
+    expect_near(cam.generate_ray(px).dir, plain.generate_ray(Vec2f(px.x - 1.0f, px.y + 0.25f)).dir, 1e-6f);
+    Vec2f back;
+    ASSERT_TRUE(cam.project(cam.generate_ray(px).at(2.0f), back));
+    EXPECT_NEAR(back.x, px.x, 2e-3f);
+    EXPECT_NEAR(back.y, px.y, 2e-3f);
+  }
+}
+
 TEST(Camera, PointsBehindDoNotProject) {
   const Camera cam(make_desc({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 45), 64, 64);
   Vec2f px;

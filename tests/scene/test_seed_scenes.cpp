@@ -91,16 +91,20 @@ TEST_F(SeedScenes, PathOfLightConventions) {
   const MaterialDesc& floor_m = s->materials[static_cast<std::size_t>(s->shapes[2].material)];
   EXPECT_EQ(floor_m.reflectivity.value, 0.3f);
   EXPECT_EQ(floor_m.exponent.value, 10.0f);
-  EXPECT_EQ(floor_m.ks.value, 0.6f);
+  EXPECT_EQ(floor_m.ks.value, 0.0f);  // textured: no highlight (docs/rendering.md, the course reference images)
   EXPECT_EQ(floor_m.kd.value, 0.7f);
   const MaterialDesc& sphere_m = s->materials[static_cast<std::size_t>(s->shapes[0].material)];
-  EXPECT_TRUE(near(sphere_m.diffuse, RGB(0.4f, 0.3f, 0.4f)));
+  EXPECT_TRUE(near(sphere_m.diffuse, RGB(1.0f)));  // the texture replaces "diffusecolor" (0.4, 0.3, 0.4)
+  EXPECT_EQ(sphere_m.ks.value, 0.0f);
   EXPECT_EQ(sphere_m.reflectivity.value, 0.0f);
   ASSERT_EQ(s->textures.size(), 2u);
   ASSERT_TRUE(sphere_m.texture && floor_m.texture);
   EXPECT_EQ(s->textures[static_cast<std::size_t>(*sphere_m.texture)].written, "../textures/sky-map.jpg");
   EXPECT_EQ(s->textures[static_cast<std::size_t>(*floor_m.texture)].written, "../textures/sicily.jpg");
-  for (const TextureDesc& t : s->textures) EXPECT_TRUE(std::filesystem::is_regular_file(t.resolved)) << t.resolved;
+  for (const TextureDesc& t : s->textures) {
+    EXPECT_TRUE(std::filesystem::is_regular_file(t.resolved)) << t.resolved;
+    EXPECT_TRUE(t.raw) << "the course's texels are used as stored";
+  }
   const MaterialDesc& wall_m = s->materials[static_cast<std::size_t>(s->shapes[3].material)];
   EXPECT_FALSE(wall_m.texture.has_value());
 }
@@ -121,8 +125,13 @@ TEST_F(SeedScenes, CgrConventions) {
   EXPECT_TRUE(near(s->camera.up, Vec3f(0, 1, 0)));
   EXPECT_TRUE(s->camera.left_handed.value);
   EXPECT_EQ(s->camera.fov_y_deg.value, 45.0f);
-  // Lights: one intensity for both lobes, no distance falloff.
-  ASSERT_EQ(s->lights.size(), 2u);
+  EXPECT_EQ(s->camera.film_offset.x, -1.0f);  // the course samples one pixel to the left
+  EXPECT_EQ(s->camera.film_offset.y, 0.0f);
+  // Lights: one intensity for both lobes, no distance falloff; then the course's
+  // ambient term, lit by the background colour.
+  ASSERT_EQ(s->lights.size(), 3u);
+  ASSERT_TRUE(std::holds_alternative<AmbientLightDesc>(s->lights[2]));
+  EXPECT_TRUE(near(std::get<AmbientLightDesc>(s->lights[2]).intensity, RGB(0.25f)));
   EXPECT_TRUE(near(point_light(*s, 1).intensity, RGB(0.5f)));
   EXPECT_TRUE(near(point_light(*s, 1).specular_intensity, RGB(0.5f)));
   EXPECT_FALSE(point_light(*s, 1).inverse_square.value);
@@ -149,7 +158,8 @@ TEST_F(SeedScenes, CgrDefaultsWhenKeysAreAbsent) {
   const auto s = load_seed("cgr/binary_primitives.json", diag);
   ASSERT_TRUE(s) << diag.format();
   EXPECT_EQ(s->render.max_depth.value, 8);  // no "nbounces"
-  EXPECT_TRUE(s->lights.empty());           // no "lightsources"
+  ASSERT_EQ(s->lights.size(), 1u);          // no "lightsources": only the course's ambient term
+  EXPECT_TRUE(std::holds_alternative<AmbientLightDesc>(s->lights[0]));
   ASSERT_EQ(s->shapes.size(), 3u);
   ASSERT_EQ(s->materials.size(), 1u);       // no "material": one shared default
   for (const ShapeDesc& shape : s->shapes) EXPECT_EQ(shape.material, 0);

@@ -34,6 +34,7 @@ CameraBasis CameraBasis::from(const CameraDesc& desc, int width, int height) {
   CameraBasis b;
   b.width = std::max(width, 1);
   b.height = std::max(height, 1);
+  b.film_offset = desc.film_offset;
   b.origin = desc.position;
   const Vec3f forward = desc.look_at.value - desc.position.value;
   b.forward = length(forward) > 0 ? normalize(forward) : Vec3f(0, 0, -1);

@@ -15,6 +15,7 @@ namespace pt {
 struct CameraBasis {
   Vec3f origin, forward, right, up;
   int width = 1, height = 1;  // the film, in pixels
+  Vec2f film_offset;          // CameraDesc::film_offset
 
   static CameraBasis from(const CameraDesc& desc, int width, int height);
 
@@ -22,11 +23,13 @@ struct CameraBasis {
   // Film pixel -> normalised device coordinates: x in [-1, 1] left to right,
   // y in [-1, 1] bottom to top.
   Vec2f ndc(Vec2f film_px) const {
-    return {2.0f * film_px.x / static_cast<float>(width) - 1.0f, 1.0f - 2.0f * film_px.y / static_cast<float>(height)};
+    const Vec2f p(film_px.x + film_offset.x, film_px.y + film_offset.y);  // exact when the offset is 0
+    return {2.0f * p.x / static_cast<float>(width) - 1.0f, 1.0f - 2.0f * p.y / static_cast<float>(height)};
   }
   // The inverse of ndc().
   Vec2f film_px(float x, float y) const {
-    return {0.5f * (x + 1.0f) * static_cast<float>(width), 0.5f * (1.0f - y) * static_cast<float>(height)};
+    return {0.5f * (x + 1.0f) * static_cast<float>(width) - film_offset.x,
+            0.5f * (1.0f - y) * static_cast<float>(height) - film_offset.y};
   }
 };
 

@@ -47,7 +47,8 @@ uint64_t TextureLimits::decoded_bytes(uint64_t pixels, int file_channels) {
 Texture::Texture(int width, int height, std::vector<RGB> pixels)
     : width_(width), height_(height), pixels_(std::move(pixels)) {}
 
-bool Texture::load(const std::string& path, Texture& out, std::string& error, const TextureLimits& limits) {
+bool Texture::load(const std::string& path, Texture& out, std::string& error, const TextureLimits& limits,
+                   bool raw) {
   if (const std::string why = why_unreadable(path); !why.empty()) {
     error = "cannot open the file: " + why;
     return false;
@@ -84,7 +85,7 @@ bool Texture::load(const std::string& path, Texture& out, std::string& error, co
     if (error.empty()) error = "cannot decode image";
     return false;
   }
-  const bool srgb = is_srgb_encoded(spec);
+  const bool srgb = !raw && is_srgb_encoded(spec);
 
   std::vector<RGB> pixels(static_cast<std::size_t>(count));
   for (std::size_t i = 0; i < pixels.size(); ++i) {

@@ -37,10 +37,11 @@ class Texture {
   Texture() = default;
   Texture(int width, int height, std::vector<RGB> pixels);
 
-  // Loads an image file; 8-bit sRGB-encoded images are linearised.
-  // Returns false and fills `error` if the file cannot be read or declares a
-  // size beyond `limits`.
-  static bool load(const std::string& path, Texture& out, std::string& error, const TextureLimits& limits = {});
+  // Loads an image file; 8-bit sRGB-encoded images are linearised unless `raw`
+  // (values used as they are). Returns false and fills `error` if the file cannot
+  // be read or declares a size beyond `limits`.
+  static bool load(const std::string& path, Texture& out, std::string& error, const TextureLimits& limits = {},
+                   bool raw = false);
 
   RGB lookup(Vec2f uv) const;  // bilinear, repeat wrap
   // Texel (x, y), 0 <= x < width, 0 <= y < height, row 0 at the top.
