@@ -312,7 +312,7 @@ INSTANTIATE_TEST_SUITE_P(
                       LensCase{"camel", R"("lensRadius": 0.1, "focalDistance": 5)", 0.1f, 5.0f, 0},
                       LensCase{"focal_length", R"("aperture": 0.2, "focal_length": 4)", 0.1f, 4.0f, 2},
                       LensCase{"focal_d", R"("aperture": 0.2, "focal": 3, "d": 1)", 0.1f, 3.0f, 3}),
-    [](const ::testing::TestParamInfo<LensCase>& info) { return std::string(info.param.name); });
+    [](const ::testing::TestParamInfo<LensCase>& p) { return std::string(p.param.name); });
 
 TEST(CourseCamera, CgrFiniteApertureAndUnknownTypes) {
   const Loaded cgr = load(R"({ "rendermode": "phong",

@@ -122,7 +122,9 @@ TEST_P(NewShapeRays, RaysStartingExactlyOnAFlatShapeNeverReHitIt) {
       for (const float side : {1.0f, -1.0f}) {
         const Vec3f w = rng.hemisphere(side * n, 1e-3f);
         Hit hit;
-        if (accel->intersect(Ray{p, w}, hit)) EXPECT_NE(hit.shape, shape) << "t " << hit.t;
+        if (accel->intersect(Ray{p, w}, hit)) {
+          EXPECT_NE(hit.shape, shape) << "t " << hit.t;
+        }
         ++rays;
       }
     }
