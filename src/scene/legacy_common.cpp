@@ -116,8 +116,9 @@ void read_lens(ImportContext& ctx, ObjectReader& r, CameraDesc& cam) {
                                       "distance in focus", cam.focus_distance);
   const std::string_view focus(focus_key ? focus_key : "");
   if (focus == "focal_length" || focus == "focalLength" || focus == "focal") {
-    ctx.diag().warning(cam.focus_distance.where, "'" + std::string(focus) + "' taken as the distance from the lens "
-                                                 "to the plane in focus");
+    std::string message = "'";
+    message.append(focus).append("' taken as the distance from the lens to the plane in focus");
+    ctx.diag().warning(cam.focus_distance.where, message);
   }
   if (const JsonValue* d = r.get("d")) {
     ctx.diag().warning(ctx.read.at(*d), "'d' (the image plane's distance) is not used: the field of view fixes "
