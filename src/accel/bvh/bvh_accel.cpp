@@ -31,7 +31,7 @@ bool prepare(const Ray& ray, RayQuery& q) {
     q.org[a] = ray.origin[a];
     q.dir[a] = ray.dir[a];
   }
-  set_ray_frame(q);
+  set_ray_frame(ray.dir, q);
   return true;
 }
 

@@ -175,18 +175,29 @@ inline bool traverse_top(const Ops& ops, const SceneData& s, RayQuery& q, Counte
   });
 }
 
+// A scene with instances: its top level's items are tested for a transform.
+// Out of line, so that traverse_scene() below, which every scene without
+// instances runs, compiles as it did before instancing (measured: inlined,
+// the larger function cost our BVH 4-7% on scenes without any instance).
+template <bool kAnyHit, bool kCount, class Ops>
+__attribute__((noinline)) bool traverse_instanced_scene(const SceneData& s, RayQuery& q, HitRecord& hit,
+                                                        Counters* counters) {
+  const Ops ops(q);
+  return traverse_top<kAnyHit, kCount>(ops, s, q, counters, [&](const BlasData& b) {
+    return b.transform == nullptr ? traverse_blas<kAnyHit, kCount>(ops, b, q, hit, counters)
+                                  : traverse_instance<kAnyHit, kCount, Ops>(b, q, hit, counters);
+  });
+}
+
 template <bool kAnyHit, bool kCount, class Ops>
 inline bool traverse_scene(const SceneData& s, RayQuery& q, HitRecord& hit, Counters* counters) {
   if (s.blas_count == 0) return false;
-  const Ops ops(q);
+  if (s.instanced != 0) return traverse_instanced_scene<kAnyHit, kCount, Ops>(s, q, hit, counters);
   // A hit recorded by a leaf test has instance kNoInstanceId (HitRecord's default).
-  auto direct = [&](const BlasData& b) { return traverse_blas<kAnyHit, kCount>(ops, b, q, hit, counters); };
-  if (s.instanced == 0) {  // nothing placed by instances: as before instancing existed
-    if (s.blas_count == 1) return direct(s.blas[0]);
-    return traverse_top<kAnyHit, kCount>(ops, s, q, counters, direct);
-  }
+  const Ops ops(q);
+  if (s.blas_count == 1) return traverse_blas<kAnyHit, kCount>(ops, s.blas[0], q, hit, counters);
   return traverse_top<kAnyHit, kCount>(ops, s, q, counters, [&](const BlasData& b) {
-    return b.transform == nullptr ? direct(b) : traverse_instance<kAnyHit, kCount, Ops>(b, q, hit, counters);
+    return traverse_blas<kAnyHit, kCount>(ops, b, q, hit, counters);
   });
 }
 

@@ -62,7 +62,7 @@ bool to_object_space(const Transform& t, const RayQuery& world, RayQuery& local)
   }
   local.tmin = world.tmin;
   local.tmax = world.tmax;
-  set_ray_frame(local);
+  set_ray_frame(r.dir, local);
   return true;
 }
 
