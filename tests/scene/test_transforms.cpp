@@ -56,6 +56,30 @@ TEST(Transforms, TheCameraMovesAtImport) {
   EXPECT_TRUE(near(s->camera.up, {0, 1, 0}));
 }
 
+// An infinite plane is no primitive of either backend, so its transform is
+// applied to the plane itself at import (no instance), and an object cannot hold one.
+TEST(Transforms, APlaneIsTransformedItselfAndRefusedInObjects) {
+  Diagnostics diag;
+  const auto s = load(scene(R"("shapes": [
+    { "type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "white",
+      "transform": [ { "translate": [0, -1, 0] }, { "rotate": { "axis": [1, 0, 0], "angle": 90 } } ] } ])"),
+                      diag);
+  ASSERT_TRUE(s) << diag.format();
+  EXPECT_FALSE(s->shapes[0].transform);
+  const auto& plane = std::get<InfinitePlane>(s->shapes[0].geometry);
+  EXPECT_TRUE(near(plane.point, {0, 0, -1}));  // (0, -1, 0) turned 90 degrees about +x
+  EXPECT_TRUE(near(plane.normal, {0, 0, 1}));
+  EXPECT_NEAR(length(plane.tangent), 1.0f, 1e-6f);
+
+  Diagnostics bad;
+  EXPECT_FALSE(load(scene(R"("objects": [ { "name": "floor", "shapes": [
+      { "type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0] } ] } ],
+    "shapes": [ { "type": "instance", "object": "floor" } ])"),
+                    bad));
+  EXPECT_NE(bad.format().find("an infinite plane cannot be part of object 'floor'"), std::string::npos)
+      << bad.format();
+}
+
 TEST(Transforms, BadStepsAreRefusedAtTheirLocation) {
   struct Case {
     const char* step;
