@@ -76,10 +76,9 @@ void read_native_instance(ImportContext& ctx, const JsonValue& v, std::vector<Na
     names.push_back(ctx.scene.objects[i].name);
   }
   std::string message = "unknown object '" + name.value + "'";
-  const std::string suggestion = closest_match(name.value, names);
-  if (!suggestion.empty()) message += "; did you mean '" + suggestion + "'?";
-  else if (names.empty()) message += "; the scene defines no objects (top-level \"objects\")";
-  else message += "; the scene defines " + quoted_list(names, "and");
+  message += did_you_mean(name.value, names,
+                          names.empty() ? "; the scene defines no objects (top-level \"objects\")"
+                                        : "; the scene defines " + quoted_list(names, "and"));
   ctx.diag().error(name.where, std::move(message));
 }
 

@@ -172,10 +172,9 @@ int resolve_material(ImportContext& ctx, ObjectReader& r, std::vector<NativeMate
     names.push_back(materials[i].desc.name);
   }
   std::string message = "unknown material '" + name.value + "'";
-  const std::string suggestion = closest_match(name.value, names);
-  if (!suggestion.empty()) message += "; did you mean '" + suggestion + "'?";
-  else if (names.empty()) message += "; the scene defines no materials";
-  else message += "; the scene defines " + quoted_list(names, "and");
+  message += did_you_mean(name.value, names,
+                          names.empty() ? "; the scene defines no materials"
+                                        : "; the scene defines " + quoted_list(names, "and"));
   ctx.diag().error(name.where, std::move(message));
   return -2;
 }

@@ -95,8 +95,7 @@ bool read_step(ReadContext& ctx, const JsonValue& step, std::size_t index, Affin
   if (m.key == "scale") return read_scale(ctx, v, out);
   if (m.key == "matrix") return read_matrix(ctx, v, out);
   std::string message = "unknown transform step '" + m.key + "'";
-  const std::string suggestion = closest_match(m.key, kSteps);
-  message += suggestion.empty() ? "; the steps are " + quoted_list(kSteps, "and") : "; did you mean '" + suggestion + "'?";
+  message += did_you_mean(m.key, kSteps, "; the steps are " + quoted_list(kSteps, "and"));
   return step_error(ctx, step, message);
 }
 

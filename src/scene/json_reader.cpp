@@ -165,15 +165,12 @@ void ObjectReader::finish() {
     if (m.duplicate || std::find(known_.begin(), known_.end(), m.key) != known_.end()) continue;
     const SourceLocation at = ctx_.doc.location(m.key_offset);
     std::string message = "unknown key '" + m.key + "' in " + what_;
-    const std::string suggestion = closest_match(m.key, known_);
     if (ctx_.unknown_keys == UnknownKeyPolicy::Error) {
-      if (!suggestion.empty()) message += "; did you mean '" + suggestion + "'?";
-      else message += "; valid keys are " + quoted_list(known_, "and");
+      message += did_you_mean(m.key, known_, "; valid keys are " + quoted_list(known_, "and"));
       ctx_.diag.error(at, std::move(message));
       ok_ = false;
     } else {
-      message += " (ignored)";
-      if (!suggestion.empty()) message += "; did you mean '" + suggestion + "'?";
+      message += " (ignored)" + did_you_mean(m.key, known_);
       ctx_.diag.warning(at, std::move(message));
     }
   }
@@ -192,9 +189,7 @@ int read_choice(ObjectReader& r, std::string_view key, const std::vector<std::st
   for (std::size_t i = 0; i < names.size(); ++i)
     if (names[i] == value.value) return static_cast<int>(i);
   std::string message = "unknown " + std::string(key) + " '" + value.value + "' in " + r.what();
-  const std::string suggestion = closest_match(value.value, names);
-  if (!suggestion.empty()) message += "; did you mean '" + suggestion + "'?";
-  else message += "; expected " + quoted_list(names);
+  message += did_you_mean(value.value, names, "; expected " + quoted_list(names));
   r.context().diag.error(value.where, std::move(message));
   r.fail();
   return -2;

@@ -135,8 +135,7 @@ void make_shape_emit(ImportContext& ctx, ObjectReader& r, const Sourced<std::str
     return;
   }
   std::string message = "no shape has the id '" + id.value + "' named by this area light's 'shapeid'";
-  const std::string suggestion = closest_match(id.value, names);
-  if (!suggestion.empty()) message += "; did you mean '" + suggestion + "'?";
+  message += did_you_mean(id.value, names);
   ctx.diag().error(id.where, std::move(message));
   r.fail();
 }

@@ -64,6 +64,11 @@ std::string quoted(std::string_view word) {
   return out;
 }
 
+std::string did_you_mean(std::string_view word, const std::vector<std::string>& candidates, std::string otherwise) {
+  const std::string suggestion = closest_match(word, candidates);
+  return suggestion.empty() ? otherwise : "; did you mean '" + suggestion + "'?";
+}
+
 std::string quoted_list(std::vector<std::string> items, std::string_view conjunction) {
   std::sort(items.begin(), items.end());
   items.erase(std::unique(items.begin(), items.end()), items.end());

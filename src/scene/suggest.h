@@ -16,6 +16,12 @@ int edit_distance(std::string_view a, std::string_view b);
 // characters must keep its first letter ("uv0" is not a typo of "v0").
 std::string closest_match(std::string_view word, const std::vector<std::string>& candidates);
 
+// "; did you mean 'x'?" when `word` looks like a typo of a candidate x
+// (closest_match), else `otherwise` (e.g. "; expected 'a' or 'b'"), for the
+// tail of an "unknown ..." message.
+std::string did_you_mean(std::string_view word, const std::vector<std::string>& candidates,
+                         std::string otherwise = "");
+
 // "'word'"
 std::string quoted(std::string_view word);
 
