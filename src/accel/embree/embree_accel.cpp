@@ -1,7 +1,8 @@
-// Embree 3 backend: Embree's BVH over user geometry calling src/geometry for
-// every shape, meshes included (one primitive per triangle), so both backends
-// answer with the same watertight routines (docs/geometry.md).
+// Embree 3 backend: meshes are Embree's own triangle geometry (its SIMD
+// triangle test; triangle_geometry.h), the analytic shapes user geometry
+// calling src/geometry (user_geometry.h); transforms are Embree instances.
 // geomID == object id (rtcAttachGeometryByID), primID == triangle index.
+// Where Embree's triangle test and ours differ, and by how much: docs/geometry.md.
 #include "accel/embree/embree_accel.h"
 
 #include <embree3/rtcore.h>
@@ -15,6 +16,7 @@
 #include <variant>
 
 #include "accel/embree/embree_device.h"
+#include "accel/embree/triangle_geometry.h"
 #include "accel/embree/user_geometry.h"
 #include "core/parallel.h"
 #include "geometry/float_util.h"
@@ -58,28 +60,16 @@ bool to_embree(const Ray& ray, RTCRay& out) {
   return true;
 }
 
-// Embree's own triangle geometry over the mesh's buffers (MeshTriangles::Native).
-RTCGeometry native_triangles(RTCDevice device, const TriangleMesh& m) {
-  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  if (geom == nullptr) return nullptr;
-  const std::size_t nv = m.positions.size();
-  if (m.positions.capacity() > nv) {  // Embree reads 16 bytes per vertex: the spare element covers the last
-    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.positions.data(), 0,
-                               sizeof(Vec3f), nv);
-  } else if (auto* dst = static_cast<Vec3f*>(
-                 rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(Vec3f), nv))) {
-    std::copy(m.positions.begin(), m.positions.end(), dst);
-  }
-  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.indices.data(), 0,
-                             3 * sizeof(uint32_t), m.triangle_count());
-  rtcSetGeometryMask(geom, kMask);
-  rtcCommitGeometry(geom);
-  return geom;
+// The geometry of one shape, not yet committed: Embree's triangles for a mesh,
+// user geometry for everything else.
+RTCGeometry new_geometry(RTCDevice device, const Shape& shape, TriangleBuffers& buffers) {
+  if (const auto* mesh = std::get_if<TriangleMesh>(&shape)) return new_triangle_geometry(device, *mesh, buffers);
+  return new_user_geometry(device, shape);
 }
 
 class EmbreeAccelerator final : public Accelerator {
  public:
-  explicit EmbreeAccelerator(MeshTriangles meshes) : meshes_(meshes) {}
+  EmbreeAccelerator() = default;
   ~EmbreeAccelerator() override {
     if (scene_ != nullptr) rtcReleaseScene(scene_);
     for (RTCScene s : prototypes_) {
@@ -126,7 +116,6 @@ class EmbreeAccelerator final : public Accelerator {
   bool attach_shape(RTCScene scene, const SceneGeometry& geometry, uint32_t object, Diagnostics& diag);
   bool attach_instance(const SceneGeometry& geometry, uint32_t instance, Diagnostics& diag);
 
-  MeshTriangles meshes_;
   Device device_;  // destroyed after the scenes are released
   RTCScene scene_ = nullptr;
   // One scene per prototype, placed in scene_ by instance geometries with
@@ -145,8 +134,9 @@ bool report_device_errors(const Device& device, Diagnostics& diag) {
 
 // A scene with the flags every scene of this backend has. ROBUST: the
 // traversal avoids accuracy-reducing shortcuts (node boxes touched only at a
-// corner, where a ray aimed at a mesh vertex passes). HIGH: the best tree
-// Embree builds over user geometry.
+// corner, where a ray aimed at a mesh vertex passes), and triangles are tested
+// with Embree's Plücker test, watertight along shared edges. HIGH: spatial
+// splits for triangles, the best tree Embree builds.
 RTCScene EmbreeAccelerator::new_scene(Diagnostics& diag) {
   RTCScene scene = rtcNewScene(device_.get());
   if (scene == nullptr) {
@@ -160,16 +150,22 @@ RTCScene EmbreeAccelerator::new_scene(Diagnostics& diag) {
 
 bool EmbreeAccelerator::attach_shape(RTCScene scene, const SceneGeometry& geometry, uint32_t object,
                                      Diagnostics& diag) {
-  const Shape& shape = geometry.shapes[object];
-  const auto* mesh = std::get_if<TriangleMesh>(&shape);
-  RTCGeometry geom = mesh != nullptr && meshes_ == MeshTriangles::Native ? native_triangles(device_.get(), *mesh)
-                                                                        : new_user_geometry(device_.get(), shape);
+  TriangleBuffers buffers;
+  RTCGeometry geom = new_geometry(device_.get(), geometry.shapes[object], buffers);
   if (geom == nullptr) {
     if (!report_device_errors(device_, diag)) {
       diag.error(SourceLocation{}, "Embree: cannot create the geometry of shape " + std::to_string(object));
     }
     return false;
   }
+  // What every geometry gets, whatever its type. A per-geometry filter function
+  // (e.g. alpha cutouts: rtcSetGeometryIntersectFilterFunction and
+  // rtcSetGeometryOccludedFilterFunction, with rtcSetGeometryUserData on a
+  // triangle geometry, whose user data is free) is set here, before the commit;
+  // user geometry's callbacks would have to call rtcFilterIntersection /
+  // rtcFilterOcclusion for it to run.
+  rtcSetGeometryMask(geom, kMask);
+  rtcCommitGeometry(geom);
   rtcAttachGeometryByID(scene, geom, object);
   rtcReleaseGeometry(geom);
   return true;
@@ -225,7 +221,7 @@ bool EmbreeAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, D
   const auto stop = std::chrono::steady_clock::now();
   if (!ok || report_device_errors(device_, diag)) return false;
 
-  stats_.backend = device_.description() + (meshes_ == MeshTriangles::Native ? " native triangles" : "");
+  stats_.backend = device_.description();
   stats_.build_seconds = std::chrono::duration<double>(stop - start).count();
   stats_.memory_bytes = device_.bytes_in_use();
   stats_.primitive_count = primitives;
@@ -234,9 +230,8 @@ bool EmbreeAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, D
 
 }  // namespace
 
-std::unique_ptr<Accelerator> build(const SceneGeometry& geometry, WorkerPool& pool, Diagnostics& diag,
-                                   MeshTriangles meshes) {
-  auto accel = std::make_unique<EmbreeAccelerator>(meshes);
+std::unique_ptr<Accelerator> build(const SceneGeometry& geometry, WorkerPool& pool, Diagnostics& diag) {
+  auto accel = std::make_unique<EmbreeAccelerator>();
   if (!accel->build(geometry, pool, diag)) return nullptr;
   return accel;
 }
