@@ -7,10 +7,15 @@
 
 #include <embree3/rtcore.h>
 
+#include <immintrin.h>
+
 #include <algorithm>
+#include <bit>
 #include <cassert>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <variant>
@@ -34,14 +39,32 @@ constexpr unsigned kMask = 0xFFFFFFFFu;
 // in magnitude; beyond that its behaviour is undefined (Debian's build asserts).
 constexpr float kEmbreeLargest = 1.844e18f;
 
+// Whether Embree can take the ray and it can hit anything: every origin and
+// direction component finite and within kEmbreeLargest, a non-zero direction,
+// a non-empty interval (tmin < tmax, false for NaN). This runs for every ray,
+// so the six magnitudes are tested as two SSE vectors (the Ray's eight floats:
+// origin, direction, tmin, tmax); a comparison with NaN is false, so NaN fails
+// the range test.
+inline bool embree_can_take(const Ray& ray) {
+  static_assert(sizeof(Ray) == 8 * sizeof(float) && offsetof(Ray, dir) == 3 * sizeof(float) &&
+                offsetof(Ray, tmin) == 6 * sizeof(float));
+  const __m128 od = _mm_loadu_ps(&ray.origin.x);  // ox oy oz dx
+  const __m128 dt = _mm_loadu_ps(&ray.dir.y);     // dy dz tmin tmax
+  const __m128 magnitude = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+  const __m128 largest = _mm_set1_ps(kEmbreeLargest);
+  const int in_range = _mm_movemask_ps(_mm_cmple_ps(_mm_and_ps(od, magnitude), largest)) |
+                       (_mm_movemask_ps(_mm_cmple_ps(_mm_and_ps(dt, magnitude), largest)) & 3) << 4;
+  const int zero_dir = (_mm_movemask_ps(_mm_cmpeq_ps(od, _mm_setzero_ps())) >> 3) |
+                       (_mm_movemask_ps(_mm_cmpeq_ps(dt, _mm_setzero_ps())) & 3) << 1;
+  return in_range == 0x3f && zero_dir != 7 && ray.tmin < ray.tmax;
+}
+
 // Converts our ray (open interval tmin < t < tmax) to Embree's (closed
 // interval, tnear >= 0). Returns false for rays that cannot hit anything:
 // NaN or infinite origin or direction, zero direction, empty interval; and for
 // rays Embree cannot take (a component beyond kEmbreeLargest).
-bool to_embree(const Ray& ray, RTCRay& out) {
-  if (!is_finite(ray.origin) || !is_finite(ray.dir) || ray.dir == Vec3f(0.0f)) return false;
-  if (max_component(abs(ray.origin)) > kEmbreeLargest || max_component(abs(ray.dir)) > kEmbreeLargest) return false;
-  if (!(ray.tmin < ray.tmax)) return false;  // also NaN
+inline bool to_embree(const Ray& ray, RTCRay& out) {
+  if (!embree_can_take(ray)) return false;
   out.org_x = ray.origin.x;
   out.org_y = ray.origin.y;
   out.org_z = ray.origin.z;
@@ -49,9 +72,11 @@ bool to_embree(const Ray& ray, RTCRay& out) {
   out.dir_y = ray.dir.y;
   out.dir_z = ray.dir.z;
   // One ulp inside the open interval. A non-positive tmin becomes the smallest
-  // normal float (Embree requires tnear >= 0 and FTZ flushes denormals).
+  // normal float (Embree requires tnear >= 0 and FTZ flushes denormals). An
+  // infinite tmax stays infinite: Embree never reports a hit at t = inf.
+  if (!(ray.tmax > std::numeric_limits<float>::min())) return false;  // nothing lies in (0, tmax)
   out.tnear = ray.tmin > 0.0f ? fp::next_float_up(ray.tmin) : std::numeric_limits<float>::min();
-  out.tfar = fp::next_float_down(ray.tmax);
+  out.tfar = ray.tmax < kInfinity ? std::bit_cast<float>(std::bit_cast<uint32_t>(ray.tmax) - 1) : ray.tmax;
   if (!(out.tnear <= out.tfar)) return false;
   out.time = 0.0f;
   out.mask = kMask;
@@ -85,7 +110,6 @@ class EmbreeAccelerator final : public Accelerator {
     RTCRayHit rh;
     if (!to_embree(ray, rh.ray)) return false;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
