@@ -137,6 +137,7 @@ class EmbreeAccelerator final : public Accelerator {
 
  private:
   RTCScene new_scene(Diagnostics& diag);
+  bool attach_shapes(const SceneGeometry& geometry, Diagnostics& diag);
   bool attach_shape(RTCScene scene, const SceneGeometry& geometry, uint32_t object, Diagnostics& diag);
   bool attach_instance(const SceneGeometry& geometry, uint32_t instance, Diagnostics& diag);
 
@@ -211,15 +212,11 @@ bool EmbreeAccelerator::attach_instance(const SceneGeometry& geometry, uint32_t 
   return true;
 }
 
-bool EmbreeAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, Diagnostics& diag) {
-  if (report_device_errors(device_, diag) || !device_.valid()) return false;
-  assert(geometry_usable(geometry));  // Embree must never see NaN bounds or bad indices
-  scene_ = new_scene(diag);
-  if (scene_ == nullptr) return false;
-  std::size_t primitives = 0;
+// Every shape into its scene: direct shapes into scene_, each prototype's into
+// a scene of its own.
+bool EmbreeAccelerator::attach_shapes(const SceneGeometry& geometry, Diagnostics& diag) {
   const std::vector<bool> direct = placed_directly(geometry);
   for (std::size_t i = 0; i < geometry.shapes.size(); ++i) {
-    primitives += primitive_count(geometry.shapes[i]);
     if (direct[i] && !attach_shape(scene_, geometry, static_cast<uint32_t>(i), diag)) return false;
   }
   for (const std::vector<uint32_t>& proto : geometry.prototypes) {
@@ -229,13 +226,24 @@ bool EmbreeAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, D
       if (!attach_shape(prototypes_.back(), geometry, s, diag)) return false;
     }
   }
+  return true;
+}
+
+bool EmbreeAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, Diagnostics& diag) {
+  if (report_device_errors(device_, diag) || !device_.valid()) return false;
+  assert(geometry_usable(geometry));  // Embree must never see NaN bounds or bad indices
+  scene_ = new_scene(diag);
+  if (scene_ == nullptr) return false;
   instance_base_ = static_cast<uint32_t>(geometry.shapes.size());
   bounds_ = world_bounds(geometry);
 
   const auto start = std::chrono::steady_clock::now();
-  // Embree's TBB tasking runs the parallel build inside the pool's arena.
+  // Inside the pool's arena: the meshes' parallel preparation
+  // (triangle_geometry.cpp) and Embree's TBB-tasking build.
   bool ok = true;
   pool.run([&] {
+    ok = attach_shapes(geometry, diag);
+    if (!ok) return;
     for (RTCScene p : prototypes_) rtcCommitScene(p);
     for (std::size_t i = 0; i < geometry.instances.size() && ok; ++i) {
       ok = attach_instance(geometry, static_cast<uint32_t>(i), diag);
@@ -248,7 +256,7 @@ bool EmbreeAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, D
   stats_.backend = device_.description();
   stats_.build_seconds = std::chrono::duration<double>(stop - start).count();
   stats_.memory_bytes = device_.bytes_in_use();
-  stats_.primitive_count = primitives;
+  for (const Shape& shape : geometry.shapes) stats_.primitive_count += primitive_count(shape);
   return true;
 }
 

@@ -1,21 +1,27 @@
 #include "accel/embree/triangle_geometry.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
 #include <algorithm>
 #include <cstdint>
-#include <vector>
+#include <functional>
 
 namespace pt::embree {
 
 namespace {
 
-// Triangle indices of the degenerate triangles, in order.
-std::vector<uint32_t> degenerate_triangles(const TriangleMesh& m) {
-  std::vector<uint32_t> out;
-  const std::size_t n = m.triangle_count();
-  for (std::size_t t = 0; t < n; ++t) {
-    if (degenerate_triangle(m, t)) out.push_back(static_cast<uint32_t>(t));
-  }
-  return out;
+constexpr std::size_t kGrain = 1 << 14;  // triangles per task
+
+std::size_t count_degenerate(const TriangleMesh& m) {
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, m.triangle_count(), kGrain), std::size_t{0},
+      [&](const tbb::blocked_range<std::size_t>& r, std::size_t n) {
+        for (std::size_t t = r.begin(); t != r.end(); ++t) n += degenerate_triangle(m, t) ? 1 : 0;
+        return n;
+      },
+      std::plus<>());
 }
 
 bool set_vertices(RTCGeometry geom, const TriangleMesh& m) {
@@ -31,9 +37,11 @@ bool set_vertices(RTCGeometry geom, const TriangleMesh& m) {
   return false;
 }
 
-bool set_indices(RTCGeometry geom, const TriangleMesh& m, const std::vector<uint32_t>& degenerate) {
+// Shared when no triangle is degenerate; otherwise a copy in which each
+// degenerate triangle refers to vertex UINT32_MAX (Embree leaves it out).
+bool set_indices(RTCGeometry geom, const TriangleMesh& m, std::size_t degenerate) {
   const std::size_t nt = m.triangle_count();
-  if (degenerate.empty()) {
+  if (degenerate == 0) {
     rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.indices.data(), 0,
                                3 * sizeof(uint32_t), nt);
     return true;
@@ -41,8 +49,12 @@ bool set_indices(RTCGeometry geom, const TriangleMesh& m, const std::vector<uint
   auto* dst = static_cast<uint32_t*>(
       rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), nt));
   if (dst == nullptr) return false;
-  std::copy(m.indices.begin(), m.indices.end(), dst);
-  for (uint32_t t : degenerate) std::fill_n(dst + 3 * static_cast<std::size_t>(t), 3, UINT32_MAX);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nt, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t t = r.begin(); t != r.end(); ++t) {
+      const bool keep = !degenerate_triangle(m, t);
+      for (std::size_t k = 3 * t; k < 3 * t + 3; ++k) dst[k] = keep ? m.indices[k] : UINT32_MAX;
+    }
+  });
   return false;
 }
 
@@ -51,10 +63,9 @@ bool set_indices(RTCGeometry geom, const TriangleMesh& m, const std::vector<uint
 RTCGeometry new_triangle_geometry(RTCDevice device, const TriangleMesh& mesh, TriangleBuffers& buffers) {
   RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
   if (geom == nullptr) return nullptr;
-  const std::vector<uint32_t> degenerate = degenerate_triangles(mesh);
-  buffers.degenerate = degenerate.size();
+  buffers.degenerate = count_degenerate(mesh);
   buffers.vertices_shared = set_vertices(geom, mesh);
-  buffers.indices_shared = set_indices(geom, mesh, degenerate);
+  buffers.indices_shared = set_indices(geom, mesh, buffers.degenerate);
   return geom;
 }
 

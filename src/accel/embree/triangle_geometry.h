@@ -30,7 +30,8 @@ struct TriangleBuffers {
 };
 
 // A new, uncommitted geometry over `mesh` (which must outlive it; null on an
-// Embree error). The caller sets what every geometry gets (mask, and a filter
+// Embree error). Call it inside the worker pool's arena: the search for
+// degenerate triangles and the copy of the indices are TBB-parallel. The caller sets what every geometry gets (mask, and a filter
 // function where one is needed), commits, attaches and releases it.
 RTCGeometry new_triangle_geometry(RTCDevice device, const TriangleMesh& mesh, TriangleBuffers& buffers);
 

@@ -3,8 +3,6 @@
 // to their median, minimum and maximum.
 #pragma once
 
-#include <time.h>
-
 #include <atomic>
 #include <chrono>
 #include <cstddef>
@@ -15,6 +13,7 @@
 
 #include "accel/accelerator.h"
 #include "core/parallel.h"
+#include "core/stopwatch.h"
 
 namespace pt::bench {
 
@@ -26,14 +25,6 @@ struct Pass {
   std::size_t hits = 0;    // rays that found a hit (a check that both backends did the same work)
   float checksum = 0.0f;   // of the hit records read (unused: it keeps them from being optimised away)
 };
-
-// CPU time of the whole process so far, every thread: on a machine shared with
-// other jobs it counts the time this process ran, not the time it waited.
-inline double process_cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
 
 // A is Accelerator (a virtual call per ray, as the renderer makes) or a final
 // class called directly (the bare-Embree yardstick, embree_reference.h).
