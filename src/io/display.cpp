@@ -106,7 +106,7 @@ OCIO::ConstProcessorRcPtr config_processor(const DisplaySettings& s, std::string
 }
 
 // The CGR course's display mapping, inferred from its reference images
-// (docs/rendering.md, "The CGR display mapping"): the colour x is compressed
+// (docs/rendering.md, "The CGR mapping"): the colour x is compressed
 // by its Rec.709 luminance as in Reinhard's operator, u = s k x / (1 + k L(x)),
 // then each channel is shown as the sRGB encoding of u^2.4 (a gamma-2.4 image
 // re-encoded as sRGB: a dark toe, then nearly linear). k is fitted; s puts the

@@ -50,7 +50,7 @@ TEST(Display, LinearIsValueTimes255) {
   EXPECT_EQ(display_encode(1.0f, display(DisplayTransform::Linear, -1.0f)), 128);
 }
 
-// The CGR course's mapping (docs/rendering.md, "The CGR display mapping"):
+// The CGR course's mapping (docs/rendering.md, "The CGR mapping"):
 // its one fixed point (a 0.25 grey background shows as 87), monotonic in grey,
 // and a colour is compressed by its luminance: the same red channel is
 // darker beside a bright green than beside nothing.
