@@ -42,7 +42,7 @@ class CliOutputs : public AppTest {
 // ---------------------------------------------------------------- before rendering
 
 TEST_F(CliOutputs, MissingFolderIsFoundBeforeRenderingUnderTheUsersName) {
-  for (const std::string& args : {"-o nowhere/a.exr", "-o a.exr --report nowhere/run.json",
+  for (const std::string args : {"-o nowhere/a.exr", "-o a.exr --report nowhere/run.json",
                                   "-o a.exr --checkpoint nowhere/c.ckpt"}) {
     const RunResult r = run("s.json --spp 100000 " + args);  // a render that would take minutes
     EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
@@ -232,7 +232,7 @@ TEST_F(CliOutputs, UnknownOptionsGetADidYouMean) {
 }
 
 TEST_F(CliOutputs, NonFiniteNumbersAreRefused) {
-  for (const std::string& args : {"--time-budget nan", "--clamp nan", "--exposure nan", "--checkpoint-every nan",
+  for (const std::string args : {"--time-budget nan", "--clamp nan", "--exposure nan", "--checkpoint-every nan",
                                   "--exposure inf", "--time-budget 1e999", "--progress-interval nan",
                                   "--crop 0,0,nan,1"}) {
     const RunResult r = run("s.json -o a.exr " + args);
@@ -243,7 +243,7 @@ TEST_F(CliOutputs, NonFiniteNumbersAreRefused) {
 }
 
 TEST_F(CliOutputs, SeedsOutsideTheirRangeAreRefused) {
-  for (const std::string& seed : {"-1", "18446744073709551616", "1e3", "0x10", ""}) {
+  for (const std::string seed : {"-1", "18446744073709551616", "1e3", "0x10", ""}) {
     const RunResult r = run("s.json -o a.exr --seed '" + seed + "'");
     EXPECT_EQ(r.status, 2) << seed;
     EXPECT_NE(r.err.find("must be an integer in [0, 18446744073709551615]"), std::string::npos) << r.err;
