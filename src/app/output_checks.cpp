@@ -159,10 +159,6 @@ std::string conflict_path(const std::string& path) {
   return (p.parent_path() / name).string();
 }
 
-}  // namespace pt
-
-namespace pt {
-
 bool write_guarded(const std::string& path, OutputStamps& stamps,
                    const std::function<bool(const std::string& path, std::string& error)>& write, std::string& error) {
   if (stamps.unchanged(path)) {
