@@ -39,7 +39,7 @@ std::string why_folder_refuses(const std::string& path) {
   if (::stat(folder.c_str(), &st) != 0)
     return errno == ENOENT ? "the folder '" + folder.string() + "' does not exist"
                            : "the folder '" + folder.string() + "': " + std::generic_category().message(errno);
-  if (!S_ISDIR(st.st_mode)) return "'" + folder.string() + "' is not a folder";
+  if (!S_ISDIR(st.st_mode)) return std::string("'").append(folder.string()).append("' is not a folder");  // append: GCC 12's -Wrestrict false positive on "'" + string
   const std::string probe = path + ".tmp-probe-" + std::to_string(static_cast<long>(::getpid()));
   const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
   if (fd < 0) {

@@ -15,34 +15,10 @@
 namespace pt::test {
 namespace {
 
-// A sphere in front of a backdrop image that holds +Inf: camera rays that miss
-// the sphere see it, and their samples are +Inf. (The values a scene writes
-// are bounded so that paths cannot overflow, docs/scene-format.md "Value
-// limits", and environment maps are checked texel by texel; a backdrop image
-// is not, and is the way left to make the renderer meet non-finite samples.)
-const char* kOverflowScene = R"({"format": "pathtracer-scene", "version": 1,
-  "camera": {"position": [0, 1, 4], "look_at": [0, 0.5, 0], "fov": 40},
-  "film": {"width": 16, "height": 12},
-  "render": {"integrator": "path", "max_depth": 8, "spp": 4, "background_image": "inf.exr"},
-  "materials": {"white": {"type": "lambert", "diffuse": [0.9, 0.9, 0.9]}},
-  "shapes": [{"type": "sphere", "center": [0, 0.5, 0], "radius": 0.5, "material": "white"}]
-})";
-
-class RunRecordApp : public AppTest {
- protected:
-  // Writes a w x h RGB image file of `value`.
-  void write_image(const std::string& name, int w, int h, float value) const {
-    auto out = OIIO::ImageOutput::create(path(name));
-    ASSERT_TRUE(out);
-    ASSERT_TRUE(out->open(path(name), OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::FLOAT)));
-    const std::vector<float> pixels(static_cast<std::size_t>(w) * h * 3, value);
-    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
-    ASSERT_TRUE(out->close());
-  }
-};
+class RunRecordApp : public AppTest {};
 
 TEST_F(RunRecordApp, NonFiniteCountsAndTheFirstOffenderWhichReplays) {
-  write("nf.json", kOverflowScene);
+  write("nf.json", backdrop_scene("inf.exr", 16, 12, 4));
   write_image("inf.exr", 4, 4, std::numeric_limits<float>::infinity());
   const RunResult r = run("nf.json -o nf.exr --aov nonfinite --report run.json");
   ASSERT_EQ(r.status, 0) << r.err;
