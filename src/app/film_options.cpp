@@ -93,8 +93,13 @@ bool estimate_render_memory(const Options& o, const SceneDescription& scene, int
   PixelRect crop;
   if (!crop_window(o, width, height, crop, error)) return false;
   const uint64_t pixels = static_cast<uint64_t>(crop.width()) * static_cast<uint64_t>(crop.height());
+  AccelKind accel = AccelKind::Bvh;
+  parse_accel_kind(o.accel, accel);  // CLI11 checked the name
   out = estimate_memory(scene, pixels, {film_bytes_per_pixel(aovs), output_bytes_per_pixel(aovs, o.outputs)},
-                        o.resume.empty() ? 1 : 2);
+                        o.resume.empty() ? 1 : 2, accel);
+  out.baseline = resident_bytes();
+  out.peak_so_far = peak_resident_bytes();
+  out.reusable = std::min(free_heap_bytes(), out.baseline);
   return true;
 }
 

@@ -14,6 +14,7 @@
 
 #include "app/checkpoint.h"
 #include "app/memory_estimate.h"
+#include "app/output_checks.h"
 #include "app/render_driver.h"
 #include "app/render_settings.h"
 #include "core/diagnostics.h"
@@ -55,6 +56,7 @@ struct Job {
   ChannelType beauty_type = ChannelType::Float;  // --aov beauty:half
   CheckpointInfo identity;  // scene hash and settings, for --checkpoint and --resume
   double parse_s = 0;       // load_scene, meshes included
+  OutputStamps stamps;      // every output as it was when the run started (two runs, one name)
 };
 
 // The seconds of each phase and what the render counted, for the record and the summary.
@@ -69,7 +71,9 @@ struct RunFigures {
 };
 
 // The command line's own checks before the scene is read (an output is
-// required, supported and given once) and its notes; a non-zero status stops.
+// required and supported; every output, checkpoint and run record can be
+// written and is a file of its own: app/output_checks.h) and its notes; a
+// non-zero status stops.
 int check_request(const Options& o, Messages& messages);
 
 // Loads the scene, resolves its settings and plans the render; std::nullopt
@@ -102,6 +106,7 @@ class Checkpointer {
 
  private:
   std::string path_;
+  OutputStamps stamps_;
   double every_;
   CheckpointInfo info_;
   const Film& film_;

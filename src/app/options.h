@@ -63,6 +63,11 @@ constexpr int kExitFailure = 1;
 constexpr int kExitUsage = 2;
 
 void add_options(CLI::App& app, Options& o);
+// For CLI11's "arguments were not expected": one line per unknown option in
+// `extras` (app.remaining()), "unknown option '--samples'; did you mean
+// '--spp'?" (a table of other tools' names, then the edit distance), or ""
+// when none of them looks like an option (then CLI11's message stands).
+std::string unknown_option_message(const CLI::App& app, const std::vector<std::string>& extras);
 std::string version_text();
 
 }  // namespace pt

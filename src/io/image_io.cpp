@@ -6,10 +6,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <limits>
 #include <memory>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include "io/atomic_file.h"
@@ -47,24 +47,39 @@ std::vector<unsigned char> encode_8bit(const Image& image, const DisplayEncoder&
 }
 
 bool write_ppm(const std::string& path, const Image& image, const DisplayEncoder& display, std::string& error) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) {
-    error = std::strerror(errno);
-    return false;
-  }
   const std::vector<unsigned char> bytes = encode_8bit(image, display);
-  out << "P6\n" << image.width << ' ' << image.height << "\n255\n";
-  out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  out.close();
-  if (!out) {
-    error = "write failed";
-    return false;
+  std::string file = "P6\n" + std::to_string(image.width) + ' ' + std::to_string(image.height) + "\n255\n";
+  file.append(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  return write_bytes(path, file.data(), file.size(), error);
+}
+
+// The metadata of a PNG or JPEG, as text: PNG keeps every string attribute
+// as a tEXt chunk but drops numbers, so numbers are written as text too
+// ("pathtracer:partial" = "1"). OpenImageIO's JPEG writer keeps only the
+// attributes it maps to EXIF/IPTC, so a JPEG gets them all as lines of its
+// comment (ImageDescription, the JPEG COM marker), after the display line.
+void add_display_metadata(OIIO::ImageSpec& spec, const ImageMetadata& metadata, bool jpeg,
+                          const std::string& description) {
+  std::vector<std::pair<std::string, std::string>> text = metadata.strings;
+  for (const auto& [name, value] : metadata.ints) text.emplace_back(name, std::to_string(value));
+  for (const auto& [name, value] : metadata.floats) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.9g", static_cast<double>(value));
+    text.emplace_back(name, buf);
   }
-  return true;
+  std::string comment = description;
+  for (const auto& [name, value] : text) {
+    spec.attribute(name, value);
+    comment += "\n" + name + ": " + value;
+  }
+  spec.attribute("ImageDescription", jpeg ? comment : description);
 }
 
 // Writes through OpenImageIO with an explicit format name (the temporary file's
-// name does not end in the real extension).
+// name does not end in the real extension). The file is encoded in memory and
+// then written with write_bytes: OpenImageIO's PNG writer does not check its
+// writes (a full disk left a truncated file and reported success) and libjpeg
+// ends the process on a failed write, so neither touches the disk itself.
 bool write_oiio(const std::string& path, const char* format, const Image& image, const DisplaySettings& settings,
                 const DisplayEncoder* display, const ImageMetadata& metadata, std::string& error) {
   auto out = OIIO::ImageOutput::create(format);
@@ -78,12 +93,17 @@ bool write_oiio(const std::string& path, const char* format, const Image& image,
   if (is_float) {
     spec.attribute("compression", "zip");
     spec.attribute("oiio:ColorSpace", "Linear");
+    add_image_metadata(spec, metadata, true);
   } else {
     if (settings.transform == DisplayTransform::Srgb && settings.ocio_config.empty()) spec.attribute("oiio:ColorSpace", "sRGB");
-    spec.attribute("ImageDescription", "display: " + display->description());
-    if (std::strcmp(format, "jpeg") == 0) spec.attribute("Compression", "jpeg:95");
+    const bool jpeg = std::strcmp(format, "jpeg") == 0;
+    if (jpeg) spec.attribute("Compression", "jpeg:95");
+    add_display_metadata(spec, metadata, jpeg, "display: " + display->description());
   }
-  add_image_metadata(spec, metadata, is_float);
+  std::vector<unsigned char> encoded;
+  OIIO::Filesystem::IOVecOutput memory(encoded);
+  OIIO::Filesystem::IOProxy* proxy = &memory;
+  spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
   if (!out->open(path, spec)) {
     error = out->geterror();
     return false;
@@ -100,7 +120,7 @@ bool write_oiio(const std::string& path, const char* format, const Image& image,
     error = out->geterror();
     ok = false;
   }
-  return ok;
+  return ok && write_bytes(path, encoded.data(), encoded.size(), error);
 }
 
 }  // namespace

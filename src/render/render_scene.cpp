@@ -277,13 +277,15 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDescription& desc, co
 
   if (desc.environment) {
     const auto environment_start = Clock::now();
-    std::string error;
-    scene->environment_map = EnvironmentMap::load(*desc.environment, error, options.textures);
+    std::string error, warning;
+    scene->environment_map = EnvironmentMap::load(*desc.environment, error, options.textures, &warning);
     scene->texture_load_seconds += seconds_since(environment_start);
     if (!scene->environment_map) {
       diag.error(desc.environment->file.where,
                  "cannot read environment map '" + desc.environment->file.value + "': " + error);
       ok = false;
+    } else if (!warning.empty()) {
+      diag.warning(desc.environment->file.where, "environment map '" + desc.environment->file.value + "': " + warning);
     }
   }
 
