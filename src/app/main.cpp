@@ -104,7 +104,7 @@ int run(const Options& o) {
   // Write.
   t0 = Clock::now();
   const ImageMetadata metadata = render_metadata(*job, *scene, outcome, figures.render_s);
-  if (!write_outputs(o.outputs, film.layers(job->beauty_type), job->display, metadata, error))
+  if (!write_outputs(o.outputs, film.layers(job->beauty_type), job->display, job->exr, metadata, error))
     return fail(error, kExitFailure);
   figures.write_s = seconds_since(t0);
 

@@ -47,9 +47,9 @@ DisplaySettings display_settings(const Options& o, const FilmDesc& film) {
 }
 
 bool write_outputs(const std::vector<std::string>& outputs, const LayeredImage& image, const DisplaySettings& display,
-                   const ImageMetadata& metadata, std::string& error) {
+                   const ExrSettings& exr, const ImageMetadata& metadata, std::string& error) {
   for (const std::string& path : outputs)
-    if (!write_layered_image(path, image, display, error, metadata)) return false;
+    if (!write_layered_image(path, image, display, error, metadata, exr)) return false;
   return true;
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "io/display.h"
+#include "io/image_io.h"
 #include "io/image_metadata.h"
 
 namespace pt {
@@ -27,7 +28,7 @@ DisplaySettings display_settings(const Options& o, const FilmDesc& film);
 // says what the render reached, "pathtracer:partial" = 1 when a signal stopped
 // it). Returns false with the first error.
 bool write_outputs(const std::vector<std::string>& outputs, const LayeredImage& image, const DisplaySettings& display,
-                   const ImageMetadata& metadata, std::string& error);
+                   const ExrSettings& exr, const ImageMetadata& metadata, std::string& error);
 
 std::string join(const std::vector<std::string>& items, const char* sep);
 

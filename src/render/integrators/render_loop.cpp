@@ -30,9 +30,11 @@ void first_hit_aovs(const RenderScene& scene, const Ray& ray, AovSample& aov) {
   aov.position = isect.geo.p;
   aov.depth = scene.camera.depth(isect.geo.p);
   aov.object = isect.hit.shape + 1;
-  aov.material = isect.hit.shape < scene.shape_material.size()
-                     ? static_cast<uint32_t>(scene.shape_material[isect.hit.shape]) + 1
-                     : 0;
+  // The material the hit was shaded with (an instance's replaces its shapes').
+  const int material = scene.material_of(isect.hit.shape, isect.hit.instance);
+  aov.material = static_cast<uint32_t>(material) + 1;
+  aov.crypto_object = scene.names.object_id(isect.hit.shape, isect.hit.instance);
+  aov.crypto_material = scene.names.material_ids[static_cast<std::size_t>(material)];
 }
 
 void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, const IntegratorSettings& settings,
@@ -50,6 +52,7 @@ void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, cons
   const bool lens = scene.camera.has_lens();
   RenderMonitor* const monitor = settings.monitor;
   const bool geometry = film.wants_geometry(), lighting = film.wants_lighting();
+  const bool transparent = settings.film_transparent;
   const std::size_t aov_doubles = static_cast<std::size_t>(film.aov_doubles());
   std::mutex report_mutex;
   NonFiniteReport report;
@@ -65,10 +68,15 @@ void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, cons
       const Vec2f film_px = corner + fs.offset;
       const Ray ray = lens ? scene.camera.generate_ray(film_px, sampler.get_2d()) : scene.camera.generate_ray(film_px);
       if (aov_doubles > 0) aov = AovSample{};
-      const RGB c = radiance(ray, sampler, lighting ? &aov : nullptr);
+      CameraEstimate e = radiance(ray, sampler, lighting ? &aov : nullptr);
+      if (transparent && !e.hit) {  // the background is not part of the image: only lights the scene
+        e.radiance = RGB();
+        if (lighting) aov = AovSample{};
+      }
+      const RGB c = e.radiance;
       const bool finite = c.is_finite();
       if (!finite) bad.record(x, y, s, c);
-      sum.add(finite ? c : RGB(), fs.weight);
+      sum.add(finite ? c : RGB(), fs.weight, e.hit);
       if (aov_doubles > 0) {
         if (geometry) first_hit_aovs(scene, ray, aov);
         film.accumulate(scratch.data(), aov, c, fs.weight, !finite);
