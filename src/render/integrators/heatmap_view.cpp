@@ -86,7 +86,10 @@ void draw_legend(Image& image, float top, bool saturated) {
 
 class BvhCostIntegrator final : public Integrator {
  public:
-  explicit BvhCostIntegrator(const IntegratorSettings& settings) : settings_(settings) {}
+  // A chart of every ray's cost: a miss costs too, whatever the film's transparency.
+  explicit BvhCostIntegrator(const IntegratorSettings& settings) : settings_(settings) {
+    settings_.film_transparent = false;
+  }
 
   bool can_render(const RenderScene& scene, std::string& why) const override {
     if (scene.accel != nullptr && scene.accel->counts_traversal()) return true;
