@@ -26,6 +26,7 @@ SettingsOverrides settings_overrides(const Options& o) {
   s.clamp = o.clamp;
   s.width = o.width;
   s.height = o.height;
+  s.film_transparent = o.film_transparent;
   return s;
 }
 
@@ -75,7 +76,15 @@ bool plan_job(const Options& o, Job& job, Messages& m) {
   }
   plan.equal_passes = job.settings.equal_passes();
 
+  job.exr = {o.exr_compression, o.multipart};
+  for (const AovRequest& r : job.aovs)
+    if (r.ranks > 0 && exr_compression_rounds_floats(job.exr.compression) && !o.replaying()) {
+      m.error("--exr-compression " + job.exr.compression + " rounds 32-bit floats to 24 bits, which destroys " +
+              aov_info(r.type).name + "'s ids; choose another compression (zip, piz, dwaa, ...)");
+      return false;
+    }
   job.display = display_settings(o, job.desc.film);
+  job.display.alpha = job.settings.integration.film_transparent;  // PNG: RGBA
   if (job.display.transform != DisplayTransform::Srgb && !(o.view.empty() && o.display.empty() && o.look.empty()))
     m.warning("--view, --display and --look apply to native scenes; this scene's display images use its course's "
               "documented curve (docs/rendering.md)");

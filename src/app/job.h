@@ -20,6 +20,7 @@
 #include "core/diagnostics.h"
 #include "core/stopwatch.h"
 #include "io/display.h"
+#include "io/image_io.h"
 #include "io/image_metadata.h"
 #include "render/film/aov.h"
 #include "scene/scene_description.h"
@@ -51,6 +52,7 @@ struct Job {
   RenderSettings settings;
   PassPlan plan;
   DisplaySettings display;
+  ExrSettings exr;  // --exr-compression, --multipart
   MemoryEstimate memory;
   std::vector<AovRequest> aovs;  // --aov (every AOV for a replay)
   ChannelType beauty_type = ChannelType::Float;  // --aov beauty:half
@@ -117,7 +119,8 @@ class Checkpointer {
 // black; to replay the first, ..."), without "warning: ".
 std::string non_finite_warning(const NonFiniteReport& report);
 
-// The EXR metadata of the render: its settings, what it reached, the camera.
+// The EXR metadata of the render: its settings, what it reached, the camera,
+// and each Cryptomatte AOV's (render/film/cryptomatte.h).
 ImageMetadata render_metadata(const Job& job, const RenderScene& scene, const RenderOutcome& outcome, double render_s);
 
 // The run record (--report).

@@ -29,6 +29,10 @@ ImageMetadata render_metadata(const Job& job, const RenderScene& scene, const Re
   stamp.world_to_ndc = scene.camera.world_to_ndc();
   ImageMetadata metadata;
   add_render_stamp(metadata, stamp);
+  for (const AovRequest& r : job.aovs)  // Cryptomatte: its name, hash, conversion and manifest
+    if (r.ranks > 0)
+      add_cryptomatte_metadata(metadata, aov_info(r.type).name,
+                               r.type == AovType::CryptoObject ? scene.names.objects : scene.names.materials);
   return metadata;
 }
 

@@ -105,7 +105,8 @@ int run(const Options& o) {
   t0 = Clock::now();
   const ImageMetadata metadata = render_metadata(*job, *scene, outcome, figures.render_s);
   // An output that cannot be written does not stop the others or the record.
-  const bool written = write_outputs(o.outputs, film.layers(job->beauty_type), job->display, metadata, job->stamps, error);
+  const bool written =
+      write_outputs(o.outputs, film.layers(job->beauty_type), job->display, job->exr, metadata, job->stamps, error);
   if (!written) std::cerr << "error: " << error << '\n';
   figures.write_s = seconds_since(t0);
 

@@ -13,6 +13,7 @@
 #include "accel/accelerator.h"
 #include "app/outputs.h"
 #include "app/versions.h"
+#include "io/image_io.h"
 #include "render/film/aov.h"
 #include "render/integrators/integrator.h"
 #include "scene/resolution_limits.h"
@@ -145,6 +146,21 @@ void add_film_options(CLI::App& app, Options& o) {
   app.add_option("--aov", o.aov,
                  "Extra EXR layers, comma-separated, each optionally ':half' or ':float' (docs/output.md): " +
                      join(aov_names(), ", ") + "; 'beauty:half' writes the beauty (R, G, B, A; float by default) as half");
+  app.add_option("--cryptomatte-levels", o.cryptomatte_levels,
+                 "Ids kept per pixel by the CryptoObject and CryptoMaterial AOVs (two per EXR layer)")
+      ->check(CLI::Range(1, kCryptomatteMaxRanks))
+      ->capture_default_str();
+  app.add_flag("--film-transparent", o.film_transparent,
+               "Leave what camera rays see when they hit nothing out of the image (alpha 0; PNG gets alpha); "
+               "it still lights the scene (default: the scene's render.film_transparent)");
+  app.add_option("--exr-compression", o.exr_compression,
+                 "EXR compression: " + join(exr_compression_names(), ", ") + " (dwaa/dwab take a level: dwaa:45)")
+      ->check([](const std::string& value) {
+        std::string error;
+        return check_exr_compression(value, error) ? std::string() : error;
+      })
+      ->capture_default_str();
+  app.add_flag("--multipart", o.multipart, "EXR: one part per layer (readers load only the parts they need)");
   auto* crop = app.add_option("--crop", o.crop, "Render only this region: X0,Y0,X1,Y1 as fractions of the frame")
                    ->delimiter(',')
                    ->expected(4)

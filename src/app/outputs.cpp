@@ -48,13 +48,14 @@ DisplaySettings display_settings(const Options& o, const FilmDesc& film) {
 }
 
 bool write_outputs(const std::vector<std::string>& outputs, const LayeredImage& image, const DisplaySettings& display,
-                   const ImageMetadata& metadata, OutputStamps& stamps, std::string& error) {
+                   const ExrSettings& exr, const ImageMetadata& metadata, OutputStamps& stamps, std::string& error) {
   bool all = true;
   for (const std::string& path : outputs) {
     std::string why;
     const bool ok = write_guarded(
         path, stamps,
-        [&](const std::string& p, std::string& e) { return write_layered_image(p, image, display, e, metadata); }, why);
+        [&](const std::string& p, std::string& e) { return write_layered_image(p, image, display, e, metadata, exr); },
+        why);
     if (!ok && all) error = why;
     all = all && ok;
   }

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "io/display.h"
+#include "io/image_io.h"
 #include "io/image_metadata.h"
 
 namespace pt {
@@ -30,7 +31,7 @@ DisplaySettings display_settings(const Options& o, const FilmDesc& film);
 // An output another program wrote since the run started is not replaced
 // (write_guarded, app/output_checks.h); the others are still written.
 bool write_outputs(const std::vector<std::string>& outputs, const LayeredImage& image, const DisplaySettings& display,
-                   const ImageMetadata& metadata, OutputStamps& stamps, std::string& error);
+                   const ExrSettings& exr, const ImageMetadata& metadata, OutputStamps& stamps, std::string& error);
 
 std::string join(const std::vector<std::string>& items, const char* sep);
 

@@ -191,7 +191,7 @@ class RecordingIntegrator : public Integrator {
   void render(const RenderScene&, Film& film, WorkerPool&) const override {
     log_.emplace_back(s_.first_sample, s_.spp);
     PixelSum sum;
-    for (int i = 0; i < s_.spp; ++i) sum.add(RGB(1, 1, 1), 1.0f);
+    for (int i = 0; i < s_.spp; ++i) sum.add(RGB(1, 1, 1), 1.0f, true);
     film.add(0, 0, sum);
   }
 
@@ -351,14 +351,16 @@ TEST(MemoryEstimate, OutputBuffersCountEveryAovChannel) {
   std::vector<AovRequest> all;
   std::size_t channels = 4;
   for (const AovInfo& info : aov_catalogue()) {
-    all.push_back({info.type, info.default_type});
-    channels += static_cast<std::size_t>(info.channels);
+    const AovRequest r{info.type, info.default_type, info.accumulation == Accumulation::Ranked ? 6 : 0};
+    all.push_back(r);
+    channels += static_cast<std::size_t>(aov_channel_count(r));
   }
-  EXPECT_EQ(channels, 39u);
-  EXPECT_EQ(output_bytes_per_pixel(all, {"a.png", "a.exr"}), 2 * 39u * 4u);  // 312 bytes a pixel
-  // The film: PixelSum, then each AOV's doubles.
+  EXPECT_EQ(channels, 39u + 2 * 12u);  // Cryptomatte: 6 ranks are 3 layers of r, g, b, a
+  EXPECT_EQ(output_bytes_per_pixel(all, {"a.png", "a.exr"}), 2 * 63u * 4u);  // 504 bytes a pixel
+  // The film: PixelSum, then each AOV's doubles (Cryptomatte: an id and a weight per rank).
   EXPECT_EQ(film_bytes_per_pixel({}), sizeof(PixelSum));
   EXPECT_EQ(film_bytes_per_pixel({{AovType::Position, ChannelType::Float}}), sizeof(PixelSum) + 4 * sizeof(double));
+  EXPECT_EQ(film_bytes_per_pixel({{AovType::CryptoObject, ChannelType::Float, 6}}), sizeof(PixelSum) + 12 * sizeof(double));
 }
 
 // Textures are estimated from their files' headers: only those a material

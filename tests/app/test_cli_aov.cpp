@@ -62,7 +62,7 @@ TEST_F(CliOutput, AnAovTheIntegratorCannotProduceIsRefusedListingThoseItCan) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("--aov: the whitted integrator cannot produce AOV 'diffuse_indirect'; it produces: albedo N P Z "
                        "IndexOB IndexMA emission diffuse_direct specular_direct specular_indirect variance samples "
-                       "nonfinite ambient"),
+                       "nonfinite ambient CryptoObject CryptoMaterial"),
             std::string::npos)
       << r.err;
   r = run("-o out.exr --integrator path --aov ambient");

@@ -64,6 +64,10 @@ struct IntegratorSettings {
   int roulette_depth = 3;
   float roulette_threshold = 1.0f / 3.0f;
   SamplerType sampler = SamplerType::Sobol;  // path: where its random numbers come from (docs/samplers.md)
+  // Cycles' Film > Transparent: what camera rays see when they hit nothing
+  // (background, environment, background image) is left out of the image
+  // (black, alpha 0); it still lights the scene and shows in reflections.
+  bool film_transparent = false;
   // Replay: >= 0 renders only this sample index of every pixel of the film's
   // crop (the sampler still sees spp, so the sample is the one a full render draws).
   int only_sample = -1;

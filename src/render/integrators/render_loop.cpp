@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <mutex>
+#include <utility>
 #include <vector>
 
 #include <tbb/blocked_range2d.h>
@@ -18,6 +19,13 @@ namespace {
 // relaxed atomic load behind a virtual call): a few nanoseconds against the
 // microseconds of 16 samples.
 constexpr int kCancelPollSamples = 16;
+
+// The samples [first, end) each pixel takes in this pass.
+std::pair<int, int> sample_range(const IntegratorSettings& settings) {
+  if (settings.only_sample >= 0) return {settings.only_sample, settings.only_sample + 1};
+  const int first = std::max(0, settings.first_sample);
+  return {first, first + std::max(0, settings.spp)};
+}
 
 }  // namespace
 
@@ -38,26 +46,24 @@ void first_hit_aovs(const RenderScene& scene, const Ray& ray, AovSample& aov) {
   aov.position = isect.geo.p;
   aov.depth = scene.camera.depth(isect.geo.p);
   aov.object = isect.hit.shape + 1;
-  aov.material = isect.hit.shape < scene.shape_material.size()
-                     ? static_cast<uint32_t>(scene.shape_material[isect.hit.shape]) + 1
-                     : 0;
+  // The material the hit was shaded with (an instance's replaces its shapes').
+  const int material = scene.material_of(isect.hit.shape, isect.hit.instance);
+  aov.material = static_cast<uint32_t>(material) + 1;
+  aov.crypto_object = scene.names.object_id(isect.hit.shape, isect.hit.instance);
+  aov.crypto_material = scene.names.material_ids[static_cast<std::size_t>(material)];
 }
 
 void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, const IntegratorSettings& settings,
                     const Sampler& prototype, const PixelFilter& filter, SampleRadianceFn radiance) {
   const PixelRect crop = film.crop();
   const int tile = std::max(1, settings.tile_size);
-  int first = std::max(0, settings.first_sample);
-  int end = first + std::max(0, settings.spp);
-  if (settings.only_sample >= 0) {
-    first = settings.only_sample;
-    end = first + 1;
-  }
+  const auto [first, end] = sample_range(settings);
   const int tiles_x = (crop.width() + tile - 1) / tile;
   const int tiles_y = (crop.height() + tile - 1) / tile;
   const bool lens = scene.camera.has_lens();
   RenderMonitor* const monitor = settings.monitor;
   const bool geometry = film.wants_geometry(), lighting = film.wants_lighting();
+  const bool transparent = settings.film_transparent;
   const std::size_t aov_doubles = static_cast<std::size_t>(film.aov_doubles());
   std::mutex report_mutex;
   NonFiniteReport report;
@@ -80,10 +86,15 @@ void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, cons
       const Vec2f film_px = corner + fs.offset;
       const Ray ray = lens ? scene.camera.generate_ray(film_px, sampler.get_2d()) : scene.camera.generate_ray(film_px);
       if (aov_doubles > 0) aov = AovSample{};
-      const RGB c = radiance(ray, sampler, lighting ? &aov : nullptr);
+      CameraEstimate e = radiance(ray, sampler, lighting ? &aov : nullptr);
+      if (transparent && !e.hit) {  // the background is not part of the image: only lights the scene
+        e.radiance = RGB();
+        if (lighting) aov = AovSample{};
+      }
+      const RGB c = e.radiance;
       const bool finite = c.is_finite();
       if (!finite) bad.record(x, y, s, c);
-      sum.add(finite ? c : RGB(), fs.weight);
+      sum.add(finite ? c : RGB(), fs.weight, e.hit);
       if (aov_doubles > 0) {
         if (geometry) first_hit_aovs(scene, ray, aov);
         film.accumulate(scratch.data(), aov, c, fs.weight, !finite);
