@@ -54,6 +54,41 @@ TEST(Transforms, TheCameraMovesAtImport) {
   EXPECT_TRUE(near(s->camera.position, {6, 0, 0}));
   EXPECT_TRUE(near(s->camera.look_at, {1, 0, 0}));
   EXPECT_TRUE(near(s->camera.up, {0, 1, 0}));
+  EXPECT_FALSE(s->camera.left_handed.value);
+}
+
+// As pbrt-v4's camera transform and Mitsuba 3's to_world: a uniform scale
+// scales the camera's lengths (so a scene scaled with its camera looks the
+// same; Mitsuba's orthographic camera scaled by s is 2s high), a mirror flips
+// the image's handedness, and a non-uniform scale is refused at the transform.
+TEST(Transforms, TheCameraKeepsItsPictureUnderScalesAndMirrors) {
+  auto camera = [](const std::string& keys) {
+    return R"({ "format": "pathtracer-scene", "version": 1,
+  "camera": { "position": [0, 0, 5], "look_at": [0, 0, 0], )" +
+           keys + " } }";
+  };
+  Diagnostics diag;
+  const auto lens = load(camera(R"("type": "thin_lens", "lens_radius": 0.1, "focus_distance": 5,
+      "transform": [ { "scale": 3 }, { "translate": [1, 0, 0] } ])"),
+                         diag);
+  ASSERT_TRUE(lens) << diag.format();
+  EXPECT_TRUE(near(lens->camera.position, {1, 0, 15}));
+  EXPECT_NEAR(lens->camera.lens_radius.value, 0.3f, 1e-6f);
+  EXPECT_NEAR(lens->camera.focus_distance.value, 15.0f, 1e-5f);
+  const auto ortho = load(camera(R"("type": "orthographic", "transform": [ { "scale": 0.5 } ])"), diag);
+  ASSERT_TRUE(ortho) << diag.format();
+  EXPECT_NEAR(ortho->camera.view_height.value, 1.0f, 1e-6f);
+  const auto mirrored = load(camera(R"("transform": [ { "scale": [-1, 1, 1] } ])"), diag);
+  ASSERT_TRUE(mirrored) << diag.format();
+  EXPECT_TRUE(mirrored->camera.left_handed.value);
+  const auto twice = load(camera(R"("handedness": "left", "transform": [ { "scale": [-2, 2, 2] } ])"), diag);
+  ASSERT_TRUE(twice) << diag.format();
+  EXPECT_FALSE(twice->camera.left_handed.value);
+
+  Diagnostics bad;
+  EXPECT_FALSE(load(camera(R"("transform": [ { "scale": [1, 2, 1] } ])"), bad));
+  EXPECT_NE(bad.format().find("t.json:2:73: error: a camera's transform must keep angles"), std::string::npos)
+      << bad.format();
 }
 
 // An infinite plane is no primitive of either backend, so its transform is
