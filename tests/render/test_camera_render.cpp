@@ -71,7 +71,8 @@ TEST(SphericalCameraRender, AnEnvironmentRendersAsItsOwnMap) {
 // camera sees of the scene itself. The spherical camera is turned by 30 degrees
 // about +y, so the map is read with rotation 30 (docs/scene-format.md). The
 // scene's emitters (flat colours, nothing lit) make the images piecewise
-// constant: only pixels on an outline may differ, by the map's resampling.
+// constant: only pixels on an outline may differ, by the map's resampling
+// (measured: 97.6-99.8% of the pixels within 0.02, means within 3e-4).
 TEST(SphericalCameraRender, ARenderServesAsTheEnvironmentMapOfItsScene) {
   const Vec3f eye(0.3f, 1.0f, 0.2f);
   const float turn = 30.0f;
@@ -121,8 +122,8 @@ TEST(SphericalCameraRender, ARenderServesAsTheEnvironmentMapOfItsScene) {
       for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(a.pixels[i][c] - b.pixels[i][c]));
       same += worst < 0.02f;
     }
-    EXPECT_GT(same, 0.93 * a.pixels.size()) << "view " << view.x << " " << view.y << " " << view.z;
-    EXPECT_NEAR(test::image_stats(a).mean, test::image_stats(b).mean, 0.01 * test::image_stats(a).mean);
+    EXPECT_GT(same, 0.95 * a.pixels.size()) << "view " << view.x << " " << view.y << " " << view.z;
+    EXPECT_NEAR(test::image_stats(a).mean, test::image_stats(b).mean, 2e-3 * test::image_stats(a).mean);
   }
   std::filesystem::remove(file);
 }
