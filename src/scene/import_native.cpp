@@ -386,6 +386,7 @@ void import_native(ImportContext& ctx) {
     for (std::size_t i = 0; i < shapes.size(); ++i) read_native_shape(ctx, shapes[i], i, materials, shape_material);
   }
   top.finish();
+  warn_unplaced_objects(ctx);
   assemble_materials(ctx, materials, shape_material, object_material);
 }
 

@@ -177,6 +177,22 @@ TEST(Instancing, UnknownObjectsAndNestingAreRefused) {
   EXPECT_NE(twice.format().find("already defined"), std::string::npos) << twice.format();
 }
 
+// An object no instance places is never drawn: a warning at the object (as
+// for a material no shape uses), and the scene still loads.
+TEST(Instancing, AnObjectNoInstancePlacesGetsAWarning) {
+  Diagnostics diag;
+  const auto s = load(scene(R"("objects": [ { "name": "used", "shapes": [
+      { "type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white" } ] },
+    { "name": "forgotten", "shapes": [ { "type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "red" } ] } ],
+  "shapes": [ { "type": "instance", "object": "used" } ])"),
+                      diag);
+  ASSERT_TRUE(s) << diag.format();
+  EXPECT_EQ(diag.warning_count(), 1) << diag.format();
+  EXPECT_NE(diag.format().find("t.json:6:5: warning: object 'forgotten' is not placed by any instance"),
+            std::string::npos)
+      << diag.format();
+}
+
 TEST(Instancing, ObjectShapesAreValidatedLikeOthers) {
   Diagnostics diag;
   EXPECT_FALSE(load(scene(R"("objects": [ { "name": "a", "shapes": [
