@@ -15,6 +15,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-jsonschema
   python3-matplotlib  # the study_quick test (tools/study/samplers/run_study.py --quick) plots; it skips without
+  blender  # Blender 3.4 reading our EXRs (tests/app/test_blender_exr.cpp); it skips without
 )
 
 missing=()
