@@ -122,6 +122,9 @@ TEST(Transforms, BadStepsAreRefusedAtTheirLocation) {
   };
   const Case cases[] = {
       {R"({ "scale": [1, 0, 1] })", "singular"},
+      {R"({ "matrix": [1,0,0,0, 2,0,0,0, 0,0,1,0, 0,0,0,1] })", "singular"},  // rank 2
+      {R"({ "matrix": [1,0,0,0, 0,1e400,0,0, 0,0,1,0, 0,0,0,1] })", "overflows to infinity"},
+      {R"({ "scale": 1e-100 }, { "scale": 1e-100 })", "singular or not finite"},
       {R"({ "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,1,1] })", "affine"},
       {R"({ "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0] })", "16 numbers"},
       {R"({ "rotate": { "axis": [0, 0, 0], "angle": 3 } })", "axis"},
