@@ -85,6 +85,7 @@ Outcome compare_nearest(const Accelerator& a, const Accelerator& b, const SceneG
   }
   if (!fa) return o;
   const float scale = std::max({ha.t, hb.t, length(ray.origin) / length(ray.dir), 1e-3f});
+  // The same primitive of another placement of the same object is a different surface.
   const bool same = ha.shape == hb.shape && ha.prim == hb.prim && ha.instance == hb.instance;
   if (!(std::fabs(ha.t - hb.t) <= tolerance * scale)) {
     o.verdict = Verdict::Distance;
