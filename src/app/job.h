@@ -83,8 +83,10 @@ int check_request(const Options& o, Messages& messages);
 std::optional<Job> prepare_job(const Options& o, Messages& messages, int& status);
 
 // Builds the render scene on --accel and checks the integrator can render it;
-// nullptr after adding why to `messages`.
-std::unique_ptr<RenderScene> build_job_scene(const Options& o, const Job& job, WorkerPool& pool, Messages& messages);
+// nullptr after adding why to `messages`. The shapes' geometry moves from
+// job.desc into the scene (build_render_scene_taking_geometry: a large mesh is
+// held once); nothing after the build reads it from the description.
+std::unique_ptr<RenderScene> build_job_scene(const Options& o, Job& job, WorkerPool& pool, Messages& messages);
 
 // Reads --resume's film state into `film` (nothing without --resume or for a
 // replay); false with `error`.

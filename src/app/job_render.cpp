@@ -9,12 +9,13 @@
 
 namespace pt {
 
-std::unique_ptr<RenderScene> build_job_scene(const Options& o, const Job& job, WorkerPool& pool, Messages& m) {
+std::unique_ptr<RenderScene> build_job_scene(const Options& o, Job& job, WorkerPool& pool, Messages& m) {
   AccelKind accel = AccelKind::Bvh;
   parse_accel_kind(o.accel, accel);  // already validated by CLI11
   Diagnostics diag;
   diag.set_warnings_as_errors(o.strict);
-  std::unique_ptr<RenderScene> scene = build_render_scene(job.desc, job.settings.build_options(accel), pool, diag);
+  std::unique_ptr<RenderScene> scene =
+      build_render_scene_taking_geometry(job.desc, job.settings.build_options(accel), pool, diag);
   m.add(diag, o.quiet);
   if (!scene) return nullptr;
   const RenderSettings& settings = job.settings;

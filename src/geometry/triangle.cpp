@@ -110,7 +110,7 @@ bool intersect_triangle(Vec3f p0, Vec3f p1, Vec3f p2, const Ray& ray, PrimHit& h
   // Exactly degenerate triangles (repeated or collinear vertices) can pass the
   // edge tests with a rounding-noise determinant; they never hit. Checked only
   // here, off the miss path.
-  if (cross(p1 - p0, p2 - p0) == Vec3f(0.0f)) return false;
+  if (degenerate_triangle(p0, p1, p2)) return false;
 
   hit.t = t;
   hit.uv = {e1 / det, e2 / det};

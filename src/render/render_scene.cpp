@@ -203,15 +203,18 @@ std::string shape_name(const ShapeDesc& s, std::size_t index) {
 
 // The shapes (object id = index in desc.shapes, then the objects' shapes in
 // order); a transformed shape becomes the one instance of a one-shape
-// prototype, each object a prototype, each instance an Instance.
-bool add_geometry(const SceneDescription& desc, bool need_default, RenderScene& scene, Diagnostics& diag) {
+// prototype, each object a prototype, each instance an Instance. Desc is a
+// const SceneDescription (each shape's geometry is copied) or a mutable one
+// (moved: a mesh's arrays change hands, no copy; build_render_scene_taking_geometry).
+template <class Desc>
+bool add_geometry(Desc& desc, bool need_default, RenderScene& scene, Diagnostics& diag) {
   SceneGeometry& g = scene.geometry;
   NameList names(scene.names.objects);
   bool ok = true;
-  auto add_shape = [&](const ShapeDesc& s, const std::string& name) {
+  auto add_shape = [&](auto& s, const std::string& name) {
     const int material = shape_material_index(desc, s, need_default, diag);
     ok = ok && material >= 0;
-    g.shapes.push_back(s.geometry);
+    g.shapes.push_back(std::move(s.geometry));  // a copy when s is const
     scene.shape_material.push_back(std::max(material, 0));
     scene.names.shape_object.push_back(names.index(name));
     return static_cast<uint32_t>(g.shapes.size() - 1);
@@ -225,16 +228,16 @@ bool add_geometry(const SceneDescription& desc, bool need_default, RenderScene& 
   g.shapes.reserve(desc.shapes.size());
   scene.shape_material.reserve(desc.shapes.size());
   for (std::size_t i = 0; i < desc.shapes.size(); ++i) {
-    const ShapeDesc& s = desc.shapes[i];
+    auto& s = desc.shapes[i];
     const uint32_t id = add_shape(s, shape_name(s, i));
     if (!s.transform) continue;
     g.prototypes.push_back({id});
     add_instance(static_cast<uint32_t>(g.prototypes.size() - 1), s.transform, -1, shape_name(s, i));
   }
   const auto first_object = static_cast<uint32_t>(g.prototypes.size());
-  for (const ObjectDesc& o : desc.objects) {
+  for (auto& o : desc.objects) {
     std::vector<uint32_t> ids;
-    for (const ShapeDesc& s : o.shapes) ids.push_back(add_shape(s, o.name));  // seen through instances only
+    for (auto& s : o.shapes) ids.push_back(add_shape(s, o.name));  // seen through instances only
     g.prototypes.push_back(std::move(ids));
   }
   for (const InstanceDesc& inst : desc.instances) {
@@ -285,8 +288,12 @@ RGB RenderScene::background_image_at(Vec2f film_px) const {
   return image.lookup(Vec2f(u, v));
 }
 
-std::unique_ptr<RenderScene> build_render_scene(const SceneDescription& desc, const BuildOptions& options,
-                                                WorkerPool& pool, Diagnostics& diag) {
+namespace {
+
+// build_render_scene for a const description (its geometry copied) or a
+// mutable one (its geometry moved; see add_geometry).
+template <class Desc>
+std::unique_ptr<RenderScene> build(Desc& desc, const BuildOptions& options, WorkerPool& pool, Diagnostics& diag) {
   if (desc.film.width.value <= 0 || desc.film.height.value <= 0) {
     diag.error(desc.film.width.where, "film resolution must be positive, got " +
                                           std::to_string(desc.film.width.value) + "x" +
@@ -345,6 +352,18 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDescription& desc, co
   for (const LightDesc& l : desc.lights)
     if (const auto* ambient = std::get_if<AmbientLightDesc>(&l)) scene->ambient += ambient->intensity.value;
   return scene;
+}
+
+}  // namespace
+
+std::unique_ptr<RenderScene> build_render_scene(const SceneDescription& desc, const BuildOptions& options,
+                                                WorkerPool& pool, Diagnostics& diag) {
+  return build(desc, options, pool, diag);
+}
+
+std::unique_ptr<RenderScene> build_render_scene_taking_geometry(SceneDescription& desc, const BuildOptions& options,
+                                                                WorkerPool& pool, Diagnostics& diag) {
+  return build(desc, options, pool, diag);
 }
 
 }  // namespace pt

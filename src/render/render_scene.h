@@ -126,5 +126,12 @@ void resolve_resolution(const FilmDesc& film, const BuildOptions& options, int& 
 // (texture that fails to decode, accelerator failure, ...).
 std::unique_ptr<RenderScene> build_render_scene(const SceneDescription& desc, const BuildOptions& options,
                                                 WorkerPool& pool, Diagnostics& diag);
+// As build_render_scene, but each shape's geometry (a mesh's vertex, index,
+// normal and uv arrays) is moved into the render scene instead of copied:
+// `desc` keeps everything else, its shapes are left without geometry. For a
+// caller that does not need the description's geometry afterwards (the
+// pathtracer): a large mesh is then held once, not twice (tools/bench/scale).
+std::unique_ptr<RenderScene> build_render_scene_taking_geometry(SceneDescription& desc, const BuildOptions& options,
+                                                                WorkerPool& pool, Diagnostics& diag);
 
 }  // namespace pt

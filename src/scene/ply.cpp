@@ -11,6 +11,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <limits>
@@ -387,6 +388,9 @@ bool read_vertices(Reader& r, const Element& e, TriangleMesh& out, PlyError& err
     }
   }
   // Counts were checked against the file size: these allocations are bounded.
+  // One spare position: the Embree backend can then share the buffer (it reads
+  // 16 bytes for the last vertex) instead of copying it.
+  out.positions.reserve(e.count + 1);
   out.positions.resize(e.count);
   if (has_normals) out.normals.resize(e.count);
   if (has_uvs) out.uvs.resize(e.count);
@@ -551,10 +555,22 @@ bool load_ply(const std::string& path, TriangleMesh& out, PlyError& error) {
     return fail(error, "cannot open '" + path + "': " + why);
   std::ifstream in(path, std::ios::binary);
   if (!in) return fail(error, "cannot open '" + path + "'");
-  std::ostringstream ss;
-  ss << in.rdbuf();
+  // One buffer of the file's size (a large mesh's file is its largest
+  // allocation while it loads); a stream without a size (a pipe) is read whole.
+  std::string bytes;
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::is_regular_file(path, ec) ? std::filesystem::file_size(path, ec) : 0;
+  if (!ec && size > 0) {
+    bytes.resize(size);
+    in.read(bytes.data(), static_cast<std::streamsize>(size));
+    bytes.resize(static_cast<std::size_t>(in.gcount()));
+  } else {
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    bytes = std::move(ss).str();
+  }
   if (in.bad()) return fail(error, "cannot read '" + path + "'");
-  return parse_ply(ss.str(), out, error);
+  return parse_ply(bytes, out, error);
 }
 
 }  // namespace pt

@@ -26,9 +26,9 @@ struct Backend {
   bvh::Isa isa = bvh::Isa::Auto;
   std::string name;
   // Our BVH finds every hit with the brute-force loop's routines, so it must
-  // agree exactly. Embree is held to less: if it tests triangles with its own
-  // (Plücker) routine, its answers differ where a ray passes within rounding
-  // of a triangle's boundary, and its t is less accurate for slivers.
+  // agree exactly. Embree is held to less: it tests triangles with its own
+  // (Plücker) routine, so its answers differ where a ray passes within
+  // rounding of a triangle's boundary, and its t is less accurate for slivers.
   bool exact() const { return kind == AccelKind::Bvh; }
 };
 

@@ -1,17 +1,31 @@
 // Every regression scene (the seed scenes in ../shared, skipped if absent, and
 // scenes/*.json) rendered with Embree and with our BVH, at reduced resolution
-// and at most 16 samples per pixel: the images must agree within float
-// tolerance. The backends find the same hits (the BVH through the reference
-// routines, Embree through its own triangle test, whose t differs from ours in
-// the last bits), so paths differ only by rounding; the tolerance allows that:
-// a mean absolute difference under 1e-4 and fewer than 0.1% of the channel
-// values differing by more than 1e-2 (a hit that flips at a silhouette).
+// and at most 16 samples per pixel: the images must agree statistically, not
+// bit for bit. The backends do not find the same hits ray for ray: Embree tests
+// mesh triangles with its own test, whose distances differ from ours in the
+// last bits and which disagrees with ours on a ray passing within rounding of
+// a vertex or an edge (accel_crosscheck: 0 to 1 ray in 10^5 on the benchmark
+// scenes; docs/geometry.md). A pixel's samples use the same random numbers with
+// both backends, so most pixels agree to rounding and a few paths go another
+// way. Tolerances, per scene:
+//  - every value finite;
+//  - fewer than 0.1% of the channel values differ by more than 1e-2 (the paths
+//    that went another way; a camera ray flipping at a triangle's edge changes
+//    a whole pixel);
+//  - the mean absolute difference is under 1e-3;
+//  - per channel, the image means agree within 0.5% (plus 1e-6).
+// Measured: at most 0.038% of the values beyond 1e-2 (7 pixels of the CGR
+// binary_primitives scene, whose triangle has an edge on the image's centre
+// line, where 16 samples per pixel place rays exactly), mean absolute difference
+// up to 3.8e-4 there and under 2e-8 elsewhere, image means within 0.34%
+// there and 4e-8 elsewhere.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -84,18 +98,29 @@ TEST_P(BackendImages, EmbreeAndBvhAgree) {
   ASSERT_TRUE(render(*desc, AccelKind::Embree, embree, error)) << error;
   ASSERT_TRUE(render(*desc, AccelKind::Bvh, bvh, error)) << error;
   ASSERT_EQ(embree.pixels.size(), bvh.pixels.size());
-  double sum = 0;
-  std::size_t outliers = 0;
+  double sum = 0, mean_e[3] = {0, 0, 0}, mean_b[3] = {0, 0, 0};
+  std::size_t outliers = 0, non_finite = 0;
   for (std::size_t i = 0; i < embree.pixels.size(); ++i) {
     for (int ch = 0; ch < 3; ++ch) {
-      const float d = std::fabs(embree.pixels[i][ch] - bvh.pixels[i][ch]);
+      const float e = embree.pixels[i][ch], b = bvh.pixels[i][ch];
+      non_finite += (std::isfinite(e) ? 0 : 1) + (std::isfinite(b) ? 0 : 1);
+      const float d = std::fabs(e - b);
       sum += d;
-      if (!(d <= 1e-2f)) ++outliers;  // NaN counts
+      if (!(d <= 1e-2f)) ++outliers;
+      mean_e[ch] += e;
+      mean_b[ch] += b;
     }
   }
   const double values = 3.0 * static_cast<double>(embree.pixels.size());
-  EXPECT_LT(sum / values, 1e-4) << file;
+  EXPECT_EQ(non_finite, 0u) << file;
   EXPECT_LT(static_cast<double>(outliers), 1e-3 * values) << file << ": " << outliers << " outliers";
+  EXPECT_LT(sum / values, 1e-3) << file;
+  for (int ch = 0; ch < 3; ++ch) {
+    const double e = mean_e[ch] / values * 3.0, b = mean_b[ch] / values * 3.0;
+    EXPECT_LE(std::fabs(e - b), 5e-3 * std::max(e, b) + 1e-6) << file << " channel " << ch;
+  }
+  std::cout << "[ images   ] " << fs::path(file).filename().string() << ": " << outliers << " of " << values
+            << " values differ by more than 1e-2, mean absolute difference " << sum / values << "\n";
 }
 
 std::string case_name(const ::testing::TestParamInfo<std::string>& info) {

@@ -487,7 +487,7 @@ TEST_P(Backends, LongThinTriangles) {
     const Vec3f origin = target + rng.uniform(1.0f, 10.0f) * rng.unit_vector();
     rays.push_back(Ray{origin, target - origin, 0.0f, 2.0f});
   }
-  // If Embree tests triangles with its own (Plücker) routine, it computes a
+  // Embree tests triangles with its own (Plücker) routine: it computes a
   // sliver's plane from the cross product of a long and a short edge, which
   // cancels: its t is then off by up to ~10% here, and it reports hits up to
   // a few per cent (in barycentric terms) outside the sliver. And where the

@@ -1,20 +1,27 @@
-// Embree 3 backend: Embree's BVH over user geometry calling src/geometry for
-// every shape, meshes included (one primitive per triangle), so both backends
-// answer with the same watertight routines (docs/geometry.md).
+// Embree 3 backend: meshes are Embree's own triangle geometry (its SIMD
+// triangle test; triangle_geometry.h), the analytic shapes user geometry
+// calling src/geometry (user_geometry.h); transforms are Embree instances.
 // geomID == object id (rtcAttachGeometryByID), primID == triangle index.
+// Where Embree's triangle test and ours differ, and by how much: docs/geometry.md.
 #include "accel/embree/embree_accel.h"
 
 #include <embree3/rtcore.h>
 
+#include <immintrin.h>
+
 #include <algorithm>
+#include <bit>
 #include <cassert>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <variant>
 
 #include "accel/embree/embree_device.h"
+#include "accel/embree/triangle_geometry.h"
 #include "accel/embree/user_geometry.h"
 #include "core/parallel.h"
 #include "geometry/float_util.h"
@@ -32,14 +39,32 @@ constexpr unsigned kMask = 0xFFFFFFFFu;
 // in magnitude; beyond that its behaviour is undefined (Debian's build asserts).
 constexpr float kEmbreeLargest = 1.844e18f;
 
+// Whether Embree can take the ray and it can hit anything: every origin and
+// direction component finite and within kEmbreeLargest, a non-zero direction,
+// a non-empty interval (tmin < tmax, false for NaN). This runs for every ray,
+// so the six magnitudes are tested as two SSE vectors (the Ray's eight floats:
+// origin, direction, tmin, tmax); a comparison with NaN is false, so NaN fails
+// the range test.
+inline bool embree_can_take(const Ray& ray) {
+  static_assert(sizeof(Ray) == 8 * sizeof(float) && offsetof(Ray, dir) == 3 * sizeof(float) &&
+                offsetof(Ray, tmin) == 6 * sizeof(float));
+  const __m128 od = _mm_loadu_ps(&ray.origin.x);  // ox oy oz dx
+  const __m128 dt = _mm_loadu_ps(&ray.dir.y);     // dy dz tmin tmax
+  const __m128 magnitude = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+  const __m128 largest = _mm_set1_ps(kEmbreeLargest);
+  const int in_range = _mm_movemask_ps(_mm_cmple_ps(_mm_and_ps(od, magnitude), largest)) |
+                       (_mm_movemask_ps(_mm_cmple_ps(_mm_and_ps(dt, magnitude), largest)) & 3) << 4;
+  const int zero_dir = (_mm_movemask_ps(_mm_cmpeq_ps(od, _mm_setzero_ps())) >> 3) |
+                       (_mm_movemask_ps(_mm_cmpeq_ps(dt, _mm_setzero_ps())) & 3) << 1;
+  return in_range == 0x3f && zero_dir != 7 && ray.tmin < ray.tmax;
+}
+
 // Converts our ray (open interval tmin < t < tmax) to Embree's (closed
 // interval, tnear >= 0). Returns false for rays that cannot hit anything:
 // NaN or infinite origin or direction, zero direction, empty interval; and for
 // rays Embree cannot take (a component beyond kEmbreeLargest).
-bool to_embree(const Ray& ray, RTCRay& out) {
-  if (!is_finite(ray.origin) || !is_finite(ray.dir) || ray.dir == Vec3f(0.0f)) return false;
-  if (max_component(abs(ray.origin)) > kEmbreeLargest || max_component(abs(ray.dir)) > kEmbreeLargest) return false;
-  if (!(ray.tmin < ray.tmax)) return false;  // also NaN
+inline bool to_embree(const Ray& ray, RTCRay& out) {
+  if (!embree_can_take(ray)) return false;
   out.org_x = ray.origin.x;
   out.org_y = ray.origin.y;
   out.org_z = ray.origin.z;
@@ -47,9 +72,11 @@ bool to_embree(const Ray& ray, RTCRay& out) {
   out.dir_y = ray.dir.y;
   out.dir_z = ray.dir.z;
   // One ulp inside the open interval. A non-positive tmin becomes the smallest
-  // normal float (Embree requires tnear >= 0 and FTZ flushes denormals).
+  // normal float (Embree requires tnear >= 0 and FTZ flushes denormals). An
+  // infinite tmax stays infinite: Embree never reports a hit at t = inf.
+  if (!(ray.tmax > std::numeric_limits<float>::min())) return false;  // nothing lies in (0, tmax)
   out.tnear = ray.tmin > 0.0f ? fp::next_float_up(ray.tmin) : std::numeric_limits<float>::min();
-  out.tfar = fp::next_float_down(ray.tmax);
+  out.tfar = ray.tmax < kInfinity ? std::bit_cast<float>(std::bit_cast<uint32_t>(ray.tmax) - 1) : ray.tmax;
   if (!(out.tnear <= out.tfar)) return false;
   out.time = 0.0f;
   out.mask = kMask;
@@ -58,28 +85,16 @@ bool to_embree(const Ray& ray, RTCRay& out) {
   return true;
 }
 
-// Embree's own triangle geometry over the mesh's buffers (MeshTriangles::Native).
-RTCGeometry native_triangles(RTCDevice device, const TriangleMesh& m) {
-  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  if (geom == nullptr) return nullptr;
-  const std::size_t nv = m.positions.size();
-  if (m.positions.capacity() > nv) {  // Embree reads 16 bytes per vertex: the spare element covers the last
-    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.positions.data(), 0,
-                               sizeof(Vec3f), nv);
-  } else if (auto* dst = static_cast<Vec3f*>(
-                 rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(Vec3f), nv))) {
-    std::copy(m.positions.begin(), m.positions.end(), dst);
-  }
-  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.indices.data(), 0,
-                             3 * sizeof(uint32_t), m.triangle_count());
-  rtcSetGeometryMask(geom, kMask);
-  rtcCommitGeometry(geom);
-  return geom;
+// The geometry of one shape, not yet committed: Embree's triangles for a mesh,
+// user geometry for everything else.
+RTCGeometry new_geometry(RTCDevice device, const Shape& shape, TriangleBuffers& buffers) {
+  if (const auto* mesh = std::get_if<TriangleMesh>(&shape)) return new_triangle_geometry(device, *mesh, buffers);
+  return new_user_geometry(device, shape);
 }
 
 class EmbreeAccelerator final : public Accelerator {
  public:
-  explicit EmbreeAccelerator(MeshTriangles meshes) : meshes_(meshes) {}
+  EmbreeAccelerator() = default;
   ~EmbreeAccelerator() override {
     if (scene_ != nullptr) rtcReleaseScene(scene_);
     for (RTCScene s : prototypes_) {
@@ -95,7 +110,6 @@ class EmbreeAccelerator final : public Accelerator {
     RTCRayHit rh;
     if (!to_embree(ray, rh.ray)) return false;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
@@ -123,10 +137,10 @@ class EmbreeAccelerator final : public Accelerator {
 
  private:
   RTCScene new_scene(Diagnostics& diag);
+  bool attach_shapes(const SceneGeometry& geometry, Diagnostics& diag);
   bool attach_shape(RTCScene scene, const SceneGeometry& geometry, uint32_t object, Diagnostics& diag);
   bool attach_instance(const SceneGeometry& geometry, uint32_t instance, Diagnostics& diag);
 
-  MeshTriangles meshes_;
   Device device_;  // destroyed after the scenes are released
   RTCScene scene_ = nullptr;
   // One scene per prototype, placed in scene_ by instance geometries with
@@ -145,8 +159,9 @@ bool report_device_errors(const Device& device, Diagnostics& diag) {
 
 // A scene with the flags every scene of this backend has. ROBUST: the
 // traversal avoids accuracy-reducing shortcuts (node boxes touched only at a
-// corner, where a ray aimed at a mesh vertex passes). HIGH: the best tree
-// Embree builds over user geometry.
+// corner, where a ray aimed at a mesh vertex passes), and triangles are tested
+// with Embree's Plücker test, watertight along shared edges. HIGH: spatial
+// splits for triangles, the best tree Embree builds.
 RTCScene EmbreeAccelerator::new_scene(Diagnostics& diag) {
   RTCScene scene = rtcNewScene(device_.get());
   if (scene == nullptr) {
@@ -160,16 +175,22 @@ RTCScene EmbreeAccelerator::new_scene(Diagnostics& diag) {
 
 bool EmbreeAccelerator::attach_shape(RTCScene scene, const SceneGeometry& geometry, uint32_t object,
                                      Diagnostics& diag) {
-  const Shape& shape = geometry.shapes[object];
-  const auto* mesh = std::get_if<TriangleMesh>(&shape);
-  RTCGeometry geom = mesh != nullptr && meshes_ == MeshTriangles::Native ? native_triangles(device_.get(), *mesh)
-                                                                        : new_user_geometry(device_.get(), shape);
+  TriangleBuffers buffers;
+  RTCGeometry geom = new_geometry(device_.get(), geometry.shapes[object], buffers);
   if (geom == nullptr) {
     if (!report_device_errors(device_, diag)) {
       diag.error(SourceLocation{}, "Embree: cannot create the geometry of shape " + std::to_string(object));
     }
     return false;
   }
+  // What every geometry gets, whatever its type. A per-geometry filter function
+  // (e.g. alpha cutouts: rtcSetGeometryIntersectFilterFunction and
+  // rtcSetGeometryOccludedFilterFunction, with rtcSetGeometryUserData on a
+  // triangle geometry, whose user data is free) is set here, before the commit;
+  // user geometry's callbacks would have to call rtcFilterIntersection /
+  // rtcFilterOcclusion for it to run.
+  rtcSetGeometryMask(geom, kMask);
+  rtcCommitGeometry(geom);
   rtcAttachGeometryByID(scene, geom, object);
   rtcReleaseGeometry(geom);
   return true;
@@ -191,15 +212,11 @@ bool EmbreeAccelerator::attach_instance(const SceneGeometry& geometry, uint32_t 
   return true;
 }
 
-bool EmbreeAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, Diagnostics& diag) {
-  if (report_device_errors(device_, diag) || !device_.valid()) return false;
-  assert(geometry_usable(geometry));  // Embree must never see NaN bounds or bad indices
-  scene_ = new_scene(diag);
-  if (scene_ == nullptr) return false;
-  std::size_t primitives = 0;
+// Every shape into its scene: direct shapes into scene_, each prototype's into
+// a scene of its own.
+bool EmbreeAccelerator::attach_shapes(const SceneGeometry& geometry, Diagnostics& diag) {
   const std::vector<bool> direct = placed_directly(geometry);
   for (std::size_t i = 0; i < geometry.shapes.size(); ++i) {
-    primitives += primitive_count(geometry.shapes[i]);
     if (direct[i] && !attach_shape(scene_, geometry, static_cast<uint32_t>(i), diag)) return false;
   }
   for (const std::vector<uint32_t>& proto : geometry.prototypes) {
@@ -209,13 +226,24 @@ bool EmbreeAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, D
       if (!attach_shape(prototypes_.back(), geometry, s, diag)) return false;
     }
   }
+  return true;
+}
+
+bool EmbreeAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, Diagnostics& diag) {
+  if (report_device_errors(device_, diag) || !device_.valid()) return false;
+  assert(geometry_usable(geometry));  // Embree must never see NaN bounds or bad indices
+  scene_ = new_scene(diag);
+  if (scene_ == nullptr) return false;
   instance_base_ = static_cast<uint32_t>(geometry.shapes.size());
   bounds_ = world_bounds(geometry);
 
   const auto start = std::chrono::steady_clock::now();
-  // Embree's TBB tasking runs the parallel build inside the pool's arena.
+  // Inside the pool's arena: the meshes' parallel preparation
+  // (triangle_geometry.cpp) and Embree's TBB-tasking build.
   bool ok = true;
   pool.run([&] {
+    ok = attach_shapes(geometry, diag);
+    if (!ok) return;
     for (RTCScene p : prototypes_) rtcCommitScene(p);
     for (std::size_t i = 0; i < geometry.instances.size() && ok; ++i) {
       ok = attach_instance(geometry, static_cast<uint32_t>(i), diag);
@@ -225,18 +253,17 @@ bool EmbreeAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, D
   const auto stop = std::chrono::steady_clock::now();
   if (!ok || report_device_errors(device_, diag)) return false;
 
-  stats_.backend = device_.description() + (meshes_ == MeshTriangles::Native ? " native triangles" : "");
+  stats_.backend = device_.description();
   stats_.build_seconds = std::chrono::duration<double>(stop - start).count();
   stats_.memory_bytes = device_.bytes_in_use();
-  stats_.primitive_count = primitives;
+  for (const Shape& shape : geometry.shapes) stats_.primitive_count += primitive_count(shape);
   return true;
 }
 
 }  // namespace
 
-std::unique_ptr<Accelerator> build(const SceneGeometry& geometry, WorkerPool& pool, Diagnostics& diag,
-                                   MeshTriangles meshes) {
-  auto accel = std::make_unique<EmbreeAccelerator>(meshes);
+std::unique_ptr<Accelerator> build(const SceneGeometry& geometry, WorkerPool& pool, Diagnostics& diag) {
+  auto accel = std::make_unique<EmbreeAccelerator>();
   if (!accel->build(geometry, pool, diag)) return nullptr;
   return accel;
 }

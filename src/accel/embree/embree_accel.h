@@ -1,4 +1,6 @@
-// The Embree 3 backend behind build_accelerator(AccelKind::Embree, ...).
+// The Embree 3 backend behind build_accelerator(AccelKind::Embree, ...):
+// meshes as Embree's own triangle geometry, the analytic shapes as user
+// geometry calling src/geometry (docs/geometry.md, "Embree backend").
 #pragma once
 
 #include <memory>
@@ -7,17 +9,6 @@
 
 namespace pt::embree {
 
-// How triangle meshes reach Embree.
-enum class MeshTriangles {
-  // User geometry, one primitive per triangle, calling our watertight routine
-  // (the renderer's --accel=embree; docs/geometry.md says why).
-  Watertight,
-  // Embree's own triangle geometry and intersector (RTC_GEOMETRY_TYPE_TRIANGLE):
-  // faster, but not watertight at vertices. The accelerator benchmark's yardstick.
-  Native,
-};
-
-std::unique_ptr<Accelerator> build(const SceneGeometry& geometry, WorkerPool& pool, Diagnostics& diag,
-                                   MeshTriangles meshes = MeshTriangles::Watertight);
+std::unique_ptr<Accelerator> build(const SceneGeometry& geometry, WorkerPool& pool, Diagnostics& diag);
 
 }  // namespace pt::embree

@@ -1,5 +1,6 @@
 #include "accel/embree/user_geometry.h"
 
+#include <type_traits>
 #include <variant>
 
 #include "geometry/float_util.h"
@@ -67,6 +68,7 @@ void occluded_callback(const RTCOccludedFunctionNArguments* args) {
 
 template <class S>
 RTCGeometry make(RTCDevice device, const S& shape) {
+  if constexpr (std::is_same_v<S, TriangleMesh>) return nullptr;  // triangle_geometry.h
   RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
   if (geom == nullptr) return nullptr;
   rtcSetGeometryUserPrimitiveCount(geom, primitive_count(shape));
@@ -74,8 +76,6 @@ RTCGeometry make(RTCDevice device, const S& shape) {
   rtcSetGeometryBoundsFunction(geom, &bounds_callback<S>, nullptr);
   rtcSetGeometryIntersectFunction(geom, &intersect_callback<S>);
   rtcSetGeometryOccludedFunction(geom, &occluded_callback<S>);
-  rtcSetGeometryMask(geom, 0xFFFFFFFFu);
-  rtcCommitGeometry(geom);
   return geom;
 }
 

@@ -1,8 +1,8 @@
-// Embree user geometry for every shape: the bounds, intersect and occluded
-// callbacks call the src/geometry routines directly (one template instance per
-// shape type: no virtual calls, no allocation per ray). A mesh is one
-// geometry with one primitive per triangle, intersected by our watertight
-// triangle routine (docs/geometry.md says why not Embree's own).
+// Embree user geometry for the analytic shapes (spheres, quads, cylinders,
+// discs, polygons, cones): the bounds, intersect and occluded callbacks call
+// the src/geometry routines directly (one template instance per shape type: no
+// virtual calls, no allocation per ray). Meshes are Embree's own triangle
+// geometry (triangle_geometry.h).
 #pragma once
 
 #include <embree3/rtcore.h>
@@ -11,9 +11,11 @@
 
 namespace pt::embree {
 
-// A committed user geometry (primitive_count(shape) primitives) whose user
-// data points at the alternative held by `shape` (which must outlive it). The
-// caller attaches and releases it.
+// A new, uncommitted user geometry (primitive_count(shape) primitives) whose
+// user data points at the alternative held by `shape` (which must outlive it);
+// null for a TriangleMesh (not user geometry) or on an Embree error. The caller
+// sets what every geometry gets (mask, filter functions), commits, attaches and
+// releases it.
 RTCGeometry new_user_geometry(RTCDevice device, const Shape& shape);
 
 }  // namespace pt::embree

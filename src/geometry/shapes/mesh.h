@@ -20,7 +20,16 @@ struct TriangleMesh {
 };
 
 // Watertight ray/triangle test (Woop, Benthin, Wald 2013). uv = barycentrics of p1, p2.
+// Never hits an exactly degenerate triangle (degenerate_triangle below).
 bool intersect_triangle(Vec3f p0, Vec3f p1, Vec3f p2, const Ray& ray, PrimHit& hit);
+
+// Zero area in float (repeated or exactly collinear corners): never hit by any
+// backend (the Embree backend leaves such triangles out of Embree's buffers).
+inline bool degenerate_triangle(Vec3f p0, Vec3f p1, Vec3f p2) { return cross(p1 - p0, p2 - p0) == Vec3f(0.0f); }
+inline bool degenerate_triangle(const TriangleMesh& m, std::size_t tri) {
+  const uint32_t* idx = &m.indices[3 * tri];
+  return degenerate_triangle(m.positions[idx[0]], m.positions[idx[1]], m.positions[idx[2]]);
+}
 
 Bounds3f bounds(const TriangleMesh& m);                 // every referenced vertex
 Bounds3f bounds(const TriangleMesh& m, uint32_t tri);   // one triangle

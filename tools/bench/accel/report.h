@@ -41,6 +41,7 @@ struct Settings {
   int width = 0, height = 0;
   int builds = 0, repetitions = 0;
   std::size_t sphere_triangles = 0;
+  std::string clock = "wall";  // "wall" or "cpu" (process CPU time)
 };
 
 struct Report {

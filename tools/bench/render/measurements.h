@@ -39,6 +39,8 @@ struct Throughput {
   int spp = 0;
   double seconds = 0;
   double samples_per_second = 0;  // camera samples (paths) per second
+  double cpu_seconds = 0;         // CPU time of the process (every thread) during the render
+  double samples_per_cpu_second = 0;
 };
 
 Throughput throughput(const LoadedScene& s, WorkerPool& pool, int spp, uint64_t seed);

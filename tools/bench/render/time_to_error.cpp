@@ -58,11 +58,15 @@ Throughput throughput(const LoadedScene& s, WorkerPool& pool, int spp, uint64_t 
   Throughput out;
   const auto integrator = s.settings.make_integrator(settings_for(s, spp, 0, seed));
   Film film(s.scene->width, s.scene->height);
+  const double cpu = process_cpu_seconds();
   const auto t = Clock::now();
   integrator->render(*s.scene, film, pool);
   out.seconds = seconds_since(t);
+  out.cpu_seconds = process_cpu_seconds() - cpu;
   out.spp = spp;
-  out.samples_per_second = static_cast<double>(s.scene->width) * s.scene->height * spp / out.seconds;
+  const double samples = static_cast<double>(s.scene->width) * s.scene->height * spp;
+  out.samples_per_second = samples / out.seconds;
+  out.samples_per_cpu_second = samples / out.cpu_seconds;
   return out;
 }
 

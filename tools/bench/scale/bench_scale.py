@@ -1,0 +1,255 @@
+#!/usr/bin/env python3
+"""Load-and-build time and peak memory per triangle of large inputs, for both
+backends (issue 18, deliverable 4), written to docs/bench/scale.{json,md}.
+
+Inputs (made in --work, not committed):
+  - grid:       a displaced grid of --triangles triangles (10 million) as a
+                binary PLY (gen_grid_ply), in a native scene;
+  - sponza:     Crytek Sponza's OBJ (../shared/assets/sponza) in a native scene;
+  - bunny-obj:  the Stanford bunny's OBJ (../shared/assets/meshes) in a native scene;
+  - bunny-cgr:  the same 69,451 triangles written as CGR "triangle" shapes, each
+                with its inline material, as a course file holds them;
+  - baseline:   one triangle in a native scene: the process's own footprint.
+Each is rendered by the pathtracer at 16x16, 1 spp, with --report; the run
+record gives the time of each phase (parse, mesh load, scene build, accel
+build: "load and build" is their sum) and the process's peak RSS
+(getrusage). Memory per triangle is (peak RSS - the baseline's peak RSS with
+the same backend) / triangles. The runs alternate input by input and backend
+by backend, --runs rounds; medians are reported with their range. The process
+CPU time of each run (rusage of the child) is recorded too: on a machine shared
+with other jobs, wall-clock times include the waiting.
+
+  python3 tools/bench/scale/bench_scale.py [--build build] [--work /tmp/pt-scale] [--runs 3]
+          [--threads 2] [--triangles 10000000] [--inputs grid,sponza,bunny-obj,bunny-cgr]
+          [--json docs/bench/scale.json] [--markdown docs/bench/scale.md] [--note TEXT]
+"""
+import argparse
+import json
+import os
+import platform
+import resource
+import statistics
+import subprocess
+import sys
+import time
+
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+SHARED = os.path.join(os.path.dirname(REPO), "shared")
+SPONZA_OBJ = os.path.join(SHARED, "assets", "sponza", "sponza.obj")
+BUNNY_OBJ = os.path.join(SHARED, "assets", "meshes", "stanford-bunny.obj")
+PHASES = ["parse", "mesh_load", "scene_build", "accel_build"]
+COURSE_MATERIAL = {"ks": 0.1, "kd": 0.9, "specularexponent": 20, "diffusecolor": [0.8, 0.8, 0.8],
+                   "specularcolor": [1.0, 1.0, 1.0], "isreflective": False, "reflectivity": 1.0,
+                   "isrefractive": False, "refractiveindex": 1.0}
+
+
+def native_scene(path, shapes, camera):
+    scene = {"format": "pathtracer-scene", "version": 1, "camera": camera,
+             "film": {"width": 16, "height": 16}, "render": {"integrator": "path", "max_depth": 2, "spp": 1},
+             "materials": {"white": {"type": "lambert", "diffuse": [0.7, 0.7, 0.7]}},
+             "lights": [{"type": "point", "position": [0, 10, 0], "intensity": [1, 1, 1]}],
+             "shapes": shapes}
+    with open(path, "w") as f:
+        json.dump(scene, f, indent=1)
+
+
+def obj_triangles(path):
+    vertices, triangles = [], []
+    with open(path) as f:
+        for line in f:
+            parts = line.split()
+            if not parts:
+                continue
+            if parts[0] == "v":
+                vertices.append([float(x) for x in parts[1:4]])
+            elif parts[0] == "f":
+                idx = [int(p.split("/")[0]) - 1 for p in parts[1:]]
+                for k in range(1, len(idx) - 1):
+                    triangles.append((idx[0], idx[k], idx[k + 1]))
+    return vertices, triangles
+
+
+def course_file(path, obj):
+    """The OBJ's triangles as CGR 'triangle' shapes, each with its own material."""
+    vertices, triangles = obj_triangles(obj)
+    shapes = [{"type": "triangle", "v0": vertices[a], "v1": vertices[b], "v2": vertices[c],
+               "material": COURSE_MATERIAL} for a, b, c in triangles]
+    scene = {"nbounces": 2, "rendermode": "phong",
+             "camera": {"type": "pinhole", "width": 16, "height": 16, "position": [0.0, 0.1, 0.4],
+                        "lookAt": [-0.02, 0.1, 0.0], "upVector": [0.0, 1.0, 0.0], "fov": 45.0, "exposure": 0.1},
+             "scene": {"backgroundcolor": [0.25, 0.25, 0.25],
+                       "lightsources": [{"type": "pointlight", "position": [0, 1.0, 0.5], "intensity": [0.75, 0.75, 0.75]}],
+                       "shapes": shapes}}
+    with open(path, "w") as f:
+        json.dump(scene, f)
+    return len(triangles)
+
+
+def make_inputs(a):
+    os.makedirs(a.work, exist_ok=True)
+    cam = {"position": [0, 3, 3], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov": 45}
+    inputs = {}
+    base = os.path.join(a.work, "baseline.json")
+    native_scene(base, [{"type": "triangle", "material": "white", "vertices": [[0, 0, 0], [1, 0, 0], [0, 0, 1]]}], cam)
+    inputs["baseline"] = {"scene": base, "triangles": 1, "source": "one triangle"}
+    if "grid" in a.inputs:
+        ply = os.path.join(a.work, f"grid-{a.triangles}.ply")
+        if not os.path.exists(ply):
+            subprocess.run([os.path.join(a.build, "tools", "bench", "scale", "gen_grid_ply"), ply,
+                            "--triangles", str(a.triangles)], check=True)
+        with open(ply, "rb") as f:
+            header = f.read(400).decode("latin-1")
+        faces = int(header.split("element face ")[1].split()[0])
+        scene = os.path.join(a.work, "grid.json")
+        native_scene(scene, [{"type": "mesh", "material": "white", "file": ply}], cam)
+        inputs["grid"] = {"scene": scene, "triangles": faces, "source": f"gen_grid_ply, binary PLY, {os.path.getsize(ply)} bytes"}
+    for name, obj in (("sponza", SPONZA_OBJ), ("bunny-obj", BUNNY_OBJ)):
+        if name in a.inputs and os.path.exists(obj):
+            scene = os.path.join(a.work, name + ".json")
+            native_scene(scene, [{"type": "mesh", "material": "white", "file": obj}],
+                         {"position": [0, 20, 0], "look_at": [-100, 60, 0], "up": [0, 1, 0], "fov": 60})
+            inputs[name] = {"scene": scene, "triangles": None, "source": f"OBJ, {os.path.getsize(obj)} bytes"}
+    if "bunny-cgr" in a.inputs and os.path.exists(BUNNY_OBJ):
+        scene = os.path.join(a.work, "bunny-cgr.json")
+        n = course_file(scene, BUNNY_OBJ)
+        inputs["bunny-cgr"] = {"scene": scene, "triangles": n, "file_bytes": os.path.getsize(scene),
+                               "source": f"CGR course file, {n} triangle shapes, {os.path.getsize(scene)} bytes"}
+    return inputs
+
+
+def run(a, scene, accel):
+    report = os.path.join(a.work, "report.json")
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    start = time.monotonic()
+    p = subprocess.run([os.path.join(a.build, "pathtracer"), scene, "-o", os.path.join(a.work, "out.exr"),
+                        "--width", "16", "--height", "16", "--spp", "1", "--threads", str(a.threads),
+                        "--accel", accel, "--report", report], capture_output=True, text=True)
+    wall = time.monotonic() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if p.returncode != 0:
+        sys.exit(f"pathtracer failed on {scene}:\n{p.stderr}")
+    with open(report) as f:
+        r = json.load(f)
+    t = r["timings"]
+    return {"load_build_seconds": sum(t[k] for k in PHASES), "phases": {k: t[k] for k in PHASES},
+            "process_wall_seconds": wall,
+            "process_cpu_seconds": (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime),
+            "peak_rss_bytes": r["memory"]["peak_rss_bytes"], "accel_memory_bytes": r["accel"]["memory_bytes"],
+            "primitives": r["accel"]["primitive_count"], "backend": r["accel"]["backend"]}
+
+
+def summary(values):
+    return {"median": statistics.median(values), "min": min(values), "max": max(values)}
+
+
+def lscpu():
+    try:
+        return subprocess.run(["lscpu"], check=True, text=True, capture_output=True).stdout
+    except (OSError, subprocess.CalledProcessError):
+        return platform.processor()
+
+
+def load_average():
+    try:
+        with open("/proc/loadavg") as f:
+            return " ".join(f.read().split()[:3])
+    except OSError:
+        return "unknown"
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--build", default=os.path.join(REPO, "build"))
+    p.add_argument("--work", default="/tmp/pt-scale")
+    p.add_argument("--runs", type=int, default=3)
+    p.add_argument("--threads", type=int, default=2)
+    p.add_argument("--triangles", type=int, default=10_000_000)
+    p.add_argument("--inputs", default="grid,sponza,bunny-obj,bunny-cgr")
+    p.add_argument("--accel", default="embree,bvh")
+    p.add_argument("--json")
+    p.add_argument("--markdown")
+    p.add_argument("--note", default="")
+    a = p.parse_args()
+    a.inputs = a.inputs.split(",")
+    accels = a.accel.split(",")
+    inputs = make_inputs(a)
+    load_before = load_average()
+    runs = {(name, accel): [] for name in inputs for accel in accels}
+    for _ in range(a.runs):
+        for name, spec in inputs.items():
+            for accel in accels:
+                r = run(a, spec["scene"], accel)
+                runs[(name, accel)].append(r)
+                print(f"{name} {accel}: load+build {r['load_build_seconds']:.2f} s, cpu {r['process_cpu_seconds']:.2f} s, "
+                      f"peak {r['peak_rss_bytes'] / 2**20:.0f} MiB", flush=True)
+    results = []
+    for name, spec in inputs.items():
+        for accel in accels:
+            rs = runs[(name, accel)]
+            base = statistics.median(x["peak_rss_bytes"] for x in runs[("baseline", accel)])
+            tris = spec["triangles"] or rs[0]["primitives"]
+            peak = statistics.median(x["peak_rss_bytes"] for x in rs)
+            entry = {"input": name, "accel": accel, "backend": rs[0]["backend"], "source": spec["source"],
+                     "triangles": tris, "runs": rs,
+                     "load_build_seconds": summary([x["load_build_seconds"] for x in rs]),
+                     "process_cpu_seconds": summary([x["process_cpu_seconds"] for x in rs]),
+                     "phases_median": {k: statistics.median(x["phases"][k] for x in rs) for k in PHASES},
+                     "peak_rss_bytes": peak, "baseline_peak_rss_bytes": base,
+                     "bytes_per_triangle_above_baseline": (peak - base) / tris if name != "baseline" else None,
+                     "accel_memory_bytes": rs[0]["accel_memory_bytes"]}
+            if "file_bytes" in spec:
+                entry["file_bytes"] = spec["file_bytes"]
+                entry["peak_above_baseline_over_file_size"] = (peak - base) / spec["file_bytes"]
+            results.append(entry)
+    record = {"command": " ".join(sys.argv), "threads": a.threads, "runs": a.runs, "note": a.note,
+              "load_average": {"before": load_before, "after": load_average()}, "results": results,
+              "machine_lscpu": lscpu()}
+    if a.json:
+        with open(a.json, "w") as f:
+            json.dump(record, f, indent=2)
+    md = markdown(record)
+    if a.markdown:
+        with open(a.markdown, "w") as f:
+            f.write(md)
+    else:
+        print(md)
+
+
+def markdown(rec):
+    out = ["# Scale: load and build time, memory per triangle", "",
+           f"Produced by `python3 tools/bench/scale/bench_scale.py` (`{rec['command'].split('bench_scale.py', 1)[-1].strip()}`); "
+           f"{rec['threads']} threads, {rec['runs']} rounds, inputs and backends alternating run by run.", ""]
+    if rec["note"]:
+        out += [f"**Note.** {rec['note']}", ""]
+    out += ["Load and build: parse + mesh load + scene build + accel build from the run record (wall clock), median "
+            "and range. CPU: the whole process's CPU time (user + system, all threads; includes the 16x16 render "
+            "and the EXR). Peak: the process's peak RSS; above baseline: minus the one-triangle scene's peak with "
+            "the same backend. Goals (issue 18): the 10M grid in at most 5 s and 80 bytes per triangle above the "
+            "baseline; any mesh format at most 100 bytes per triangle; a course file at most 4x its size.", "",
+           "| input | backend | triangles | load + build (s) | parse / mesh / scene / accel (s) | CPU (s) | peak (MiB) | "
+           "above baseline (B/triangle) | accel structure (B/triangle) |",
+           "|---|---|---|---|---|---|---|---|---|"]
+    for r in rec["results"]:
+        lb, cpu, ph = r["load_build_seconds"], r["process_cpu_seconds"], r["phases_median"]
+        per = r["bytes_per_triangle_above_baseline"]
+        extra = ""
+        if "peak_above_baseline_over_file_size" in r:
+            extra = f" ({r['peak_above_baseline_over_file_size']:.1f}x the file)"
+        out.append(f"| {r['input']} | {r['accel']} | {r['triangles']:,} | {lb['median']:.2f} ({lb['min']:.2f}-{lb['max']:.2f}) | "
+                   f"{ph['parse']:.2f} / {ph['mesh_load']:.2f} / {ph['scene_build']:.2f} / {ph['accel_build']:.2f} | "
+                   f"{cpu['median']:.2f} | {r['peak_rss_bytes'] / 2**20:.0f} | "
+                   f"{'—' if per is None else f'{per:.0f}'}{extra} | {r['accel_memory_bytes'] / r['triangles']:.0f} |")
+    out += ["", "Inputs:", ""]
+    seen = set()
+    for r in rec["results"]:
+        if r["input"] not in seen:
+            seen.add(r["input"])
+            out.append(f"- **{r['input']}**: {r['source']}")
+    out += ["", "## Machine", "",
+            f"Load average at the start: {rec['load_average']['before']}; at the end: {rec['load_average']['after']}.",
+            "", "```", rec["machine_lscpu"].rstrip(), "```", ""]
+    return "\n".join(out)
+
+
+if __name__ == "__main__":
+    main()
