@@ -41,7 +41,7 @@ def main():
     validator = validator_class(schema)
     failures = 0
 
-    scenes = sorted(glob.glob(os.path.join(args.scenes, "*.json")))
+    scenes = sorted(glob.glob(os.path.join(args.scenes, "*.json")) + glob.glob(os.path.join(args.scenes, "*", "*.json")))
     if not scenes:
         print("no scenes found in %s" % args.scenes)
         failures += 1

@@ -5,6 +5,7 @@ the course scenes beside the courses' official references, each with the command
 that made it.
 
     python3 tools/gallery/make_gallery.py [--build build] [--only NAME,...] [--width 256]
+    python3 tools/gallery/make_gallery.py --check DIR    # every command, tiny, into DIR (a ctest)
 
 Most features are one `--set` on scenes/gallery/stage.json (a floor, a subject in
 shapes[1], an area light in shapes[2], a dim directional fill in lights[0]), so the
@@ -148,13 +149,20 @@ def needs_shared(row):
     return any("shared/" in x for x in [scene] + options + [reference or ""])
 
 
-def command(row, width):
+def command(row, width, out_dir=OUT_DIR, spp=None):
+    """The row's command line; `spp` replaces the row's own --spp (the quick check's)."""
     _, name, _, scene, options, _ = row
-    return ["build/pathtracer", scene] + options + ["--width", str(width), "-o", "%s/%s.png" % (OUT_DIR, name)]
+    if spp:
+        at = options.index("--spp") if "--spp" in options else None
+        options = (options[:at] + options[at + 2:] if at is not None else options) + ["--spp", str(spp)]
+    return ["build/pathtracer", scene] + options + ["--width", str(width), "-o", "%s/%s.png" % (out_dir, name)]
 
 
 def render(row, args):
-    cmd = command(row, args.width)
+    if args.check:  # every command, tiny and at 1 spp, into the check's folder
+        cmd = command(row, 24, os.path.abspath(args.check), spp=1)
+    else:
+        cmd = command(row, args.width)
     exe = os.path.join(os.path.abspath(args.build), "pathtracer")
     t = time.monotonic()
     r = subprocess.run([exe] + cmd[1:] + ["--quiet"], cwd=ROOT, capture_output=True, text=True)
@@ -202,13 +210,39 @@ def markdown(width, skipped):
     return "\n".join(lines)
 
 
+def check(args):
+    """--check: every row's command runs and writes its image; every reference exists; names are unique."""
+    names = [row[1] for row in FEATURES]
+    if len(set(names)) != len(names):
+        sys.exit("error: FEATURES names a row twice")
+    os.makedirs(args.check, exist_ok=True)
+    done = 0
+    for row in FEATURES:
+        if needs_shared(row) and not os.path.isdir(SHARED):
+            print("%-24s skipped: no ../shared" % row[1])
+            continue
+        render(row, args)  # exits with the command and its message if it fails
+        if not os.path.isfile(os.path.join(args.check, row[1] + ".png")):
+            sys.exit("error: %s wrote no image" % row[1])
+        if row[5] and not os.path.isfile(os.path.join(ROOT, row[5])):
+            sys.exit("error: %s: the reference %s is missing" % (row[1], row[5]))
+        done += 1
+    print("gallery: %d of %d commands ran" % (done, len(FEATURES)))
+    return 0
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--build", default=os.path.join(ROOT, "build"), help="build folder (default: build/)")
     p.add_argument("--width", type=int, default=256, help="image width (default 256)")
     p.add_argument("--only", help="render only these rows (comma-separated names); the page lists all")
+    p.add_argument("--check", metavar="DIR",
+                   help="run every command at 24 px and 1 spp into DIR and check the references exist; "
+                        "docs/ untouched (the ctest gallery_commands)")
     args = p.parse_args()
     only = set(args.only.split(",")) if args.only else None
+    if args.check:
+        return check(args)
     os.makedirs(os.path.join(ROOT, OUT_DIR), exist_ok=True)
     skipped = []
     for row in FEATURES:
