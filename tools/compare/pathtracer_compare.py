@@ -111,7 +111,10 @@ def parse_args(argv):
     p.add_argument("--build", default=os.environ.get("PT_BUILD_DIR", os.path.join(ROOT, "build")),
                    help="build folder with pathtracer and tools/imgerr/pt-imgerr (default: build/)")
     p.add_argument("--keep-images", action="store_true", help="keep every render's EXR in DIR/data/")
-    return p.parse_args(argv)
+    args = p.parse_args(argv)
+    if args.spp_series and args.max_spp:
+        p.error("--max-spp caps time-budgeted renders; with --spp-series the sample counts are given")
+    return args
 
 
 class Runner:
