@@ -83,9 +83,11 @@ FEATURES = [
      ["--set", "lights=[]"], None),
     ("Lights", "point-light", "`point` light", STAGE, lights_only(
         '[{"type":"point","position":[1.5,2.5,1.5],"intensity":[14,13,12]}]'), None),
-    ("Lights", "spot-light", "`spot` light (`cone_angle`, `cone_delta`)", STAGE, lights_only(
+    # In the dark: beside the stage's sky colour (a constant environment light) the spot is chosen by its
+    # power for too few samples, and its light comes out speckled at 64 spp.
+    ("Lights", "spot-light", "`spot` light (`cone_angle`, `cone_delta`), under a black sky", STAGE, lights_only(
         '[{"type":"spot","position":[0,3,1.5],"look_at":[0,0.5,0],"intensity":[30,28,25],"cone_angle":25,'
-        '"cone_delta":5}]'), None),
+        '"cone_delta":5}]') + ["--set", 'render={"integrator":"path","max_depth":8,"spp":64}'], None),
     ("Lights", "directional-light", "`directional` light", STAGE, lights_only(
         '[{"type":"directional","direction":[0.5,-1,-0.6],"irradiance":[2.5,2.4,2.2]}]'), None),
     ("Lights", "emitting-sphere", "an emitting sphere (a material's `emission`), alone", STAGE, lights_only("[]") + material(
@@ -202,7 +204,7 @@ def markdown(width, skipped):
         lines.append("### %s" % title)
         lines.append("")
         if reference:
-            lines += ["| ours | official reference (`%s`) |" % reference.replace("../shared/", ""), "|---|---|",
+            lines += ["| ours | reference (`%s`) |" % reference.replace("../shared/", ""), "|---|---|",
                       "| ![%s](gallery/%s.png) | ![reference](gallery/%s-reference.png) |" % (name, name, name)]
         else:
             lines.append("![%s](gallery/%s.png)" % (name, name))
