@@ -127,6 +127,13 @@ def check_refusals(source, build, out):
                         "--accel", "bvh", "--sampler", "sobol", "--repeats", "1"])
     check(r.returncode == 1 and "pt-imgerr" in r.stderr, "a reference of another size")
     check(not os.path.exists(os.path.join(out, "README.md")), "a README.md after a failure")
+    mine = os.path.join(os.path.dirname(out), "mine")  # a user's folder is never replaced
+    os.makedirs(os.path.join(mine, "data"))
+    open(os.path.join(mine, "notes.txt"), "w").write("mine")
+    r = compare(build, [scene, "--out", mine, "--spp-series", "1"])
+    check(r.returncode == 2 and "did not write" in r.stderr, "a folder of other files was accepted")
+    check(os.path.isdir(os.path.join(mine, "data")) and os.path.isfile(os.path.join(mine, "notes.txt")),
+          "a user's files were touched")
 
 
 def main():

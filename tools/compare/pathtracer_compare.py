@@ -221,6 +221,20 @@ def write_data(data, rows, run):
         json.dump(run, f, indent=1)
 
 
+def foreign_files(out):
+    """The names in `out` that an earlier comparison did not write (the folder is only ever
+    replaced when it holds a comparison: never a user's README.md or data/)."""
+    ours = {"README.md", "reference.exr", "error-vs-time.png", "error-vs-time.svg", "data"}
+    if not os.path.isdir(out):
+        return []
+    names = sorted(os.listdir(out))
+    if not names:
+        return []
+    if not os.path.isfile(os.path.join(out, "data", "commands.log")):  # written first, by every run
+        return names[:5]
+    return [n for n in names if n not in ours][:5]
+
+
 def main(argv):
     args = parse_args(argv)
     if not need_matplotlib():
@@ -239,6 +253,11 @@ def main(argv):
         return EXIT_USAGE
     out = os.path.abspath(args.out)
     data = os.path.join(out, "data")
+    foreign = foreign_files(out)
+    if foreign:
+        print("error: --out %s holds files pathtracer-compare did not write (%s): choose a new or empty folder"
+              % (out, ", ".join(foreign)), file=sys.stderr)
+        return EXIT_USAGE
     if os.path.isdir(data):
         shutil.rmtree(data)  # nothing of an earlier comparison survives
     os.makedirs(data)
