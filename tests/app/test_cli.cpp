@@ -5,6 +5,7 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -339,6 +340,56 @@ TEST_F(Cli, VersionAndHelp) {
   for (const char* what : {"--output", "--accel", "--threads", "--spp", "--seed", "--integrator", "--strict",
                            "--max-depth", "--filter", "--clamp"})
     EXPECT_NE(h.out.find(what), std::string::npos) << what;
+}
+
+
+// --help lists the options by task (issue 21), then three examples; the
+// examples are real command lines: each runs here (the showcase small and at
+// 1 spp, "scene.json" a small path-traced scene, the time budget capped by --spp).
+TEST_F(Cli, HelpGroupsTheOptionsByTaskAndEndsWithExamplesThatRun) {
+  const Result h = run("--help");
+  ASSERT_EQ(h.status, 0) << h.err;
+  const std::vector<std::pair<std::string, std::vector<std::string>>> groups = {
+      {"Scene and output:", {"--output", "--width", "--set", "--accel", "--threads", "--view"}},
+      {"Quality:", {"--spp", "--integrator", "--max-depth", "--sampler", "--filter", "--clamp", "--seed"}},
+      {"Long renders:", {"--time-budget", "--pass-spp", "--checkpoint", "--resume", "--max-memory", "--report"}},
+      {"Compositing:", {"--aov", "--cryptomatte-levels", "--film-transparent", "--exr-compression", "--crop"}},
+      {"Debugging:", {"--pixel", "--sample", "--replay", "--strict", "--version"}},
+      {"Examples:", {}}};
+  std::size_t previous = 0;
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    const std::size_t at = h.out.find("\n" + groups[g].first + "\n");
+    ASSERT_NE(at, std::string::npos) << groups[g].first << "\n" << h.out;
+    EXPECT_GT(at, previous) << groups[g].first << " out of order";
+    const std::size_t end = g + 1 < groups.size() ? h.out.find("\n" + groups[g + 1].first + "\n") : h.out.size();
+    for (const std::string& option : groups[g].second) {
+      const std::size_t o = h.out.find(option + " ", at);
+      EXPECT_TRUE(o != std::string::npos && o < end) << option << " is not under " << groups[g].first;
+    }
+    previous = at;
+  }
+  EXPECT_EQ(h.out.find("\nOptions:\n"), std::string::npos) << "an option left in CLI11's default group";
+
+  write("scene.json", test::path_scene(160, 120, 64));
+  fs::create_directories(path("out"));
+  std::istringstream lines(h.out.substr(h.out.find("\nExamples:\n")));
+  int examples = 0;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("  pathtracer ", 0) != 0) continue;
+    ++examples;
+    std::string args = line.substr(std::string("  pathtracer ").size());
+    const std::string showcase = "scenes/showcase.json";
+    if (const std::size_t s = args.find(showcase); s != std::string::npos)
+      args.replace(s, showcase.size(), "'" PT_SCENES_DIR "/showcase.json' --spp 1 --width 48");
+    // A time budget alone ignores the scene's spp: bound the render by its sample count.
+    if (args.find("--time-budget") != std::string::npos) args += " --spp 2";
+    const Result r = run(args + " --quiet");
+    EXPECT_EQ(r.status, 0) << line << "\n" << r.err;
+  }
+  EXPECT_EQ(examples, 3) << h.out;
+  EXPECT_TRUE(fs::exists(path("out/showcase.exr")));
+  EXPECT_TRUE(fs::exists(path("frame.exr")));
+  EXPECT_TRUE(fs::exists(path("frame.ckpt")));
 }
 
 }  // namespace

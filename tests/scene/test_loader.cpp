@@ -362,9 +362,9 @@ TEST(Loader, AllProblemsOfAFileAreReportedInOneRun) {
 
 // ---------------------------------------------------------------- the scenes shipped in scenes/
 
-TEST(ShippedScenes, AllLoadWithoutProblems) {
+TEST(ShippedScenes, AllLoadWithoutProblems) {  // scenes/*.json and scenes/gallery/*.json
   int count = 0;
-  for (const auto& entry : fs::directory_iterator(PT_SCENES_DIR)) {
+  for (const auto& entry : fs::recursive_directory_iterator(PT_SCENES_DIR)) {
     if (entry.path().extension() != ".json") continue;
     ++count;
     Diagnostics diag;

@@ -16,16 +16,12 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "pylib"))
+from pt_tools import image_error, lscpu  # noqa: E402
+
 
 def run(cmd):
     return subprocess.run(cmd, check=True, capture_output=True, text=True)
-
-
-def lscpu():
-    try:
-        return run(["lscpu"]).stdout
-    except (OSError, subprocess.CalledProcessError):
-        return "lscpu unavailable"
 
 
 def render(args, tmp, name, sampler, spp, seed):
@@ -41,8 +37,7 @@ def render(args, tmp, name, sampler, spp, seed):
 
 
 def imgerr(args, test, reference):
-    out = run([os.path.join(args.build, "tools", "imgerr", "pt-imgerr"), test, reference, "--json"]).stdout
-    return json.loads(out)
+    return image_error(os.path.join(args.build, "tools", "imgerr", "pt-imgerr"), test, reference)
 
 
 def main():

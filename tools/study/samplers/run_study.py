@@ -31,6 +31,8 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(HERE)))  # tools/study/samplers -> repository
+sys.path.insert(0, os.path.join(ROOT, "tools", "pylib"))
+from pt_tools import lscpu, need_matplotlib  # noqa: E402
 EXIT_NO_MATPLOTLIB = 77  # CTest's skip code for the test that runs --quick
 
 SAMPLERS = ["random", "jittered", "sobol"]
@@ -42,21 +44,6 @@ SCENES = [
      "soft shadow of a sphere from an area light, direct light only (max_depth 1: light -> surface -> camera)"),
     ("thin-lens", "thin-lens.json", "0,0,32,32", "thin-lens depth of field: defocused emitters (max_depth 0)"),
 ]
-
-
-def need_matplotlib():
-    try:
-        import matplotlib  # noqa: F401
-        return True
-    except ImportError:
-        debian = "/usr/bin/python3"
-        if os.path.realpath(sys.executable) != os.path.realpath(debian) and os.path.exists(debian):
-            probe = subprocess.run([debian, "-c", "import matplotlib"], capture_output=True)
-            if probe.returncode == 0:  # this interpreter lacks it, Debian's has it
-                os.execv(debian, [debian] + sys.argv)
-        print("error: matplotlib is missing: install it with `sudo apt-get install -y python3-matplotlib`"
-              " (Debian 12) and run this tool with /usr/bin/python3", file=sys.stderr)
-        return False
 
 
 def settings(quick):
@@ -158,11 +145,7 @@ def speed_study(cfg, tools, data, refs, threads, log):
 
 
 def machine():
-    try:
-        lscpu = subprocess.run(["lscpu"], capture_output=True, text=True).stdout
-    except OSError:
-        lscpu = "(lscpu not available)"
-    return {"lscpu": lscpu, "cpus": os.cpu_count(), "loadavg_start": os.getloadavg()}
+    return {"lscpu": lscpu(), "cpus": os.cpu_count(), "loadavg_start": os.getloadavg()}
 
 
 def main():
