@@ -38,6 +38,14 @@ struct SurfaceGeometry {
   Vec3f p_error;
 };
 
+// The derivatives of position with respect to the texture coordinates at a
+// surface point (the tangent frame of normal and bump maps; the shape's
+// uv_derivatives routine). Either may be zero where the parameterisation is
+// degenerate (a sphere's poles, the constant v of a cap).
+struct UvDerivatives {
+  Vec3f dpdu, dpdv;
+};
+
 // ---------------------------------------------------------------- validation
 // Where a shape's validation rule, check(const S&, ShapeChecker&), reports what
 // is wrong with its values. `field` names the scene file's key the problem is
