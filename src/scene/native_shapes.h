@@ -1,5 +1,5 @@
 // Shapes of the native format (import_native_shapes.cpp), and the material
-// table they refer to by name (filled by import_native.cpp).
+// table they refer to by name (import_native_materials.cpp).
 #pragma once
 
 #include <optional>
@@ -10,12 +10,27 @@
 
 namespace pt {
 
+// Which of a material's texture references a file is for.
+enum class MaterialTexture { Diffuse, URoughness, VRoughness, Eta, K, Reflectance, NormalMap, Displacement };
+
+struct PendingTexture {
+  Sourced<std::string> file;
+  MaterialTexture slot;
+  bool raw;  // data, read without sRGB decoding
+};
+
 struct NativeMaterial {
   MaterialDesc desc;
-  std::optional<Sourced<std::string>> texture;  // registered only if the material is used
+  std::vector<PendingTexture> textures;  // registered only if the material is used
   bool used = false;
   bool ok = true;
 };
+
+// The top-level "materials" object, in file order.
+std::vector<NativeMaterial> read_materials(ImportContext& ctx, const JsonValue& v);
+// Registers the texture files of a material some shape uses (add_texture) and
+// stores their indices in its description.
+void register_material_textures(ImportContext& ctx, NativeMaterial& m);
 
 // Reads shapes[index] and appends it to ctx.scene.shapes, and its material
 // (index into `materials`, -1 for the default material) to `shape_material`.

@@ -128,8 +128,19 @@ struct RenderDesc {
 // as Blinn-Phong + mirror + Fresnel refraction; the path integrator as a
 // normalised Blinn-Phong BRDF with a mirror lobe, or a dielectric when
 // `refractive`. Lambert, Mirror and Glass are the physical materials of the
-// path integrator; each reads only some of the keys (docs/scene-format.md).
-enum class MaterialType { Phong, Lambert, Mirror, Glass };
+// path integrator; Conductor, Dielectric and CoatedDiffuse its microfacet
+// materials (GGX, docs/path-tracing.md). Each type reads only some of the keys
+// (docs/scene-format.md).
+enum class MaterialType { Phong, Lambert, Mirror, Glass, Conductor, Dielectric, CoatedDiffuse };
+
+// A material parameter that may be textured (docs/scene-format.md, "Textured
+// parameters"): the constant `value`, times the texture's value where
+// `texture` is set (an index into SceneDescription::textures).
+template <class T>
+struct TexturedParam {
+  Sourced<T> value;
+  std::optional<int> texture;
+};
 
 struct MaterialDesc {
   SourceLocation where;
@@ -142,7 +153,7 @@ struct MaterialDesc {
   Sourced<float> exponent{1.0f};       // Blinn-Phong exponent
   Sourced<float> reflectivity{0.0f};   // mirror weight in [0,1] (kr)
   Sourced<bool> refractive{false};
-  Sourced<float> ior{1.0f};
+  Sourced<float> ior{1.0f};             // glass, dielectric, the coating of coateddiffuse
   std::optional<Sourced<float>> ka;     // weight of the classic ambient term; absent: kd (the path equivalent's)
   Sourced<RGB> emission{RGB(0, 0, 0)};  // emitted radiance, on the front (ng) side only unless two_sided
   Sourced<bool> two_sided{false};       // emission from both sides
@@ -150,6 +161,34 @@ struct MaterialDesc {
   // point (a Path of Light area light's "samples"); 0: its default (16).
   Sourced<int> light_samples{0};
   std::optional<int> texture;           // index into SceneDescription::textures; modulates diffuse
+
+  // Microfacet materials: GGX roughness along the shading frame's two tangent
+  // axes ("roughness" sets both; "uroughness", "vroughness" each), in [0, 1];
+  // alpha = sqrt(roughness) when remap_roughness (pbrt-v4's remaproughness).
+  TexturedParam<float> uroughness{Sourced<float>(0.0f), {}};
+  TexturedParam<float> vroughness{Sourced<float>(0.0f), {}};
+  Sourced<bool> remap_roughness{true};
+  // Conductor: complex index of refraction eta + i k per channel (a preset's
+  // values when "metal" names one; copper by default, as pbrt-v4), or, when
+  // `schlick`, Schlick's Fresnel term with normal-incidence reflectance
+  // `reflectance`. CoatedDiffuse: `reflectance` is the diffuse base's albedo.
+  TexturedParam<RGB> eta{Sourced<RGB>(RGB(0.3512f, 0.5855f, 1.2923f)), {}};
+  TexturedParam<RGB> k{Sourced<RGB>(RGB(4.3225f, 2.6787f, 2.1364f)), {}};
+  TexturedParam<RGB> reflectance{Sourced<RGB>(RGB(0.5f)), {}};
+  bool schlick = false;
+  // Any type: a tangent-space normal map and a bump map (displacement along
+  // the normal, in scene units; docs/path-tracing.md, "Normal and bump maps").
+  std::optional<int> normal_map;
+  std::optional<TexturedParam<float>> displacement;
+
+  // Calls f(texture index) for every texture the material reads.
+  template <class F>
+  void for_each_texture(F&& f) const {
+    for (const std::optional<int>& t : {texture, uroughness.texture, vroughness.texture, eta.texture, k.texture,
+                                        reflectance.texture, normal_map})
+      if (t) f(*t);
+    if (displacement && displacement->texture) f(*displacement->texture);
+  }
 };
 
 // ---------------------------------------------------------------- lights
