@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "core/stopwatch.h"
+#include "render/materials/normal_map.h"
 #include "scene/validate.h"
 
 namespace pt {
@@ -23,6 +24,8 @@ bool RenderScene::intersect(const Ray& ray, Intersection& out) const {
   }
   out.geo = surface(shape, out.hit.prim, ray, prim_hit);
   out.material = &materials[static_cast<std::size_t>(shape_material[out.hit.shape])];
+  if (out.material->perturbs_normal()) [[unlikely]]
+    perturb_shading_normal(*out.material, uv_derivatives(shape, out.hit.prim, out.geo), out.geo);
   return true;
 }
 
@@ -31,8 +34,15 @@ bool RenderScene::intersect(const Ray& ray, Intersection& out) const {
 // instances never come here.
 void RenderScene::instanced_surface(const Ray& ray, const PrimHit& prim_hit, Intersection& out) const {
   const Transform& t = geometry.instances[out.hit.instance].transform;
-  out.geo = to_world(surface(geometry.shapes[out.hit.shape], out.hit.prim, t.to_object(ray), prim_hit), t);
+  const Shape& shape = geometry.shapes[out.hit.shape];
+  const SurfaceGeometry object = surface(shape, out.hit.prim, t.to_object(ray), prim_hit);
+  out.geo = to_world(object, t);
   out.material = &materials[static_cast<std::size_t>(material_of(out.hit.shape, out.hit.instance))];
+  if (out.material->perturbs_normal()) {
+    // The tangent frame's vectors go to world space as vectors.
+    const UvDerivatives d = uv_derivatives(shape, out.hit.prim, object);
+    perturb_shading_normal(*out.material, {t.vector(d.dpdu), t.vector(d.dpdv)}, out.geo);
+  }
 }
 
 // ---------------------------------------------------------------- resolution
@@ -78,14 +88,19 @@ bool load_textures(const SceneDescription& desc, const TextureLimits& limits, Re
                    Diagnostics& diag) {
   std::vector<bool> used(desc.textures.size(), false);
   for (const MaterialDesc& m : desc.materials) {
-    if (!m.texture) continue;
-    if (*m.texture < 0 || static_cast<std::size_t>(*m.texture) >= desc.textures.size()) {
-      diag.error(m.where, "material" + (m.name.empty() ? std::string() : " '" + m.name + "'") +
-                              " refers to texture " + std::to_string(*m.texture) + ", but the scene has " +
-                              std::to_string(desc.textures.size()));
-      return false;
-    }
-    used[static_cast<std::size_t>(*m.texture)] = true;
+    bool in_range = true;
+    m.for_each_texture([&](int t) {
+      if (t < 0 || static_cast<std::size_t>(t) >= desc.textures.size()) {
+        if (in_range)
+          diag.error(m.where, "material" + (m.name.empty() ? std::string() : " '" + m.name + "'") +
+                                  " refers to texture " + std::to_string(t) + ", but the scene has " +
+                                  std::to_string(desc.textures.size()));
+        in_range = false;
+      } else {
+        used[static_cast<std::size_t>(t)] = true;
+      }
+    });
+    if (!in_range) return false;
   }
   bool ok = true;
   scene.textures.resize(desc.textures.size());
@@ -101,8 +116,21 @@ bool load_textures(const SceneDescription& desc, const TextureLimits& limits, Re
   return ok;
 }
 
-Material to_material(const MaterialDesc& d, const RenderScene& scene) {
-  return make_material(d, d.texture ? scene.textures[static_cast<std::size_t>(*d.texture)].get() : nullptr);
+// The render materials; a coated diffuse's albedo tables are computed once per
+// index of refraction.
+void add_materials(const SceneDescription& desc, RenderScene& scene) {
+  std::vector<const Texture*> textures;
+  for (const std::unique_ptr<Texture>& t : scene.textures) textures.push_back(t.get());
+  scene.materials.reserve(desc.materials.size());
+  for (const MaterialDesc& d : desc.materials) {
+    const CoatingTable* coating = nullptr;
+    if (d.type == MaterialType::CoatedDiffuse) {
+      for (const std::unique_ptr<CoatingTable>& c : scene.coatings)
+        if (c->ior() == d.ior.value) coating = c.get();
+      if (!coating) coating = scene.coatings.emplace_back(std::make_unique<CoatingTable>(d.ior)).get();
+    }
+    scene.materials.push_back(make_material(d, textures, coating));
+  }
 }
 
 // ---------------------------------------------------------------- lights
@@ -262,8 +290,7 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDescription& desc, co
 
   bool ok = load_textures(desc, options.textures, *scene, diag);
   if (ok) {
-    scene->materials.reserve(desc.materials.size());
-    for (const MaterialDesc& m : desc.materials) scene->materials.push_back(to_material(m, *scene));
+    add_materials(desc, *scene);
   }
   // Shapes without a valid material get a default one, so a description built
   // in code with no materials still renders (reported as an error otherwise).

@@ -15,6 +15,7 @@
 #include "render/lights/environment.h"
 #include "render/lights/light.h"
 #include "render/lights/light_set.h"
+#include "render/materials/coated_diffuse.h"
 #include "render/materials/material.h"
 #include "render/textures/texture.h"
 #include "scene/resolution_limits.h"
@@ -50,6 +51,7 @@ struct RenderScene {
   std::vector<int> instance_material;  // per instance: index into materials, or -1 for its shapes' own
   std::vector<Material> materials;
   std::vector<std::unique_ptr<Texture>> textures;  // stable addresses (materials point in)
+  std::vector<std::unique_ptr<CoatingTable>> coatings;  // coated diffuse albedo tables, one per index
   std::unique_ptr<Texture> background_image;       // render.background_image, if any
   // Owns the environment map (its sampling distribution included) when the
   // scene has one; it is reached through `lights` (an EnvironmentLight).

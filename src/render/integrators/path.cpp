@@ -68,7 +68,7 @@ class PathTracer {
 
       const Bsdf bsdf(m, isect.geo, wo);
       if (bsdf.black()) break;
-      if (rec.active() && depth == 0) rec.first_vertex(m, isect.geo, wo, bsdf);
+      if (rec.active() && depth == 0) rec.first_vertex(bsdf);
       if (!bsdf.delta_only() && !lights_.empty()) {
         Vec3f wi_light;
         const RGB term = beta * direct_light(isect, bsdf, wo, sampler, &wi_light);
