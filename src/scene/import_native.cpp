@@ -10,6 +10,7 @@
 #include "scene/importers.h"
 #include "scene/import_transform.h"
 #include "scene/native_shapes.h"
+#include "scene/native_textures.h"
 
 namespace pt {
 namespace {
@@ -130,11 +131,12 @@ void read_render(ImportContext& ctx, const JsonValue& v) {
 // key the type does not read is an error rather than silently ignored.
 const std::vector<std::string>& material_keys(MaterialType type) {
   static const std::vector<std::string> kPhong = {"diffuse", "kd", "ka", "specular", "ks", "exponent", "reflectivity",
-                                                  "refractive", "ior", "emission", "two_sided", "light_samples", "texture"};
-  static const std::vector<std::string> kLambert = {"diffuse",  "kd",        "ka", "texture",
-                                                    "emission", "two_sided", "light_samples"};
-  static const std::vector<std::string> kMirror = {"specular", "emission", "two_sided", "light_samples"};
-  static const std::vector<std::string> kGlass = {"ior", "emission", "two_sided", "light_samples"};
+                                                  "refractive", "ior", "emission", "two_sided", "light_samples", "texture",
+                                                  "alpha"};
+  static const std::vector<std::string> kLambert = {"diffuse",  "kd",        "ka",            "texture",
+                                                    "emission", "two_sided", "light_samples", "alpha"};
+  static const std::vector<std::string> kMirror = {"specular", "emission", "two_sided", "light_samples", "alpha"};
+  static const std::vector<std::string> kGlass = {"ior", "emission", "two_sided", "light_samples", "alpha"};
   switch (type) {
     case MaterialType::Lambert: return kLambert;
     case MaterialType::Mirror: return kMirror;
@@ -193,8 +195,8 @@ NativeMaterial read_material(ImportContext& ctx, const JsonMember& member) {
     ctx.diag().error(m.light_samples.where, "'light_samples' must be at least 1");
     r.fail();
   }
-  Sourced<std::string> texture;
-  if (r.get("texture") && r.read("texture", texture)) out.texture = texture;
+  out.texture = r.get("texture");  // texture references, resolved if the material is used
+  out.alpha = r.get("alpha");
   r.finish();
   out.ok = r.ok();
   return out;
@@ -298,9 +300,33 @@ void read_environment(ImportContext& ctx, const JsonValue& v) {
   if (r.ok()) ctx.scene.environment = std::move(env);
 }
 
+// "alpha": a number from 0 to 1, or a texture reference. Cutouts are binary
+// (present where alpha >= 0.5), which a constant strictly between 0 and 1 is
+// warned about.
+void resolve_alpha(ImportContext& ctx, NativeTextures& textures, const JsonValue& v, MaterialDesc& m) {
+  if (!v.is_number()) {
+    m.alpha_texture = resolve_texture_ref(ctx, textures, v, "alpha");
+    return;
+  }
+  if (!read_value(ctx.read, v, "alpha", m.alpha)) return;
+  const float a = m.alpha.value;
+  if (!(a >= 0.0f && a <= 1.0f)) {
+    ctx.diag().error(m.alpha.where, "'alpha' must be from 0 to 1");
+  } else if (a > 0.0f && a < 1.0f) {
+    ctx.diag().warning(m.alpha.where, std::string("alpha cutouts are binary (the surface is there where alpha >= 0.5): ") +
+                                          (a >= 0.5f ? "this makes it fully opaque" : "this makes it invisible"));
+  }
+}
+
+// The texture references of a used material, registered in ctx.scene.textures.
+void resolve_material_textures(ImportContext& ctx, NativeTextures& textures, NativeMaterial& m) {
+  if (m.texture) m.desc.texture = resolve_texture_ref(ctx, textures, *m.texture, "texture");
+  if (m.alpha) resolve_alpha(ctx, textures, *m.alpha, m.desc);
+}
+
 // Keeps the materials some shape uses (in declaration order), registers their
 // textures, and renumbers the shapes' material indices.
-void assemble_materials(ImportContext& ctx, std::vector<NativeMaterial>& materials,
+void assemble_materials(ImportContext& ctx, std::vector<NativeMaterial>& materials, NativeTextures& textures,
                         const std::vector<int>& shape_material, const std::vector<std::vector<int>>& object_material) {
   std::vector<int> final_index(materials.size(), -1);
   for (std::size_t i = 0; i < materials.size(); ++i) {
@@ -309,7 +335,7 @@ void assemble_materials(ImportContext& ctx, std::vector<NativeMaterial>& materia
       ctx.diag().warning(m.desc.where, "material '" + m.desc.name + "' is not used by any shape");
       continue;
     }
-    if (m.texture) m.desc.texture = add_texture(ctx, *m.texture);
+    resolve_material_textures(ctx, textures, m);
     final_index[i] = static_cast<int>(ctx.scene.materials.size());
     ctx.scene.materials.push_back(std::move(m.desc));
   }
@@ -351,6 +377,8 @@ void import_native(ImportContext& ctx) {
                        "environment is what rays that leave the scene see");
   }
 
+  NativeTextures textures;
+  if (const JsonValue* v = top.get("textures")) textures = read_native_textures(ctx, *v);
   std::vector<NativeMaterial> materials;
   if (const JsonValue* v = top.get("materials")) materials = read_materials(ctx, *v);
 
@@ -367,7 +395,8 @@ void import_native(ImportContext& ctx) {
     for (std::size_t i = 0; i < shapes.size(); ++i) read_native_shape(ctx, shapes[i], i, materials, shape_material);
   }
   top.finish();
-  assemble_materials(ctx, materials, shape_material, object_material);
+  assemble_materials(ctx, materials, textures, shape_material, object_material);
+  warn_unused_textures(ctx, textures);
 }
 
 }  // namespace pt

@@ -101,8 +101,12 @@ void read_transmission(ImportContext& ctx, ObjectReader& r, MaterialDesc& m) {
 // A textured surface as the course's reference render shows it (docs/rendering.md,
 // "The course reference images"): the texels, read as they are (no sRGB decoding),
 // take the place of "diffusecolor", and the surface has no specular highlight.
+// The course samples its textures at points (one bilinear lookup at the hit,
+// one sample per pixel); so do we, rather than filter them over a footprint.
 void use_course_texture(ImportContext& ctx, MaterialDesc& m) {
-  ctx.scene.textures[static_cast<std::size_t>(*m.texture)].raw = true;
+  TextureDesc& t = ctx.scene.textures[static_cast<std::size_t>(*m.texture)];
+  t.raw = true;
+  t.filter = Sourced<TextureFilter>(TextureFilter::Bilinear, t.where);
   m.diffuse = Sourced<RGB>(RGB(1.0f), m.diffuse.where);
   m.ks = Sourced<float>(0.0f, m.ks.where);
 }

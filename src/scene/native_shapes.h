@@ -12,7 +12,9 @@ namespace pt {
 
 struct NativeMaterial {
   MaterialDesc desc;
-  std::optional<Sourced<std::string>> texture;  // registered only if the material is used
+  // Texture references (native_textures.h), resolved only if the material is used.
+  const JsonValue* texture = nullptr;
+  const JsonValue* alpha = nullptr;
   bool used = false;
   bool ok = true;
 };

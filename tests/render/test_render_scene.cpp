@@ -163,7 +163,7 @@ TEST_F(RenderSceneBuild, UsedTexturesAreDecodedOnceUnusedOnesNever) {
   ASSERT_NE(scene->textures[1], nullptr);
   EXPECT_EQ(scene->materials[0].texture, scene->textures[1].get());
   EXPECT_EQ(scene->materials[1].texture, scene->textures[1].get());
-  EXPECT_EQ(scene->materials[0].diffuse_at({0.25f, 0.5f}), RGB(1, 0, 0));
+  EXPECT_EQ(scene->materials[0].diffuse_at(Vec2f(0.25f, 0.5f)), RGB(1, 0, 0));
 }
 
 TEST_F(RenderSceneBuild, TextureThatFailsToDecodeIsReportedWhereItWasWritten) {

@@ -52,7 +52,7 @@ class PathAovRecorder {
     // BSDF scales kd Cd + ks Cs (render/materials/bsdf.cpp), has exactly the
     // full BSDF's Lambert lobe.
     Material diffuse = m;
-    const float total = (m.diffuse_at(geo.uv) * m.kd + m.specular * m.ks).max_component();
+    const float total = (m.diffuse_at(tex_coord(geo)) * m.kd + m.specular * m.ks).max_component();
     diffuse.kd = total > 1.0f ? m.kd / total : m.kd;
     diffuse.ks = 0.0f;
     diffuse_bsdf_.emplace(diffuse, geo, wo);

@@ -31,7 +31,7 @@ Bsdf::Bsdf(const Material& m, const SurfaceGeometry& geo, Vec3f wo) {
   float rho = 0.0f;
   switch (m.type) {
     case MaterialType::Lambert:
-      kd_cd = m.diffuse_at(geo.uv) * m.kd;
+      kd_cd = m.diffuse_at(tex_coord(geo)) * m.kd;
       break;
     case MaterialType::Mirror:
       rho = 1.0f;
@@ -40,7 +40,7 @@ Bsdf::Bsdf(const Material& m, const SurfaceGeometry& geo, Vec3f wo) {
     case MaterialType::Glass:  // built above
       break;
     case MaterialType::Phong:
-      if (m.kd > 0.0f) kd_cd = m.diffuse_at(geo.uv) * m.kd;
+      if (m.kd > 0.0f) kd_cd = m.diffuse_at(tex_coord(geo)) * m.kd;
       ks_cs = m.specular * m.ks;
       rho = std::clamp(m.reflectivity, 0.0f, 1.0f);
       break;

@@ -37,13 +37,13 @@ struct Material {
   const Texture* texture = nullptr;  // modulates `diffuse` when set
 
   bool glass() const { return type == MaterialType::Glass; }
-  RGB diffuse_at(Vec2f uv) const { return texture ? diffuse * texture->lookup(uv) : diffuse; }
+  RGB diffuse_at(const TexCoord& tc) const { return texture ? diffuse * texture->eval(tc) : diffuse; }
   // The albedo AOV: the diffuse colour kd * Cd (texture applied) of Phong and
   // Lambert materials, the tint of a mirror, white for glass.
-  RGB albedo_at(Vec2f uv) const {
+  RGB albedo_at(const TexCoord& tc) const {
     if (glass()) return RGB(1.0f);
     if (type == MaterialType::Mirror) return specular;
-    return diffuse_at(uv) * kd;
+    return diffuse_at(tc) * kd;
   }
   bool emits() const { return !emission.is_black(); }
   // Radiance leaving a surface with geometric normal ng towards direction w.
