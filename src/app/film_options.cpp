@@ -93,8 +93,10 @@ bool estimate_render_memory(const Options& o, const SceneDescription& scene, int
   PixelRect crop;
   if (!crop_window(o, width, height, crop, error)) return false;
   const uint64_t pixels = static_cast<uint64_t>(crop.width()) * static_cast<uint64_t>(crop.height());
+  const uint64_t cache = o.texture_cache.empty() ? TextureCache::kDefaultBytes
+                                                : parse_byte_size(o.texture_cache).value_or(TextureCache::kDefaultBytes);
   out = estimate_memory(scene, pixels, {film_bytes_per_pixel(aovs), output_bytes_per_pixel(aovs, o.outputs)},
-                        o.resume.empty() ? 1 : 2);
+                        o.resume.empty() ? 1 : 2, cache);
   return true;
 }
 

@@ -7,10 +7,12 @@
 #include <CLI/CLI.hpp>
 
 #include "accel/accelerator.h"
+#include "app/memory_estimate.h"
 #include "app/outputs.h"
 #include "app/versions.h"
 #include "render/film/aov.h"
 #include "render/integrators/integrator.h"
+#include "render/textures/texture_cache.h"
 #include "scene/resolution_limits.h"
 #include "scene/scene_description.h"
 
@@ -22,6 +24,7 @@ constexpr int kMaxSpp = 1 << 20;
 constexpr int kMaxDepth = 1 << 16;
 constexpr int kMaxResolution = ResolutionLimits{}.max_resolution;
 constexpr double kMaxSeconds = 1e7;
+constexpr uint64_t kMinTextureCacheBytes = uint64_t{1} << 20;
 
 }  // namespace
 
@@ -107,6 +110,18 @@ void add_output_options(CLI::App& app, Options& o) {
       ->capture_default_str();
   app.add_option("--max-memory", o.max_memory,
                  "Refuse renders estimated to need more memory than this (e.g. 4G, 512M)");
+  app.add_option("--texture-cache", o.texture_cache,
+                 "Memory for image texture tiles (e.g. 64M, 1G; default " +
+                     byte_size_text(TextureCache::kDefaultBytes) + "): least recently used tiles are dropped "
+                     "beyond it, and read again when needed")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            const std::optional<uint64_t> bytes = parse_byte_size(text);
+            if (!bytes) return "'" + text + "' is not a size (e.g. 256M, 1G, 65536)";
+            if (*bytes < kMinTextureCacheBytes) return "at least 1M, got '" + text + "'";
+            return {};
+          },
+          "SIZE"));
 }
 
 // AOVs, crops and the replay of one sample (docs/output.md).

@@ -6,12 +6,12 @@
 #include <utility>
 
 #include "core/stopwatch.h"
-#include "render/materials/normal_map.h"
+#include "render/scene_textures.h"
 #include "scene/validate.h"
 
 namespace pt {
 
-bool RenderScene::intersect(const Ray& ray, Intersection& out) const {
+bool RenderScene::intersect(const Ray& ray, Intersection& out, const RayDifferential* differential) const {
   ++detail::t_rays_traced;
   if (!accel->intersect(ray, out.hit)) return false;
   const Shape& shape = geometry.shapes[out.hit.shape];
@@ -20,12 +20,12 @@ bool RenderScene::intersect(const Ray& ray, Intersection& out) const {
   prim_hit.uv = out.hit.uv;
   if (out.hit.instance != kNoInstance) {
     instanced_surface(ray, prim_hit, out);
-    return true;
+  } else {
+    out.geo = surface(shape, out.hit.prim, ray, prim_hit);
+    out.material = &materials[static_cast<std::size_t>(shape_material[out.hit.shape])];
   }
-  out.geo = surface(shape, out.hit.prim, ray, prim_hit);
-  out.material = &materials[static_cast<std::size_t>(shape_material[out.hit.shape])];
-  if (out.material->perturbs_normal()) [[unlikely]]
-    perturb_shading_normal(*out.material, uv_derivatives(shape, out.hit.prim, out.geo), out.geo);
+  if (footprints || out.material->perturbs_normal()) [[unlikely]]
+    texture_frame(differential, out);
   return true;
 }
 
@@ -38,11 +38,6 @@ void RenderScene::instanced_surface(const Ray& ray, const PrimHit& prim_hit, Int
   const SurfaceGeometry object = surface(shape, out.hit.prim, t.to_object(ray), prim_hit);
   out.geo = to_world(object, t);
   out.material = &materials[static_cast<std::size_t>(material_of(out.hit.shape, out.hit.instance))];
-  if (out.material->perturbs_normal()) {
-    // The tangent frame's vectors go to world space as vectors.
-    const UvDerivatives d = uv_derivatives(shape, out.hit.prim, object);
-    perturb_shading_normal(*out.material, {t.vector(d.dpdu), t.vector(d.dpdv)}, out.geo);
-  }
 }
 
 // ---------------------------------------------------------------- resolution
@@ -67,72 +62,6 @@ void resolve_resolution(const FilmDesc& film, const BuildOptions& options, int& 
 namespace {
 
 // ---------------------------------------------------------------- shapes
-// ---------------------------------------------------------------- textures and materials
-// Decodes each texture some material references, once. Unreferenced textures
-// are never read. Returns false if any referenced texture failed to decode.
-// Decodes one image (its time added to the scene's texture_load_seconds); on
-// failure reports "cannot read <what> '<file>': ..." at its location.
-std::unique_ptr<Texture> load_texture(const TextureDesc& t, const char* what, const TextureLimits& limits,
-                                      RenderScene& scene, Diagnostics& diag) {
-  auto tex = std::make_unique<Texture>();
-  std::string error;
-  const auto start = Clock::now();
-  const bool loaded = Texture::load(t.resolved, *tex, error, limits, t.raw);
-  scene.texture_load_seconds += seconds_since(start);
-  if (loaded) return tex;
-  diag.error(t.where, std::string("cannot read ") + what + " '" + t.written + "': " + error);
-  return nullptr;
-}
-
-bool load_textures(const SceneDescription& desc, const TextureLimits& limits, RenderScene& scene,
-                   Diagnostics& diag) {
-  std::vector<bool> used(desc.textures.size(), false);
-  for (const MaterialDesc& m : desc.materials) {
-    bool in_range = true;
-    m.for_each_texture([&](int t) {
-      if (t < 0 || static_cast<std::size_t>(t) >= desc.textures.size()) {
-        if (in_range)
-          diag.error(m.where, "material" + (m.name.empty() ? std::string() : " '" + m.name + "'") +
-                                  " refers to texture " + std::to_string(t) + ", but the scene has " +
-                                  std::to_string(desc.textures.size()));
-        in_range = false;
-      } else {
-        used[static_cast<std::size_t>(t)] = true;
-      }
-    });
-    if (!in_range) return false;
-  }
-  bool ok = true;
-  scene.textures.resize(desc.textures.size());
-  for (std::size_t i = 0; i < desc.textures.size(); ++i) {
-    if (!used[i]) continue;
-    scene.textures[i] = load_texture(desc.textures[i], "texture", limits, scene, diag);
-    ok = ok && scene.textures[i] != nullptr;
-  }
-  if (desc.render.background_image) {
-    scene.background_image = load_texture(*desc.render.background_image, "background image", limits, scene, diag);
-    ok = ok && scene.background_image != nullptr;
-  }
-  return ok;
-}
-
-// The render materials; a coated diffuse's albedo tables are computed once per
-// index of refraction.
-void add_materials(const SceneDescription& desc, RenderScene& scene) {
-  std::vector<const Texture*> textures;
-  for (const std::unique_ptr<Texture>& t : scene.textures) textures.push_back(t.get());
-  scene.materials.reserve(desc.materials.size());
-  for (const MaterialDesc& d : desc.materials) {
-    const CoatingTable* coating = nullptr;
-    if (d.type == MaterialType::CoatedDiffuse) {
-      for (const std::unique_ptr<CoatingTable>& c : scene.coatings)
-        if (c->ior() == d.ior.value) coating = c.get();
-      if (!coating) coating = scene.coatings.emplace_back(std::make_unique<CoatingTable>(d.ior)).get();
-    }
-    scene.materials.push_back(make_material(d, textures, coating));
-  }
-}
-
 // ---------------------------------------------------------------- lights
 // One overload per LightDesc alternative: the light it becomes (if any).
 void add_light(std::vector<Light>& lights, const PointLightDesc& d) {
@@ -288,10 +217,11 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDescription& desc, co
   scene->camera = Camera(desc.camera, scene->width, scene->height);
   scene->background = desc.render.background;
 
-  bool ok = load_textures(desc, options.textures, *scene, diag);
+  bool ok = load_textures(desc, options, *scene, diag);
   if (ok) {
     add_materials(desc, *scene);
   }
+  scene->camera_spread = CameraSpread::of(scene->camera, scene->width, scene->height);
   // Shapes without a valid material get a default one, so a description built
   // in code with no materials still renders (reported as an error otherwise).
   const bool need_default = desc.materials.empty();
@@ -315,7 +245,8 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDescription& desc, co
   }
 
   if (!ok) return nullptr;
-  scene->accel = build_accelerator(options.accel, scene->geometry, pool, diag);
+  const CutoutTest* cutouts = prepare_cutouts(desc, *scene);
+  scene->accel = build_accelerator(options.accel, scene->geometry, pool, diag, cutouts);
   if (!scene->accel) return nullptr;
   scene->lights = build_light_set(desc, *scene);
   for (const LightDesc& l : desc.lights)

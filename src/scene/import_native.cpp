@@ -11,6 +11,7 @@
 #include "scene/importers.h"
 #include "scene/import_transform.h"
 #include "scene/native_shapes.h"
+#include "scene/native_textures.h"
 
 namespace pt {
 namespace {
@@ -219,7 +220,7 @@ void read_environment(ImportContext& ctx, const JsonValue& v) {
 
 // Keeps the materials some shape uses (in declaration order), registers their
 // textures, and renumbers the shapes' material indices.
-void assemble_materials(ImportContext& ctx, std::vector<NativeMaterial>& materials,
+void assemble_materials(ImportContext& ctx, std::vector<NativeMaterial>& materials, NativeTextures& textures,
                         const std::vector<int>& shape_material, const std::vector<std::vector<int>>& object_material) {
   std::vector<int> final_index(materials.size(), -1);
   for (std::size_t i = 0; i < materials.size(); ++i) {
@@ -228,7 +229,7 @@ void assemble_materials(ImportContext& ctx, std::vector<NativeMaterial>& materia
       ctx.diag().warning(m.desc.where, "material '" + m.desc.name + "' is not used by any shape");
       continue;
     }
-    register_material_textures(ctx, m);
+    resolve_material_textures(ctx, textures, m);
     final_index[i] = static_cast<int>(ctx.scene.materials.size());
     ctx.scene.materials.push_back(std::move(m.desc));
   }
@@ -270,6 +271,8 @@ void import_native(ImportContext& ctx) {
                        "environment is what rays that leave the scene see");
   }
 
+  NativeTextures textures;
+  if (const JsonValue* v = top.get("textures")) textures = read_native_textures(ctx, *v);
   std::vector<NativeMaterial> materials;
   if (const JsonValue* v = top.get("materials")) materials = read_materials(ctx, *v);
 
@@ -286,7 +289,8 @@ void import_native(ImportContext& ctx) {
     for (std::size_t i = 0; i < shapes.size(); ++i) read_native_shape(ctx, shapes[i], i, materials, shape_material);
   }
   top.finish();
-  assemble_materials(ctx, materials, shape_material, object_material);
+  assemble_materials(ctx, materials, textures, shape_material, object_material);
+  warn_unused_textures(ctx, textures);
 }
 
 }  // namespace pt

@@ -30,23 +30,23 @@ constexpr TypeName kTypes[] = {{"phong", MaterialType::Phong},
 const std::vector<std::string>& material_keys(MaterialType type) {
   static const std::vector<std::string> kPhong = {
       "diffuse", "kd",        "ka",            "specular", "ks",        "exponent",    "reflectivity", "refractive",
-      "ior",     "emission",  "two_sided",     "light_samples", "texture", "normalmap", "displacement"};
+      "ior",     "emission",  "two_sided",     "light_samples", "texture", "normalmap", "displacement", "alpha"};
   static const std::vector<std::string> kLambert = {"diffuse",   "kd",        "ka",           "texture",
                                                     "emission",  "two_sided", "light_samples", "normalmap",
-                                                    "displacement"};
+                                                    "displacement", "alpha"};
   static const std::vector<std::string> kMirror = {"specular",      "emission",  "two_sided",
-                                                   "light_samples", "normalmap", "displacement"};
+                                                   "light_samples", "normalmap", "displacement", "alpha"};
   static const std::vector<std::string> kGlass = {"ior",           "emission",  "two_sided",
-                                                  "light_samples", "normalmap", "displacement"};
+                                                  "light_samples", "normalmap", "displacement", "alpha"};
   static const std::vector<std::string> kConductor = {
       "metal",    "eta",       "k",         "reflectance",   "roughness", "uroughness",  "vroughness",
-      "remaproughness", "emission", "two_sided", "light_samples", "normalmap", "displacement"};
+      "remaproughness", "emission", "two_sided", "light_samples", "normalmap", "displacement", "alpha"};
   static const std::vector<std::string> kDielectric = {"ior",           "roughness", "uroughness", "vroughness",
                                                        "remaproughness", "emission", "two_sided", "light_samples",
-                                                       "normalmap",     "displacement"};
+                                                       "normalmap",     "displacement", "alpha"};
   static const std::vector<std::string> kCoated = {"reflectance",   "ior",       "roughness", "uroughness",
                                                    "vroughness",    "remaproughness", "emission", "two_sided",
-                                                   "light_samples", "normalmap", "displacement"};
+                                                   "light_samples", "normalmap", "displacement", "alpha"};
   switch (type) {
     case MaterialType::Lambert: return kLambert;
     case MaterialType::Mirror: return kMirror;
@@ -94,12 +94,12 @@ bool read_scale(ReadContext& ctx, const JsonValue& v, Sourced<RGB>& out) {
 }
 
 // A textured parameter (docs/scene-format.md, "Textured parameters"): a
-// constant, or {"texture": "file", "scale": s} (s: 1 by default). The file is
-// registered later, if the material is used; `raw` reads it without sRGB
-// decoding (data rather than colour).
+// constant, or {"texture": reference, "scale": s} (s: 1 by default; the
+// reference as native_textures.h reads it). It is resolved later, if the
+// material is used; `data` reads an image file without sRGB decoding.
 template <class T>
 void read_textured(ImportContext& ctx, ObjectReader& r, const char* key, TexturedParam<T>& out, NativeMaterial& nm,
-                   MaterialTexture slot, bool raw) {
+                   MaterialTexture slot, bool data) {
   const JsonValue* v = r.get(key);
   if (!v) return;
   if (!v->is_object()) {
@@ -107,8 +107,7 @@ void read_textured(ImportContext& ctx, ObjectReader& r, const char* key, Texture
     return;
   }
   ObjectReader t(ctx.read, *v, std::string("'") + key + "' of " + r.what());
-  Sourced<std::string> file;
-  if (t.read_required("texture", file)) nm.textures.push_back(PendingTexture{file, slot, raw});
+  if (const JsonValue* ref = t.require("texture")) nm.textures.push_back(PendingTexture{ref, key, slot, data});
   out.value = Sourced<T>(T(1.0f), ctx.read.at(*v));
   if (const JsonValue* s = t.get("scale"); s && !read_scale(ctx.read, *s, out.value)) t.fail();
   t.finish();
@@ -134,7 +133,7 @@ void read_roughness(ImportContext& ctx, ObjectReader& r, NativeMaterial& nm) {
     m.vroughness = m.uroughness;
     for (std::size_t i = 0, n = nm.textures.size(); i < n; ++i)
       if (nm.textures[i].slot == MaterialTexture::URoughness)
-        nm.textures.push_back(PendingTexture{nm.textures[i].file, MaterialTexture::VRoughness, true});
+        nm.textures.push_back(PendingTexture{nm.textures[i].ref, "roughness", MaterialTexture::VRoughness, true});
   }
   read_textured(ctx, r, "uroughness", m.uroughness, nm, MaterialTexture::URoughness, true);
   read_textured(ctx, r, "vroughness", m.vroughness, nm, MaterialTexture::VRoughness, true);
@@ -182,16 +181,15 @@ void read_physical_keys(ImportContext& ctx, ObjectReader& r, NativeMaterial& nm)
     read_textured(ctx, r, "reflectance", m.reflectance, nm, MaterialTexture::Reflectance, false);
   // pbrt-v4's default index for its dielectric and coating.
   if ((type == MaterialType::Dielectric || type == MaterialType::CoatedDiffuse) && !r.get("ior")) m.ior = 1.5f;
-  Sourced<std::string> normal_map;
-  if (r.get("normalmap") && r.read("normalmap", normal_map))
-    nm.textures.push_back(PendingTexture{normal_map, MaterialTexture::NormalMap, true});
+  if (const JsonValue* normal_map = r.get("normalmap"))
+    nm.textures.push_back(PendingTexture{normal_map, "normalmap", MaterialTexture::NormalMap, true});
   if (r.get("displacement")) {
     m.displacement.emplace();
     read_textured(ctx, r, "displacement", *m.displacement, nm, MaterialTexture::Displacement, true);
     if (!m.displacement->texture && std::none_of(nm.textures.begin(), nm.textures.end(), [](const PendingTexture& t) {
           return t.slot == MaterialTexture::Displacement;
         })) {
-      ctx.diag().error(m.displacement->value.where, "'displacement' must be a texture ({\"texture\": \"file\"})");
+      ctx.diag().error(m.displacement->value.where, "'displacement' must be a texture ({\"texture\": reference})");
       r.fail();
     }
   }
@@ -230,9 +228,9 @@ NativeMaterial read_material(ImportContext& ctx, const JsonMember& member) {
     ctx.diag().error(m.light_samples.where, "'light_samples' must be at least 1");
     r.fail();
   }
-  Sourced<std::string> texture;
-  if (r.get("texture") && r.read("texture", texture))
-    out.textures.push_back(PendingTexture{texture, MaterialTexture::Diffuse, false});
+  if (const JsonValue* texture = r.get("texture"))
+    out.textures.push_back(PendingTexture{texture, "texture", MaterialTexture::Diffuse, false});
+  out.alpha = r.get("alpha");  // resolved with the textures
   read_physical_keys(ctx, r, out);
   r.finish();
   out.ok = r.ok();
@@ -253,6 +251,24 @@ std::optional<int>& texture_slot(MaterialDesc& m, MaterialTexture slot) {
   return m.texture;
 }
 
+// "alpha": a number from 0 to 1, or a texture reference. Cutouts are binary
+// (present where alpha >= 0.5), which a constant strictly between 0 and 1 is
+// warned about.
+void resolve_alpha(ImportContext& ctx, NativeTextures& textures, const JsonValue& v, MaterialDesc& m) {
+  if (!v.is_number()) {
+    m.alpha_texture = resolve_texture_ref(ctx, textures, v, "alpha");
+    return;
+  }
+  if (!read_value(ctx.read, v, "alpha", m.alpha)) return;
+  const float a = m.alpha.value;
+  if (!(a >= 0.0f && a <= 1.0f)) {
+    ctx.diag().error(m.alpha.where, "'alpha' must be from 0 to 1");
+  } else if (a > 0.0f && a < 1.0f) {
+    ctx.diag().warning(m.alpha.where, std::string("alpha cutouts are binary (the surface is there where alpha >= 0.5): ") +
+                                          (a >= 0.5f ? "this makes it fully opaque" : "this makes it invisible"));
+  }
+}
+
 }  // namespace
 
 std::vector<NativeMaterial> read_materials(ImportContext& ctx, const JsonValue& v) {
@@ -263,17 +279,16 @@ std::vector<NativeMaterial> read_materials(ImportContext& ctx, const JsonValue& 
   return materials;
 }
 
-void register_material_textures(ImportContext& ctx, NativeMaterial& m) {
+void resolve_material_textures(ImportContext& ctx, NativeTextures& textures, NativeMaterial& m) {
   for (std::size_t i = 0; i < m.textures.size(); ++i) {
     const PendingTexture& t = m.textures[i];
-    // "roughness" names its file for both directions: look for it (and report it missing) once.
-    const auto same = std::find_if(m.textures.begin(), m.textures.begin() + static_cast<std::ptrdiff_t>(i),
-                                   [&](const PendingTexture& o) { return o.file.where.line == t.file.where.line &&
-                                                                         o.file.where.col == t.file.where.col; });
-    texture_slot(m.desc, t.slot) = same != m.textures.begin() + static_cast<std::ptrdiff_t>(i)
-                                       ? texture_slot(m.desc, same->slot)
-                                       : add_texture(ctx, t.file, t.raw);
+    // "roughness" gives one reference for both directions: resolve (and report) it once.
+    const auto first = m.textures.begin() + static_cast<std::ptrdiff_t>(i);
+    const auto same = std::find_if(m.textures.begin(), first, [&](const PendingTexture& o) { return o.ref == t.ref; });
+    texture_slot(m.desc, t.slot) = same != first ? texture_slot(m.desc, same->slot)
+                                                 : resolve_texture_ref(ctx, textures, *t.ref, t.key, t.data);
   }
+  if (m.alpha) resolve_alpha(ctx, textures, *m.alpha, m.desc);
 }
 
 }  // namespace pt

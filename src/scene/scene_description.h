@@ -89,15 +89,43 @@ struct FilmDesc {
 };
 
 // ---------------------------------------------------------------- textures
-// A reference to an image file used as a texture. `path` is resolved (absolute or
-// relative to the working directory) by the loader; `written` is the text in the file.
+// A texture (docs/scene-format.md, "Textures"; docs/textures.md): an image
+// file, or a procedural checker or noise, read through a mapping. Materials
+// refer to them by index into SceneDescription::textures.
+enum class TextureType { Image, Checker, Noise };
+inline constexpr const char* kTextureTypeNames[] = {"image", "checker", "noise"};
+
+// How an image texture is filtered (pbrt-v4's ImageTexture "filter"): the
+// nearest texel or bilinear on the finest level (point lookups), trilinear
+// between two MIP levels chosen by the footprint's longer axis, or
+// OpenImageIO's anisotropic filter (trilinear probes along the footprint).
+enum class TextureFilter { Point, Bilinear, Trilinear, Anisotropic };
+inline constexpr const char* kTextureFilterNames[] = {"point", "bilinear", "trilinear", "anisotropic"};
+
+// What a lookup outside [0, 1] reads (pbrt-v4's "wrap"; "mirror" is OpenImageIO's).
+enum class TextureWrap { Repeat, Clamp, Black, Mirror };
+inline constexpr const char* kTextureWrapNames[] = {"repeat", "clamp", "black", "mirror"};
+
 struct TextureDesc {
   SourceLocation where;
-  std::string written;   // the path as written in the scene file
-  std::string resolved;  // the file that exists on disk
-  // Texel values used as they are, without sRGB decoding (the Path of Light
-  // course's linear pipeline: docs/rendering.md). Set only by that importer.
+  std::string written;   // image: the path as written in the scene file
+  std::string resolved;  // image: the file that exists on disk
+  // Texel values used as they are, without sRGB decoding ("encoding": "linear";
+  // the Path of Light course's linear pipeline: docs/rendering.md).
   bool raw = false;
+  TextureType type = TextureType::Image;
+  std::string name;      // its name in the native "textures", if it has one
+  Sourced<TextureFilter> filter{TextureFilter::Anisotropic};  // image
+  Sourced<TextureWrap> wrap{TextureWrap::Repeat};             // image
+  Sourced<RGB> color0{RGB(0.0f)};  // checker, noise
+  Sourced<RGB> color1{RGB(1.0f)};
+  Sourced<int> octaves{6};         // noise
+  Sourced<float> roughness{0.5f};  // noise: amplitude ratio of successive octaves
+  // Mapping: texture coordinates c = scale * transform^-1(x), x = (u, v, 0) or
+  // the object-space position ("mapping": "object").
+  Sourced<bool> object_mapping{false};
+  Sourced<Vec3f> scale{Vec3f(1.0f)};
+  std::optional<Sourced<Transform>> transform;
 };
 
 // ---------------------------------------------------------------- render settings
@@ -161,6 +189,11 @@ struct MaterialDesc {
   // point (a Path of Light area light's "samples"); 0: its default (16).
   Sourced<int> light_samples{0};
   std::optional<int> texture;           // index into SceneDescription::textures; modulates diffuse
+  // Alpha cutout (docs/scene-format.md): the surface is there where alpha is at
+  // least 0.5 (the constant, or the texture's alpha at the hit) and absent
+  // for every ray elsewhere.
+  Sourced<float> alpha{1.0f};
+  std::optional<int> alpha_texture;     // index into SceneDescription::textures; replaces `alpha`
 
   // Microfacet materials: GGX roughness along the shading frame's two tangent
   // axes ("roughness" sets both; "uroughness", "vroughness" each), in [0, 1];
@@ -188,6 +221,7 @@ struct MaterialDesc {
                                         reflectance.texture, normal_map})
       if (t) f(*t);
     if (displacement && displacement->texture) f(*displacement->texture);
+    if (alpha_texture) f(*alpha_texture);
   }
 };
 

@@ -76,8 +76,11 @@ TEST(NormalMap, NeverBelowTheGeometricSurface) {
     const Bsdf bsdf(m, g, wo);
     EXPECT_EQ(bsdf.f(wo, normalize(Vec3f(0.3f, 0.1f, -0.2f))), RGB());
     BsdfSample s;
-    for (float u = 0.05f; u < 1.0f; u += 0.1f)
-      if (bsdf.sample(wo, 0.5f, Vec2f(u, 1.0f - u), s)) EXPECT_GT(dot(s.wi, g.ng), 0.0f);
+    for (float u = 0.05f; u < 1.0f; u += 0.1f) {
+      if (bsdf.sample(wo, 0.5f, Vec2f(u, 1.0f - u), s)) {
+        EXPECT_GT(dot(s.wi, g.ng), 0.0f);
+      }
+    }
   }
 }
 
@@ -93,6 +96,31 @@ TEST(BumpMap, ARampTiltsTheNormalAgainstItsSlope) {
   SurfaceGeometry g = patch();
   perturb_shading_normal(m, kPatch, g);
   expect_near(g.ns, normalize(Vec3f(-0.2f, 0.0f, 1.0f)), 1e-3f);
+}
+
+// Textured parameters read their textures as every texture is read: filtered
+// over the hit's footprint (texture_rgb -> Texture::eval). A checker of unit
+// squares: a point lookup sees one square, a footprint of many squares their mean.
+TEST(TexturedParameters, AreFilteredOverTheFootprint) {
+  const Texture checker(CheckerTexture{RGB(0.0f), RGB(1.0f), false}, TextureMapping{false, Vec3f(64.0f, 64.0f, 1.0f), {}});
+  FloatParam roughness{0.8f, &checker};
+  RGBParam reflectance{RGB(1.0f), &checker};
+  const Vec2f uv(0.3f / 64.0f, 0.3f / 64.0f);  // inside the square at (0, 0): color0
+  EXPECT_EQ(roughness.at(TexCoord(uv)), 0.0f);
+  // A footprint of half the texture (32 squares) each way: the mean, 0.5.
+  const TexCoord wide(uv, Vec2f(0.5f, 0.0f), Vec2f(0.0f, 0.5f));
+  EXPECT_NEAR(roughness.at(wide), 0.4f, 0.05f);
+  EXPECT_NEAR(reflectance.at(wide).g, 0.5f, 0.06f);
+  // The normal map and the bump map go through the same lookup.
+  Material m;
+  m.displacement = FloatParam{0.01f, &checker};
+  SurfaceGeometry g = patch();
+  g.uv = uv;
+  g.duvdx = Vec2f(0.5f, 0.0f);
+  g.duvdy = Vec2f(0.0f, 0.5f);
+  perturb_shading_normal(m, kPatch, g);
+  // Over a footprint of many squares the filtered height is flat: the normal stays.
+  expect_near(g.ns, Vec3f(0, 0, 1), 0.05f);
 }
 
 }  // namespace

@@ -85,6 +85,50 @@ TEST(MaterialKeys, MicrofacetTypesReadTheirKeys) {
   EXPECT_EQ(diag.warning_count(), 0) << diag.format();
 }
 
+// Textured parameters take every texture reference "texture" and "alpha" take
+// (a name in "textures", an image file, an inline object): procedural textures
+// included. Data parameters read an image without "encoding" raw: a named
+// image used as colour and as data is two entries.
+TEST(MaterialKeys, TexturedParametersTakeTextureReferences) {
+  TempDir dir;
+  dir.write("colour.png", "x");
+  const std::string path = dir.write("scene.json", native(R"({
+    "a": { "type": "conductor", "roughness": { "texture": "grain", "scale": 0.5 }, "reflectance": { "texture": "mask" } },
+    "b": { "type": "coateddiffuse", "roughness": { "texture": "mask" }, "alpha": "mask",
+           "normalmap": { "type": "checker", "scale": 8 } },
+    "c": { "type": "dielectric", "uroughness": { "texture": { "type": "checker", "scale": 4 } }, "vroughness": 0.3,
+           "displacement": { "texture": "srgb_mask", "scale": 0.02 } }
+  }, "textures": {
+    "grain": { "type": "noise", "octaves": 3 },
+    "mask": { "type": "image", "file": "colour.png" },
+    "srgb_mask": { "type": "image", "file": "colour.png", "encoding": "srgb" }
+  })", spheres(3)));
+  Diagnostics diag;
+  const auto s = load_scene(path, LoadOptions{}, diag);
+  ASSERT_TRUE(s) << diag.format();
+  const MaterialDesc &a = s->materials[0], &b = s->materials[1], &c = s->materials[2];
+  const auto tex = [&](const std::optional<int>& t) -> const TextureDesc& {
+    return s->textures[static_cast<std::size_t>(*t)];
+  };
+  ASSERT_TRUE(a.uroughness.texture && a.reflectance.texture && b.uroughness.texture && b.alpha_texture &&
+              b.normal_map && c.uroughness.texture && c.displacement && c.displacement->texture);
+  EXPECT_EQ(tex(a.uroughness.texture).type, TextureType::Noise);
+  EXPECT_EQ(a.uroughness.texture, a.vroughness.texture);
+  EXPECT_EQ(a.uroughness.value.value, 0.5f);
+  // "mask" as colour (a's reflectance, b's alpha: one entry) and as data (b's roughness: its own, raw).
+  EXPECT_FALSE(tex(a.reflectance.texture).raw);
+  EXPECT_EQ(b.alpha_texture, a.reflectance.texture);
+  EXPECT_NE(b.uroughness.texture, a.reflectance.texture);
+  EXPECT_TRUE(tex(b.uroughness.texture).raw);
+  EXPECT_EQ(tex(b.uroughness.texture).resolved, tex(a.reflectance.texture).resolved);
+  EXPECT_EQ(tex(b.normal_map).type, TextureType::Checker);
+  EXPECT_EQ(tex(c.uroughness.texture).type, TextureType::Checker);
+  EXPECT_FALSE(c.vroughness.texture);
+  // An explicit "encoding" is kept even for data.
+  EXPECT_FALSE(tex(c.displacement->texture).raw);
+  EXPECT_EQ(diag.warning_count(), 0) << diag.format();
+}
+
 TEST(MaterialKeys, EveryPresetIsListedAndFound) {
   const std::vector<std::string> names = metal_preset_names();
   for (const char* m : {"Ag", "Al", "Au", "Cr", "Cu", "Fe", "Ni", "Pt", "Ti", "W"}) {

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 #include <variant>
 
@@ -58,8 +59,9 @@ bool to_embree(const Ray& ray, RTCRay& out) {
   return true;
 }
 
-// Embree's own triangle geometry over the mesh's buffers (MeshTriangles::Native).
-RTCGeometry native_triangles(RTCDevice device, const TriangleMesh& m) {
+// Embree's own triangle geometry over the mesh's buffers (MeshTriangles::Native),
+// with the cutout filter if it may be cut out.
+RTCGeometry native_triangles(RTCDevice device, const TriangleMesh& m, const CutoutGeometry* cutout) {
   RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
   if (geom == nullptr) return nullptr;
   const std::size_t nv = m.positions.size();
@@ -72,6 +74,11 @@ RTCGeometry native_triangles(RTCDevice device, const TriangleMesh& m) {
   }
   rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.indices.data(), 0,
                              3 * sizeof(uint32_t), m.triangle_count());
+  if (cutout != nullptr) {
+    rtcSetGeometryUserData(geom, const_cast<CutoutGeometry*>(cutout));
+    rtcSetGeometryIntersectFilterFunction(geom, &cutout_filter);
+    rtcSetGeometryOccludedFilterFunction(geom, &cutout_filter);
+  }
   rtcSetGeometryMask(geom, kMask);
   rtcCommitGeometry(geom);
   return geom;
@@ -79,7 +86,7 @@ RTCGeometry native_triangles(RTCDevice device, const TriangleMesh& m) {
 
 class EmbreeAccelerator final : public Accelerator {
  public:
-  explicit EmbreeAccelerator(MeshTriangles meshes) : meshes_(meshes) {}
+  EmbreeAccelerator(MeshTriangles meshes, const CutoutTest* cutouts) : meshes_(meshes), cutouts_(cutouts) {}
   ~EmbreeAccelerator() override {
     if (scene_ != nullptr) rtcReleaseScene(scene_);
     for (RTCScene s : prototypes_) {
@@ -124,9 +131,12 @@ class EmbreeAccelerator final : public Accelerator {
  private:
   RTCScene new_scene(Diagnostics& diag);
   bool attach_shape(RTCScene scene, const SceneGeometry& geometry, uint32_t object, Diagnostics& diag);
+  const CutoutGeometry* cutout_geometry(const Shape& shape, uint32_t object);
   bool attach_instance(const SceneGeometry& geometry, uint32_t instance, Diagnostics& diag);
 
   MeshTriangles meshes_;
+  const CutoutTest* cutouts_;  // null: the scene has no cutouts
+  std::vector<std::unique_ptr<CutoutGeometry>> cutout_geometries_;  // user data of the geometries that may be cut out
   Device device_;  // destroyed after the scenes are released
   RTCScene scene_ = nullptr;
   // One scene per prototype, placed in scene_ by instance geometries with
@@ -158,12 +168,25 @@ RTCScene EmbreeAccelerator::new_scene(Diagnostics& diag) {
   return scene;
 }
 
+// The user data of a shape that may be cut out (null for any other).
+const CutoutGeometry* EmbreeAccelerator::cutout_geometry(const Shape& shape, uint32_t object) {
+  if (cutouts_ == nullptr || !cutouts_->may_cut_anywhere(object)) return nullptr;
+  auto g = std::make_unique<CutoutGeometry>();
+  g->shape = std::visit([](const auto& s) -> const void* { return &s; }, shape);
+  g->test = cutouts_;
+  g->instance_base = instance_base_;
+  cutout_geometries_.push_back(std::move(g));
+  return cutout_geometries_.back().get();
+}
+
 bool EmbreeAccelerator::attach_shape(RTCScene scene, const SceneGeometry& geometry, uint32_t object,
                                      Diagnostics& diag) {
   const Shape& shape = geometry.shapes[object];
   const auto* mesh = std::get_if<TriangleMesh>(&shape);
-  RTCGeometry geom = mesh != nullptr && meshes_ == MeshTriangles::Native ? native_triangles(device_.get(), *mesh)
-                                                                        : new_user_geometry(device_.get(), shape);
+  const CutoutGeometry* cutout = cutout_geometry(shape, object);
+  RTCGeometry geom = mesh != nullptr && meshes_ == MeshTriangles::Native
+                         ? native_triangles(device_.get(), *mesh, cutout)
+                         : new_user_geometry(device_.get(), shape, cutout);
   if (geom == nullptr) {
     if (!report_device_errors(device_, diag)) {
       diag.error(SourceLocation{}, "Embree: cannot create the geometry of shape " + std::to_string(object));
@@ -196,6 +219,7 @@ bool EmbreeAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, D
   assert(geometry_usable(geometry));  // Embree must never see NaN bounds or bad indices
   scene_ = new_scene(diag);
   if (scene_ == nullptr) return false;
+  instance_base_ = static_cast<uint32_t>(geometry.shapes.size());
   std::size_t primitives = 0;
   const std::vector<bool> direct = placed_directly(geometry);
   for (std::size_t i = 0; i < geometry.shapes.size(); ++i) {
@@ -209,7 +233,6 @@ bool EmbreeAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, D
       if (!attach_shape(prototypes_.back(), geometry, s, diag)) return false;
     }
   }
-  instance_base_ = static_cast<uint32_t>(geometry.shapes.size());
   bounds_ = world_bounds(geometry);
 
   const auto start = std::chrono::steady_clock::now();
@@ -235,8 +258,8 @@ bool EmbreeAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, D
 }  // namespace
 
 std::unique_ptr<Accelerator> build(const SceneGeometry& geometry, WorkerPool& pool, Diagnostics& diag,
-                                   MeshTriangles meshes) {
-  auto accel = std::make_unique<EmbreeAccelerator>(meshes);
+                                   MeshTriangles meshes, const CutoutTest* cutouts) {
+  auto accel = std::make_unique<EmbreeAccelerator>(meshes, cutouts);
   if (!accel->build(geometry, pool, diag)) return nullptr;
   return accel;
 }

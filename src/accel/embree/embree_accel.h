@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "accel/accelerator.h"
+#include "accel/cutout.h"
 
 namespace pt::embree {
 
@@ -17,7 +18,9 @@ enum class MeshTriangles {
   Native,
 };
 
+// `cutouts` (null: none; it must outlive the accelerator): see accel/cutout.h.
 std::unique_ptr<Accelerator> build(const SceneGeometry& geometry, WorkerPool& pool, Diagnostics& diag,
-                                   MeshTriangles meshes = MeshTriangles::Watertight);
+                                   MeshTriangles meshes = MeshTriangles::Watertight,
+                                   const CutoutTest* cutouts = nullptr);
 
 }  // namespace pt::embree

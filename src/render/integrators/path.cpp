@@ -36,7 +36,8 @@ class PathTracer {
         inv_roulette_threshold_(settings.roulette_threshold > 0.0f ? 1.0f / settings.roulette_threshold : 1.0f) {}
 
   // `aov`, when not null, receives the lighting split (path_aov.h).
-  RGB radiance(Ray ray, Sampler& sampler, AovSample* aov = nullptr) const {
+  RGB radiance(const CameraRay& camera_ray, Sampler& sampler, AovSample* aov = nullptr) const {
+    Ray ray = camera_ray;
     PathAovRecorder rec(aov);
     RGB L, beta(1.0f);
     bool specular = true;  // the camera ray, or a delta lobe: no light sampling could have found this
@@ -45,7 +46,7 @@ class PathTracer {
     float eta2 = 1.0f;  // product of the refraction radiance scales along the path
     for (int depth = 0;; ++depth) {
       Intersection isect;
-      if (!scene_.intersect(ray, isect)) {
+      if (!scene_.intersect(ray, isect, depth == 0 ? camera_ray.differential_or_null() : nullptr)) {
         const RGB le = depth == 0 ? scene_.camera_ray_escaped(ray) : scene_.escaped_radiance(ray.dir);
         if (!le.is_black()) {
           const RGB term = beta * le * escape_weight(ray.dir, specular, prev_pdf);
@@ -181,7 +182,7 @@ class PathIntegrator final : public Integrator {
     const PathTracer tracer(scene, settings_);
     render_samples(scene, film, pool, settings_, make_sampler(settings_.sampler, settings_.spp, settings_.seed),
                    filter_,
-                   [&](const Ray& ray, Sampler& sampler, AovSample* aov) { return tracer.radiance(ray, sampler, aov); });
+                   [&](const CameraRay& ray, Sampler& sampler, AovSample* aov) { return tracer.radiance(ray, sampler, aov); });
   }
 
  private:

@@ -19,11 +19,11 @@ Vec2f sample_position(int x, int y, int index, int spp, uint64_t seed, uint64_t 
   return Vec2f(static_cast<float>(x), static_cast<float>(y)) + sampler.get_pixel_2d();
 }
 
-void first_hit_aovs(const RenderScene& scene, const Ray& ray, AovSample& aov) {
+void first_hit_aovs(const RenderScene& scene, const CameraRay& ray, AovSample& aov) {
   Intersection isect;
-  if (!scene.intersect(ray, isect)) return;
+  if (!scene.intersect(ray, isect, ray.differential_or_null())) return;
   aov.hit = true;
-  aov.albedo = isect.material->albedo_at(isect.geo.uv);
+  aov.albedo = isect.material->albedo_at(tex_coord(isect.geo));
   const Vec3f wo = -ray.dir;
   const bool front = dot(isect.geo.ng, wo) >= 0.0f;
   aov.normal = front ? isect.geo.ns : -isect.geo.ns;
@@ -48,6 +48,7 @@ void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, cons
   const int tiles_x = (crop.width() + tile - 1) / tile;
   const int tiles_y = (crop.height() + tile - 1) / tile;
   const bool lens = scene.camera.has_lens();
+  const bool differentials = scene.footprints;
   RenderMonitor* const monitor = settings.monitor;
   const bool geometry = film.wants_geometry(), lighting = film.wants_lighting();
   const std::size_t aov_doubles = static_cast<std::size_t>(film.aov_doubles());
@@ -63,7 +64,12 @@ void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, cons
       sampler.start_pixel_sample(x, y, s);
       const FilterSample fs = filter.sample(sampler.get_pixel_2d());
       const Vec2f film_px = corner + fs.offset;
-      const Ray ray = lens ? scene.camera.generate_ray(film_px, sampler.get_2d()) : scene.camera.generate_ray(film_px);
+      const Vec2f lens_sample = lens ? sampler.get_2d() : Vec2f(0.5f, 0.5f);
+      CameraRay ray(lens ? scene.camera.generate_ray(film_px, lens_sample) : scene.camera.generate_ray(film_px));
+      if (differentials) {
+        ray.differential = scene.camera.differential(film_px, lens_sample);
+        ray.has_differential = true;
+      }
       if (aov_doubles > 0) aov = AovSample{};
       const RGB c = radiance(ray, sampler, lighting ? &aov : nullptr);
       const bool finite = c.is_finite();
@@ -115,7 +121,7 @@ void render_pixels_with_split(const RenderScene& scene, Film& film, WorkerPool& 
 void render_pixels(const RenderScene& scene, Film& film, WorkerPool& pool, const IntegratorSettings& settings,
                    RadianceFn radiance) {
   render_pixels_with_split(scene, film, pool, settings,
-                           [&](const Ray& ray, Sampler&, AovSample*) { return radiance(ray); });
+                           [&](const CameraRay& ray, Sampler&, AovSample*) { return radiance(ray); });
 }
 
 }  // namespace pt

@@ -10,6 +10,7 @@
 #include "core/color.h"
 #include "core/function_ref.h"
 #include "core/math.h"
+#include "render/camera/ray_differential.h"
 #include "render/film/aov.h"
 #include "render/film/filter.h"
 #include "render/integrators/integrator.h"
@@ -30,12 +31,14 @@ struct RenderScene;
 // The jitter comes from Rng(hash(seed, pixel_index, index)).
 Vec2f sample_position(int x, int y, int index, int spp, uint64_t seed, uint64_t pixel_index);
 
-// Computes one radiance estimate for a camera ray.
-using RadianceFn = FunctionRef<RGB(const Ray&)>;
+// Computes one radiance estimate for a camera ray (with its differential in a
+// scene whose textures filter: pass ray.differential_or_null() to the first
+// RenderScene::intersect; a callable taking a plain Ray works too).
+using RadianceFn = FunctionRef<RGB(const CameraRay&)>;
 // Computes one radiance estimate for a camera ray, drawing further dimensions
 // from `sampler`. `aov` is null unless the film asks for the lighting split
 // (Film::wants_lighting()); then the estimate's parts go there.
-using SampleRadianceFn = FunctionRef<RGB(const Ray&, Sampler&, AovSample* aov)>;
+using SampleRadianceFn = FunctionRef<RGB(const CameraRay&, Sampler&, AovSample* aov)>;
 
 // The general loop: for samples [settings.first_sample, + settings.spp) of every
 // pixel, starts `sampler` (a prototype copied into each task) at the sample,
@@ -50,7 +53,7 @@ void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, cons
                     const Sampler& sampler, const PixelFilter& filter, SampleRadianceFn radiance);
 
 // Fills the geometric part of `aov` (albedo, normal, position, depth, ids) for a camera ray.
-void first_hit_aovs(const RenderScene& scene, const Ray& ray, AovSample& aov);
+void first_hit_aovs(const RenderScene& scene, const CameraRay& ray, AovSample& aov);
 
 // The classic integrators' loop: render_samples with the StratifiedPixelSampler
 // and the box filter, so each pixel is the average (in double) of `radiance`

@@ -73,7 +73,7 @@ struct ClassicShading {
   // The Blinn-Phong lobes of light arriving from unit direction l (cos_theta =
   // dot(n, l) > 0, unoccluded), each intensity times `falloff`.
   void shade_lobes(Vec3f l, float cos_theta, float falloff, const RGB& intensity, const RGB& specular_intensity) const {
-    add(m.kd * cos_theta * falloff * (m.diffuse_at(geo.uv) * intensity), true);
+    add(m.kd * cos_theta * falloff * (m.diffuse_at(tex_coord(geo)) * intensity), true);
     if (m.ks > 0.0f) {
       const Vec3f h = normalize(l + wo);
       const float spec = std::pow(std::max(0.0f, dot(n, h)), m.exponent);
@@ -119,7 +119,7 @@ struct ClassicShading {
     if (cos_theta <= 0.0f) return;
     if (scene.occluded(spawn_ray(geo, l))) return;
     const RGB e = light.irradiance * kInvPi;
-    add(m.kd * cos_theta * (m.diffuse_at(geo.uv) * e), true);
+    add(m.kd * cos_theta * (m.diffuse_at(tex_coord(geo)) * e), true);
     if (m.ks > 0.0f) {
       const float spec = std::pow(std::max(0.0f, dot(n, normalize(l + wo))), m.exponent);
       add(m.ks * spec * (m.specular * e), false);
@@ -174,9 +174,10 @@ class Whitted {
   // result: emission (the surface's own, or what the ray sees leaving the
   // scene), ambient, diffuse and specular direct light at the first hit, and
   // specular_indirect (what its mirror reflection or refraction brings).
-  RGB trace(const Ray& ray, int depth, AovSample* aov = nullptr) const {
+  // `differential`: the camera ray's (depth 0), or null.
+  RGB trace(const Ray& ray, int depth, AovSample* aov = nullptr, const RayDifferential* differential = nullptr) const {
     Intersection isect;
-    if (!scene_.intersect(ray, isect)) {
+    if (!scene_.intersect(ray, isect, differential)) {
       const RGB seen = depth == 0 ? scene_.camera_ray_escaped(ray) : scene_.escaped_radiance(ray.dir);
       if (aov != nullptr) aov->emission += seen;
       return seen;
@@ -201,7 +202,7 @@ class Whitted {
     if (scene_.ambient.is_black()) {
       local = m.emission + direct;
     } else {
-      ambient = m.ka * (m.diffuse_at(isect.geo.uv) * scene_.ambient);
+      ambient = m.ka * (m.diffuse_at(tex_coord(isect.geo)) * scene_.ambient);
       local = m.emission + ambient + direct;
     }
     if (m.reflectivity <= 0.0f) {
@@ -258,8 +259,8 @@ class WhittedIntegrator final : public Integrator {
   explicit WhittedIntegrator(const IntegratorSettings& settings) : settings_(settings) {}
 
   void render(const RenderScene& scene, Film& film, WorkerPool& pool) const override {
-    render_pixels_with_split(scene, film, pool, settings_, [&](const Ray& ray, Sampler& sampler, AovSample* aov) {
-      return Whitted(scene, settings_.max_depth, sampler).trace(ray, 0, aov);
+    render_pixels_with_split(scene, film, pool, settings_, [&](const CameraRay& ray, Sampler& sampler, AovSample* aov) {
+      return Whitted(scene, settings_.max_depth, sampler).trace(ray, 0, aov, ray.differential_or_null());
     });
   }
 

@@ -21,13 +21,19 @@ Vec3f tangent_along(Vec3f dpdu, Vec3f n) {
   return s;
 }
 
-// pbrt-v4's BumpMap with a forward difference of half a texel.
+// pbrt-v4's BumpMap: forward differences over half the lookup's footprint
+// (du = (|du/dx| + |du/dy|) / 2), or over 0.0005 where the hit has none. The
+// shifted lookups move the object-space point along dp/du and dp/dv too (the
+// world-space partials: exact for shapes placed directly), so that a bump map
+// with "mapping": "object" varies as well.
 Vec3f bumped_normal(const FloatParam& h, const UvDerivatives& d, const TexCoord& tc, Vec3f n) {
-  const float du = 0.5f / static_cast<float>(std::max(1, h.texture->width()));
-  const float dv = 0.5f / static_cast<float>(std::max(1, h.texture->height()));
+  float du = 0.5f * (std::abs(tc.duvdx.x) + std::abs(tc.duvdy.x));
+  float dv = 0.5f * (std::abs(tc.duvdx.y) + std::abs(tc.duvdy.y));
+  if (!(du > 0.0f)) du = 0.0005f;
+  if (!(dv > 0.0f)) dv = 0.0005f;
   const float h0 = h.at(tc);
-  const float hu = h.at(TexCoord(tc.uv + Vec2f(du, 0.0f)));
-  const float hv = h.at(TexCoord(tc.uv + Vec2f(0.0f, dv)));
+  const float hu = h.at(TexCoord(tc.uv + Vec2f(du, 0.0f), tc.duvdx, tc.duvdy, tc.p + d.dpdu * du, tc.dpdx, tc.dpdy));
+  const float hv = h.at(TexCoord(tc.uv + Vec2f(0.0f, dv), tc.duvdx, tc.duvdy, tc.p + d.dpdv * dv, tc.dpdx, tc.dpdy));
   const Vec3f dpdu = d.dpdu + n * ((hu - h0) / du);
   const Vec3f dpdv = d.dpdv + n * ((hv - h0) / dv);
   // The orientation of the unperturbed frame keeps n' on n's side.

@@ -1,7 +1,8 @@
 // How materials read textures: every texture lookup a material, a BSDF or a
 // normal map makes goes through texture_rgb() below, with the TexCoord of the
-// hit, so that a richer lookup (filter footprints from ray differentials) is a
-// change to these two definitions and to tex_coord(), not to every material.
+// hit (render/textures/tex_coord.h: its uv, object-space point and their
+// footprint from ray differentials), so every textured parameter is filtered
+// as the diffuse colour is.
 //
 // FloatParam and RGBParam are the material parameters that may be textured
 // (docs/scene-format.md, "Textured parameters"): a constant, or the constant
@@ -11,22 +12,14 @@
 
 #include "core/color.h"
 #include "core/math.h"
-#include "geometry/shape_base.h"
+#include "render/textures/tex_coord.h"
 #include "render/textures/texture.h"
 
 namespace pt {
 
-// Where a material reads its textures at a hit.
-struct TexCoord {
-  Vec2f uv;
-  TexCoord() = default;
-  TexCoord(Vec2f uv_) : uv(uv_) {}  // NOLINT(google-explicit-constructor): a uv is a texture coordinate
-};
-
-inline TexCoord tex_coord(const SurfaceGeometry& geo) { return TexCoord(geo.uv); }
-
-// The one texture lookup of the materials.
-inline RGB texture_rgb(const Texture& t, const TexCoord& tc) { return t.lookup(tc.uv); }
+// The one texture lookup of the materials: filtered over the hit's footprint
+// (render/textures/tex_coord.h; a point lookup where the hit has none).
+inline RGB texture_rgb(const Texture& t, const TexCoord& tc) { return t.eval(tc); }
 
 struct FloatParam {
   float value = 0.0f;
