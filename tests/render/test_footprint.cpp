@@ -88,5 +88,50 @@ TEST(Footprint, NoneWithoutTexturesThatUseThem) {
   EXPECT_EQ(isect.geo.dpdx, Vec3f());
 }
 
+// A texture only a BSDF parameter reads (a conductor's roughness) or only a
+// bump map reads still gets footprints: the materials' textures are one list
+// (MaterialDesc::for_each_texture). The bump map's normal is perturbed at the
+// same hit (RenderScene::texture_frame), placed directly or through a transform.
+TEST(Footprint, BsdfParametersAndBumpMapsGetThemToo) {
+  for (const bool bump : {false, true}) {
+    for (const bool transformed : {false, true}) {
+      SceneDescription d = square_scene(false, transformed);
+      TextureDesc t;
+      t.type = TextureType::Checker;
+      t.scale = Sourced<Vec3f>(Vec3f(3.0f));
+      d.textures.push_back(t);
+      MaterialDesc& m = d.materials.back();
+      m.type = Sourced<MaterialType>(MaterialType::Conductor);
+      if (bump) {
+        m.displacement = TexturedParam<float>{Sourced<float>(0.05f), 0};
+      } else {
+        m.uroughness.texture = 0;
+      }
+      WorkerPool pool(1);
+      const auto scene = test::build(d, pool);
+      ASSERT_TRUE(scene && scene->footprints) << bump << transformed;
+      // Along a row of pixels: footprints at every hit; the bump map's checker
+      // edges (u = 1/3, 2/3) tilt the normal at some, never below the surface.
+      int tilted = 0;
+      for (int x = 0; x < 100; ++x) {
+        const Vec2f px(static_cast<float>(x) + 0.5f, 50.5f);
+        CameraRay ray(scene->camera.generate_ray(px));
+        ray.differential = scene->camera.differential(px, {0.5f, 0.5f});
+        ray.has_differential = true;
+        Intersection isect;
+        if (!scene->intersect(ray, isect, ray.differential_or_null())) continue;
+        EXPECT_GT(std::hypot(isect.geo.duvdx.x, isect.geo.duvdx.y), 0.0f);
+        EXPECT_GE(dot(isect.geo.ns, isect.geo.ng), 0.0099f);
+        tilted += dot(isect.geo.ns, isect.geo.ng) < 0.9999f ? 1 : 0;
+      }
+      if (bump) {
+        EXPECT_GT(tilted, 0) << transformed;
+      } else {
+        EXPECT_EQ(tilted, 0) << transformed;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace pt

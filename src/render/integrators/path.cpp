@@ -36,9 +36,10 @@ class PathTracer {
         inv_roulette_threshold_(settings.roulette_threshold > 0.0f ? 1.0f / settings.roulette_threshold : 1.0f) {}
 
   // `aov`, when not null, receives the lighting split (path_aov.h).
-  RGB radiance(const CameraRay& camera_ray, Sampler& sampler, AovSample* aov = nullptr) const {
+  CameraEstimate radiance(const CameraRay& camera_ray, Sampler& sampler, AovSample* aov = nullptr) const {
     Ray ray = camera_ray;
     PathAovRecorder rec(aov);
+    bool camera_hit = false;
     RGB L, beta(1.0f);
     bool specular = true;  // the camera ray, or a delta lobe: no light sampling could have found this
     float prev_pdf = 0.0f;
@@ -55,6 +56,7 @@ class PathTracer {
         }
         break;
       }
+      camera_hit = camera_hit || depth == 0;
       const Material& m = *isect.material;
       const Vec3f wo = -ray.dir;
       if (m.emits()) {
@@ -105,7 +107,7 @@ class PathTracer {
         if (rec.active()) rec.scale(clamp_ / peak);
       }
     }
-    return L;
+    return {L, camera_hit};
   }
 
  private:
