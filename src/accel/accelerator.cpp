@@ -47,13 +47,20 @@ bool geometry_usable(const SceneGeometry& geometry) {
 }
 
 std::unique_ptr<Accelerator> build_accelerator(AccelKind kind, const SceneGeometry& geometry, WorkerPool& pool,
-                                               Diagnostics& diag) {
+                                               Diagnostics& diag, const CutoutTest* cutouts) {
   std::unique_ptr<Accelerator> backend;
   switch (kind) {
-    case AccelKind::Embree: backend = embree::build(geometry, pool, diag); break;
-    case AccelKind::Bvh: backend = bvh::build(geometry, pool, diag); break;
+    case AccelKind::Embree:
+      backend = embree::build(geometry, pool, diag, cutouts);
+      break;
+    case AccelKind::Bvh: {
+      bvh::Options options;
+      options.cutouts = cutouts;
+      backend = bvh::build(geometry, pool, diag, options);
+      break;
+    }
   }
-  return with_unbounded_shapes(std::move(backend), geometry);  // infinite planes, above both backends
+  return with_unbounded_shapes(std::move(backend), geometry, cutouts);  // infinite planes, above both backends
 }
 
 }  // namespace pt

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "accel/cutout.h"
 #include "core/diagnostics.h"
 #include "core/math.h"
 #include "geometry/shapes.h"
@@ -74,10 +75,12 @@ class Accelerator {
 // validation (src/scene/validate.h) refuses such shapes before they get here.
 bool geometry_usable(const SceneGeometry& geometry);
 
-// Builds the chosen backend over `geometry`, which must outlive the accelerator.
+// Builds the chosen backend over `geometry`, which must outlive the accelerator,
+// as must `cutouts` (the scene's alpha cutouts, accel/cutout.h; null for none).
 // The build runs inside `pool`'s arena. On failure (invalid geometry, an Embree
 // device error) returns nullptr and reports to `diag`.
 std::unique_ptr<Accelerator> build_accelerator(AccelKind kind, const SceneGeometry& geometry,
-                                               WorkerPool& pool, Diagnostics& diag);
+                                               WorkerPool& pool, Diagnostics& diag,
+                                               const CutoutTest* cutouts = nullptr);
 
 }  // namespace pt

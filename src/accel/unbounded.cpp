@@ -15,8 +15,8 @@ class UnboundedShapes final : public Accelerator {
     uint32_t object;
   };
 
-  UnboundedShapes(std::unique_ptr<Accelerator> backend, std::vector<Plane> planes)
-      : backend_(std::move(backend)), planes_(std::move(planes)) {}
+  UnboundedShapes(std::unique_ptr<Accelerator> backend, std::vector<Plane> planes, const CutoutTest* cutouts)
+      : backend_(std::move(backend)), planes_(std::move(planes)), cutouts_(cutouts) {}
 
   // The nearest plane first, then the backend for anything nearer.
   bool intersect(const Ray& ray, Hit& hit) const override {
@@ -27,7 +27,7 @@ class UnboundedShapes final : public Accelerator {
   bool occluded(const Ray& ray) const override {
     PrimHit h;
     for (const Plane& p : planes_) {
-      if (pt::intersect(*p.plane, 0, ray, h)) return true;
+      if (hit_plane(p, ray, h)) return true;
     }
     return backend_->occluded(ray);
   }
@@ -47,7 +47,7 @@ class UnboundedShapes final : public Accelerator {
     bool found = false;
     PrimHit h;
     for (const Plane& p : planes_) {
-      if (!pt::intersect(*p.plane, 0, r, h)) continue;
+      if (!hit_plane(p, r, h)) continue;
       r.tmax = h.t;
       hit = Hit{h.t, p.object, 0, h.uv};
       found = true;
@@ -55,14 +55,21 @@ class UnboundedShapes final : public Accelerator {
     return found;
   }
 
+  // A plane is never instanced: its transform is applied at import.
+  bool hit_plane(const Plane& p, const Ray& r, PrimHit& h) const {
+    if (cutouts_ != nullptr) return intersect_kept(*p.plane, 0, r, h, *cutouts_, p.object, kNoInstance);
+    return pt::intersect(*p.plane, 0, r, h);
+  }
+
   std::unique_ptr<Accelerator> backend_;
   std::vector<Plane> planes_;
+  const CutoutTest* cutouts_;
 };
 
 }  // namespace
 
 std::unique_ptr<Accelerator> with_unbounded_shapes(std::unique_ptr<Accelerator> backend,
-                                                   const SceneGeometry& geometry) {
+                                                   const SceneGeometry& geometry, const CutoutTest* cutouts) {
   std::vector<UnboundedShapes::Plane> planes;
   for (std::size_t i = 0; i < geometry.shapes.size(); ++i) {
     if (const auto* p = std::get_if<InfinitePlane>(&geometry.shapes[i])) {
@@ -70,7 +77,7 @@ std::unique_ptr<Accelerator> with_unbounded_shapes(std::unique_ptr<Accelerator> 
     }
   }
   if (planes.empty() || backend == nullptr) return backend;
-  return std::make_unique<UnboundedShapes>(std::move(backend), std::move(planes));
+  return std::make_unique<UnboundedShapes>(std::move(backend), std::move(planes), cutouts);
 }
 
 }  // namespace pt

@@ -14,8 +14,10 @@ namespace pt {
 
 // `backend` (built over `geometry`, which must outlive the result) with the
 // unbounded shapes of `geometry` tested above it; `backend` itself if there
-// are none (or if it is null).
+// are none (or if it is null). A plane that may be cut out goes through
+// `cutouts` (null: none) as the backends' shapes do.
 std::unique_ptr<Accelerator> with_unbounded_shapes(std::unique_ptr<Accelerator> backend,
-                                                   const SceneGeometry& geometry);
+                                                   const SceneGeometry& geometry,
+                                                   const CutoutTest* cutouts = nullptr);
 
 }  // namespace pt

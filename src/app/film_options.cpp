@@ -97,8 +97,10 @@ bool estimate_render_memory(const Options& o, const SceneDescription& scene, int
   const uint64_t pixels = static_cast<uint64_t>(crop.width()) * static_cast<uint64_t>(crop.height());
   AccelKind accel = AccelKind::Bvh;
   parse_accel_kind(o.accel, accel);  // CLI11 checked the name
+  const uint64_t cache = o.texture_cache.empty() ? TextureCache::kDefaultBytes
+                                                : parse_byte_size(o.texture_cache).value_or(TextureCache::kDefaultBytes);
   out = estimate_memory(scene, pixels, {film_bytes_per_pixel(aovs), output_bytes_per_pixel(aovs, o.outputs)},
-                        o.resume.empty() ? 1 : 2, accel);
+                        o.resume.empty() ? 1 : 2, accel, cache);
   out.baseline = resident_bytes();
   out.peak_so_far = peak_resident_bytes();
   out.reusable = std::min(free_heap_bytes(), out.baseline);

@@ -3,6 +3,7 @@
 #include "app/film_options.h"
 #include "app/job.h"
 #include "app/options.h"
+#include "app/memory_estimate.h"
 #include "app/progress.h"
 #include "core/parallel.h"
 #include "render/film/film.h"
@@ -14,8 +15,9 @@ std::unique_ptr<RenderScene> build_job_scene(const Options& o, Job& job, WorkerP
   parse_accel_kind(o.accel, accel);  // already validated by CLI11
   Diagnostics diag;
   diag.set_warnings_as_errors(o.strict);
-  std::unique_ptr<RenderScene> scene =
-      build_render_scene_taking_geometry(job.desc, job.settings.build_options(accel), pool, diag);
+  BuildOptions options = job.settings.build_options(accel);
+  if (!o.texture_cache.empty()) options.texture_cache_bytes = parse_byte_size(o.texture_cache).value_or(0);  // checked by CLI11
+  std::unique_ptr<RenderScene> scene = build_render_scene_taking_geometry(job.desc, options, pool, diag);
   m.add(diag, o.quiet);
   if (!scene) return nullptr;
   const RenderSettings& settings = job.settings;

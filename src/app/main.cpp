@@ -100,6 +100,9 @@ int run(const Options& o) {
   }
   const RenderOutcome outcome = render(o, *job, *scene, film, pool, monitor, figures);
   if (film.non_finite().total() > 0 && !o.quiet) std::cerr << "warning: " << non_finite_warning(film.non_finite()) << '\n';
+  // A texture read that failed mid-render (a file changed since the build) leaves black texels: no image.
+  if (const std::string why = scene->texture_failure(); !why.empty())
+    return fail("a texture could not be read during the render (no image written): " + why, kExitFailure);
 
   // Write.
   t0 = Clock::now();

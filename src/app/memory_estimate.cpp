@@ -97,9 +97,12 @@ uint64_t peak_resident_bytes() {
   return static_cast<uint64_t>(usage.ru_maxrss) * 1024;  // KiB on Linux
 }
 
-uint64_t texture_bytes(const SceneDescription& scene, const TextureLimits& limits) {
-  uint64_t total = 0, largest_decode = 0;
-  const auto add = [&](const std::string& path, uint64_t bytes_per_texel) {
+uint64_t texture_bytes(const SceneDescription& scene, const TextureLimits& limits, uint64_t cache_bytes) {
+  uint64_t total = 0, cached = 0, largest_decode = 0;
+  // `cache`: a material's image, read through the texture cache (its tiles and
+  // MIP levels, 4/3 of the finest, at most 4 bytes a channel); else decoded
+  // into memory at `bytes_per_texel`.
+  const auto add = [&](const std::string& path, uint64_t bytes_per_texel, bool cache) {
     if (!why_unreadable(path).empty()) return;  // no FIFO or device is opened; the build reports it
     const std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);  // the header only
     if (!in) {
@@ -113,19 +116,25 @@ uint64_t texture_bytes(const SceneDescription& scene, const TextureLimits& limit
     // limits) is refused by the build, with the scene location that names it;
     // it is never decoded, so it costs nothing.
     if (spec.depth > 1 || !limits.admit(texels, spec.nchannels)) return;
-    total = saturating_add(total, saturating_mul(texels, bytes_per_texel));
-    largest_decode = std::max(largest_decode,
-                              saturating_mul(texels, sizeof(float) * static_cast<uint64_t>(spec.nchannels)));
+    const uint64_t channel_bytes = saturating_mul(texels, sizeof(float) * static_cast<uint64_t>(spec.nchannels));
+    if (cache) {
+      cached = saturating_add(cached, saturating_add(channel_bytes, channel_bytes / 3));
+    } else {
+      total = saturating_add(total, saturating_mul(texels, bytes_per_texel));
+    }
+    largest_decode = std::max(largest_decode, channel_bytes);
   };
   std::vector<bool> used(scene.textures.size(), false);
-  for (const MaterialDesc& m : scene.materials)
-    if (m.texture && *m.texture >= 0 && static_cast<std::size_t>(*m.texture) < used.size())
-      used[static_cast<std::size_t>(*m.texture)] = true;
+  for (const MaterialDesc& m : scene.materials) {
+    m.for_each_texture([&](int t) {
+      if (t >= 0 && static_cast<std::size_t>(t) < used.size()) used[static_cast<std::size_t>(t)] = true;
+    });
+  }
   for (std::size_t i = 0; i < scene.textures.size(); ++i)
-    if (used[i]) add(scene.textures[i].resolved, kTextureBytesPerTexel);
-  if (scene.environment) add(scene.environment->resolved, kTextureBytesPerTexel + kDistributionBytesPerTexel);
-  if (scene.render.background_image) add(scene.render.background_image->resolved, kTextureBytesPerTexel);
-  return saturating_add(total, largest_decode);
+    if (used[i] && scene.textures[i].type == TextureType::Image) add(scene.textures[i].resolved, 0, true);
+  if (scene.environment) add(scene.environment->resolved, kTextureBytesPerTexel + kDistributionBytesPerTexel, false);
+  if (scene.render.background_image) add(scene.render.background_image->resolved, kTextureBytesPerTexel, false);
+  return saturating_add(saturating_add(total, std::min(cached, cache_bytes)), largest_decode);
 }
 
 uint64_t geometry_bytes(const SceneDescription& scene, AccelKind accel) {
@@ -146,11 +155,11 @@ uint64_t geometry_bytes(const SceneDescription& scene, AccelKind accel) {
 }
 
 MemoryEstimate estimate_memory(const SceneDescription& scene, uint64_t pixels, const PixelBytes& per_pixel,
-                               int films, AccelKind accel) {
+                               int films, AccelKind accel, uint64_t texture_cache_bytes) {
   MemoryEstimate e;
   e.film = pixels * per_pixel.film * static_cast<uint64_t>(films);
   e.images = pixels * per_pixel.images;
-  e.textures = texture_bytes(scene);
+  e.textures = texture_bytes(scene, TextureLimits{}, texture_cache_bytes);
   e.geometry = geometry_bytes(scene, accel);
   e.runtime = kRuntimeBytes;
   return e;

@@ -50,9 +50,11 @@ struct PixelBytes {
 
 // `pixels`: the pixels of the crop window (the frame without a crop);
 // `films`: how many films exist at once; `accel`: the backend that will be
-// built. The baseline and the peak so far are left 0 (the caller measures them).
+// built; `texture_cache_bytes`: --texture-cache. The baseline and the peak so
+// far are left 0 (the caller measures them).
 MemoryEstimate estimate_memory(const SceneDescription& scene, uint64_t pixels, const PixelBytes& per_pixel,
-                               int films = 1, AccelKind accel = AccelKind::Bvh);
+                               int films = 1, AccelKind accel = AccelKind::Bvh,
+                               uint64_t texture_cache_bytes = TextureCache::kDefaultBytes);
 
 // What building the render scene adds for the geometry on `accel`: the
 // render scene's copy of every shape (meshes: their vertex, index, normal and
@@ -60,14 +62,19 @@ MemoryEstimate estimate_memory(const SceneDescription& scene, uint64_t pixels, c
 // (per-triangle and per-shape figures measured with tools/bench/memory).
 uint64_t geometry_bytes(const SceneDescription& scene, AccelKind accel);
 
-// The decoded size of the textures some material uses and of the environment
-// map, from their files' headers (OpenImageIO, nothing is decoded): 12 bytes a
-// texel (float RGB), 12 more for the environment map's sampling distribution,
-// and the largest file's float decode buffer (4 bytes per channel per texel),
-// which exists while that file is read. A file that cannot be opened counts 0
-// (the build reports it), and so does one the loader refuses under `limits`
-// (TextureLimits::admit: the build reports it too, before decoding).
-uint64_t texture_bytes(const SceneDescription& scene, const TextureLimits& limits = {});
+// The memory of the image textures some material uses, of the environment map
+// and of the background image, from their files' headers (OpenImageIO, nothing
+// is decoded): a material's images live in the texture cache, which holds at
+// most their MIP pyramids (4/3 of the finest level, counted at 4 bytes a
+// channel) and at most `cache_bytes`; the environment map and the background
+// image are decoded into memory, 12 bytes a texel (float RGB) and 12 more for
+// the environment map's sampling distribution; and the largest file's float
+// decode buffer (4 bytes per channel per texel), which exists while that file
+// is read. A file that cannot be opened counts 0 (the build reports it), and so
+// does one the loader refuses under `limits` (TextureLimits::admit: the build
+// reports it too, before decoding).
+uint64_t texture_bytes(const SceneDescription& scene, const TextureLimits& limits = {},
+                       uint64_t cache_bytes = TextureCache::kDefaultBytes);
 
 // "4G", "512M", "64k", "1000" (bytes; K/M/G/T are powers of 1024, an optional
 // trailing "B"/"iB" is accepted). std::nullopt for anything else.

@@ -11,11 +11,13 @@
 #include <CLI/CLI.hpp>
 
 #include "accel/accelerator.h"
+#include "app/memory_estimate.h"
 #include "app/outputs.h"
 #include "app/versions.h"
 #include "io/image_io.h"
 #include "render/film/aov.h"
 #include "render/integrators/integrator.h"
+#include "render/textures/texture_cache.h"
 #include "scene/resolution_limits.h"
 #include "scene/scene_description.h"
 #include "scene/suggest.h"
@@ -28,6 +30,7 @@ constexpr int kMaxSpp = 1 << 20;
 constexpr int kMaxDepth = 1 << 16;
 constexpr int kMaxResolution = ResolutionLimits{}.max_resolution;
 constexpr double kMaxSeconds = 1e7;
+constexpr uint64_t kMinTextureCacheBytes = uint64_t{1} << 20;
 
 // Numbers CLI11 would accept but the renderer cannot use (issue 20): CLI11's
 // Range lets NaN through (every comparison with it is false), and its integer
@@ -188,6 +191,19 @@ void add_long_render_options(CLI::App& app, Options& o) {
       ->group(kGroupLongRenders);
   app.add_option("--report", o.report,
                  "Write a run record (JSON: settings, versions, time per phase, speed, memory, spp reached)")
+      ->group(kGroupLongRenders);
+  app.add_option("--texture-cache", o.texture_cache,
+                 "Memory for image texture tiles (e.g. 64M, 1G; default " +
+                     byte_size_text(TextureCache::kDefaultBytes) + "): least recently used tiles are dropped "
+                     "beyond it, and read again when needed")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            const std::optional<uint64_t> bytes = parse_byte_size(text);
+            if (!bytes) return "'" + text + "' is not a size (e.g. 256M, 1G, 65536)";
+            if (*bytes < kMinTextureCacheBytes) return "at least 1M, got '" + text + "'";
+            return {};
+          },
+          "SIZE"))
       ->group(kGroupLongRenders);
 }
 

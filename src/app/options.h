@@ -41,6 +41,7 @@ struct Options {
   double progress_interval = 10;   // seconds between progress lines when stderr is not a terminal
   std::vector<std::string> overrides;  // --set key=value
   std::string max_memory;          // e.g. "4G"; empty: physical memory only
+  std::string texture_cache;       // --texture-cache, e.g. "512M"; empty: TextureCache::kDefaultBytes
   // AOVs, crops and replays (docs/output.md).
   std::string aov;                 // --aov list; empty: beauty only
   int cryptomatte_levels = 6;      // ranks per Cryptomatte AOV (kCryptomatteDefaultRanks)

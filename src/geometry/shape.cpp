@@ -19,6 +19,10 @@ SurfaceGeometry surface(const Shape& s, uint32_t prim, const Ray& ray, const Pri
   return std::visit([&](const auto& shape) { return surface_of_primitive(shape, prim, ray, hit); }, s);
 }
 
+UvDerivatives uv_derivatives(const Shape& s, uint32_t prim, const SurfaceGeometry& sg) {
+  return std::visit([&](const auto& shape) { return uv_derivatives_of_primitive(shape, prim, sg); }, s);
+}
+
 void check(const Shape& s, ShapeChecker& c) {
   std::visit([&](const auto& shape) { check(shape, c); }, s);
 }

@@ -36,6 +36,21 @@ struct SurfaceGeometry {
   // Conservative per-component bound on the absolute error of `p` (and of the
   // shape's own intersection routine near p); used by spawn_ray().
   Vec3f p_error;
+  // Where and over how much textures are looked up (render/textures/tex_coord.h),
+  // set by RenderScene::intersect in a scene with textures: the change of uv
+  // and of the object-space position across one pixel in x and y of the
+  // image, and that position (the shape's own space; p for a shape placed
+  // directly). Zero otherwise, and from surface(): a point lookup.
+  Vec2f duvdx, duvdy;
+  Vec3f p_object, dpdx, dpdy;
+};
+
+// The derivatives of position with respect to the texture coordinates at a
+// surface point (the tangent frame of normal and bump maps; the shape's
+// uv_derivatives routine). Either may be zero where the parameterisation is
+// degenerate (a sphere's poles, the constant v of a cap).
+struct UvDerivatives {
+  Vec3f dpdu, dpdv;
 };
 
 // ---------------------------------------------------------------- validation

@@ -8,6 +8,8 @@
 //   bool intersect(const S&, const Ray&, PrimHit&) (or, with several primitives,
 //        intersect(s, prim, ray, hit) and bounds(s, prim))
 //   SurfaceGeometry surface(const S&, const Ray&, const PrimHit&)   (or with prim)
+//   UvDerivatives uv_derivatives(const S&, const SurfaceGeometry&)  (or with prim): dp/du, dp/dv
+//                                                  at a point surface() returned (normal and bump maps)
 //   void check(const S&, ShapeChecker&)            the validation rule
 //   make_area_sampler(const S&)                    sampling by area, for area lights
 // Both acceleration backends, the area lights and scene validation work over
@@ -99,6 +101,12 @@ SurfaceGeometry surface_of_primitive(const S& s, uint32_t prim, const Ray& ray, 
   else return surface(s, prim, ray, hit);
 }
 
+template <class S>
+UvDerivatives uv_derivatives_of_primitive(const S& s, uint32_t prim, const SurfaceGeometry& sg) {
+  if constexpr (requires { uv_derivatives(s, sg); }) return uv_derivatives(s, sg);
+  else return uv_derivatives(s, prim, sg);
+}
+
 // A typed reference to one shape of a SceneGeometry (one pointer per
 // alternative of Shape, generated from its list).
 template <class V>
@@ -124,6 +132,7 @@ ShapeAreaSampler make_area_sampler(const Shape& s);
 Bounds3f bounds(const Shape& s);
 uint32_t primitive_count(const Shape& s);
 SurfaceGeometry surface(const Shape& s, uint32_t prim, const Ray& ray, const PrimHit& hit);
+UvDerivatives uv_derivatives(const Shape& s, uint32_t prim, const SurfaceGeometry& sg);
 void check(const Shape& s, ShapeChecker& c);
 
 // ---------------------------------------------------------------- self-intersection

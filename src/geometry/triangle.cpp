@@ -10,6 +10,23 @@
 
 namespace pt {
 
+UvDerivatives uv_derivatives(const TriangleMesh& m, uint32_t tri, const SurfaceGeometry& /*sg*/) {
+  const uint32_t* idx = &m.indices[3 * static_cast<std::size_t>(tri)];
+  const Vec3f p0 = m.positions[idx[0]];
+  const Vec3f dp1 = m.positions[idx[1]] - p0, dp2 = m.positions[idx[2]] - p0;
+  if (m.uvs.size() == m.positions.size()) {
+    const Vec2f uv0 = m.uvs[idx[0]];
+    const Vec2f d1 = m.uvs[idx[1]] - uv0, d2 = m.uvs[idx[2]] - uv0;
+    const float det = d1.x * d2.y - d1.y * d2.x;
+    const float scale = std::max(std::fabs(d1.x * d2.y), std::fabs(d1.y * d2.x));
+    if (std::fabs(det) > 1e-8f * scale && std::isfinite(1.0f / det)) {
+      const float inv = 1.0f / det;
+      return {(dp1 * d2.y - dp2 * d1.y) * inv, (dp2 * d1.x - dp1 * d2.x) * inv};
+    }
+  }
+  return {dp1, dp2};
+}
+
 namespace {
 
 // The triangle's vertices in the ray's sheared frame (the ray runs along +z from 0).

@@ -10,11 +10,12 @@
 
 #include "core/stopwatch.h"
 #include "render/film/cryptomatte.h"
+#include "render/scene_textures.h"
 #include "scene/validate.h"
 
 namespace pt {
 
-bool RenderScene::intersect(const Ray& ray, Intersection& out) const {
+bool RenderScene::intersect(const Ray& ray, Intersection& out, const RayDifferential* differential) const {
   ++detail::t_rays_traced;
   if (!accel->intersect(ray, out.hit)) return false;
   const Shape& shape = geometry.shapes[out.hit.shape];
@@ -23,10 +24,12 @@ bool RenderScene::intersect(const Ray& ray, Intersection& out) const {
   prim_hit.uv = out.hit.uv;
   if (out.hit.instance != kNoInstance) {
     instanced_surface(ray, prim_hit, out);
-    return true;
+  } else {
+    out.geo = surface(shape, out.hit.prim, ray, prim_hit);
+    out.material = &materials[static_cast<std::size_t>(shape_material[out.hit.shape])];
   }
-  out.geo = surface(shape, out.hit.prim, ray, prim_hit);
-  out.material = &materials[static_cast<std::size_t>(shape_material[out.hit.shape])];
+  if (footprints || out.material->perturbs_normal()) [[unlikely]]
+    texture_frame(differential, out);
   return true;
 }
 
@@ -35,7 +38,9 @@ bool RenderScene::intersect(const Ray& ray, Intersection& out) const {
 // instances never come here.
 void RenderScene::instanced_surface(const Ray& ray, const PrimHit& prim_hit, Intersection& out) const {
   const Transform& t = geometry.instances[out.hit.instance].transform;
-  out.geo = to_world(surface(geometry.shapes[out.hit.shape], out.hit.prim, t.to_object(ray), prim_hit), t);
+  const Shape& shape = geometry.shapes[out.hit.shape];
+  const SurfaceGeometry object = surface(shape, out.hit.prim, t.to_object(ray), prim_hit);
+  out.geo = to_world(object, t);
   out.material = &materials[static_cast<std::size_t>(material_of(out.hit.shape, out.hit.instance))];
 }
 
@@ -61,54 +66,6 @@ void resolve_resolution(const FilmDesc& film, const BuildOptions& options, int& 
 namespace {
 
 // ---------------------------------------------------------------- shapes
-// ---------------------------------------------------------------- textures and materials
-// Decodes each texture some material references, once. Unreferenced textures
-// are never read. Returns false if any referenced texture failed to decode.
-// Decodes one image (its time added to the scene's texture_load_seconds); on
-// failure reports "cannot read <what> '<file>': ..." at its location.
-std::unique_ptr<Texture> load_texture(const TextureDesc& t, const char* what, const TextureLimits& limits,
-                                      RenderScene& scene, Diagnostics& diag) {
-  auto tex = std::make_unique<Texture>();
-  std::string error;
-  const auto start = Clock::now();
-  const bool loaded = Texture::load(t.resolved, *tex, error, limits, t.raw);
-  scene.texture_load_seconds += seconds_since(start);
-  if (loaded) return tex;
-  diag.error(t.where, std::string("cannot read ") + what + " '" + t.written + "': " + error);
-  return nullptr;
-}
-
-bool load_textures(const SceneDescription& desc, const TextureLimits& limits, RenderScene& scene,
-                   Diagnostics& diag) {
-  std::vector<bool> used(desc.textures.size(), false);
-  for (const MaterialDesc& m : desc.materials) {
-    if (!m.texture) continue;
-    if (*m.texture < 0 || static_cast<std::size_t>(*m.texture) >= desc.textures.size()) {
-      diag.error(m.where, "material" + (m.name.empty() ? std::string() : " '" + m.name + "'") +
-                              " refers to texture " + std::to_string(*m.texture) + ", but the scene has " +
-                              std::to_string(desc.textures.size()));
-      return false;
-    }
-    used[static_cast<std::size_t>(*m.texture)] = true;
-  }
-  bool ok = true;
-  scene.textures.resize(desc.textures.size());
-  for (std::size_t i = 0; i < desc.textures.size(); ++i) {
-    if (!used[i]) continue;
-    scene.textures[i] = load_texture(desc.textures[i], "texture", limits, scene, diag);
-    ok = ok && scene.textures[i] != nullptr;
-  }
-  if (desc.render.background_image) {
-    scene.background_image = load_texture(*desc.render.background_image, "background image", limits, scene, diag);
-    ok = ok && scene.background_image != nullptr;
-  }
-  return ok;
-}
-
-Material to_material(const MaterialDesc& d, const RenderScene& scene) {
-  return make_material(d, d.texture ? scene.textures[static_cast<std::size_t>(*d.texture)].get() : nullptr);
-}
-
 // ---------------------------------------------------------------- lights
 // One overload per LightDesc alternative: the light it becomes (if any).
 void add_light(std::vector<Light>& lights, const PointLightDesc& d) {
@@ -315,11 +272,11 @@ std::unique_ptr<RenderScene> build(Desc& desc, const BuildOptions& options, Work
   scene->camera = Camera(desc.camera, scene->width, scene->height);
   scene->background = desc.render.background;
 
-  bool ok = load_textures(desc, options.textures, *scene, diag);
+  bool ok = load_textures(desc, options, *scene, diag);
   if (ok) {
-    scene->materials.reserve(desc.materials.size());
-    for (const MaterialDesc& m : desc.materials) scene->materials.push_back(to_material(m, *scene));
+    add_materials(desc, *scene);
   }
+  scene->camera_spread = CameraSpread::of(scene->camera, scene->width, scene->height);
   // Shapes without a valid material get a default one, so a description built
   // in code with no materials still renders (reported as an error otherwise).
   const bool need_default = desc.materials.empty();
@@ -346,7 +303,8 @@ std::unique_ptr<RenderScene> build(Desc& desc, const BuildOptions& options, Work
   }
 
   if (!ok) return nullptr;
-  scene->accel = build_accelerator(options.accel, scene->geometry, pool, diag);
+  const CutoutTest* cutouts = prepare_cutouts(desc, *scene);
+  scene->accel = build_accelerator(options.accel, scene->geometry, pool, diag, cutouts);
   if (!scene->accel) return nullptr;
   scene->lights = build_light_set(desc, *scene);
   for (const LightDesc& l : desc.lights)

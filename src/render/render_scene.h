@@ -9,14 +9,19 @@
 #include <vector>
 
 #include "accel/accelerator.h"
+#include "accel/cutout.h"
 #include "core/diagnostics.h"
 #include "geometry/shapes.h"
 #include "render/camera/camera.h"
+#include "render/camera/ray_differential.h"
 #include "render/lights/environment.h"
 #include "render/lights/light.h"
 #include "render/lights/light_set.h"
+#include "render/materials/coated_diffuse.h"
 #include "render/materials/material.h"
+#include "render/textures/footprint.h"
 #include "render/textures/texture.h"
+#include "render/textures/texture_cache.h"
 #include "scene/resolution_limits.h"
 #include "scene/scene_description.h"
 
@@ -68,7 +73,10 @@ struct RenderScene {
   std::vector<int> instance_material;  // per instance: index into materials, or -1 for its shapes' own
   std::vector<Material> materials;
   SceneNames names;  // Cryptomatte's
+  // The image textures' cache (OpenImageIO's TextureSystem), if the scene has any.
+  std::unique_ptr<TextureCache> texture_cache;
   std::vector<std::unique_ptr<Texture>> textures;  // stable addresses (materials point in)
+  std::vector<std::unique_ptr<CoatingTable>> coatings;  // coated diffuse albedo tables, one per index
   std::unique_ptr<Texture> background_image;       // render.background_image, if any
   // Owns the environment map (its sampling distribution included) when the
   // scene has one; it is reached through `lights` (an EnvironmentLight).
@@ -76,7 +84,23 @@ struct RenderScene {
   // Every light, each stored once (built after the accelerator: infinite
   // lights' power estimates need the scene bounds).
   LightSet lights;
-  std::unique_ptr<Accelerator> accel;
+  // Alpha cutouts (docs/textures.md): per material, its constant alpha or
+  // its alpha texture; the test the accelerator calls for the shapes whose
+  // material has one (none: the accelerator gets no test and runs none).
+  struct Cutout {
+    float alpha = 1.0f;
+    const Texture* texture = nullptr;
+    bool active() const { return texture != nullptr || !(alpha >= kAlphaCutoff); }
+  };
+  static constexpr float kAlphaCutoff = 0.5f;  // a surface is there where alpha >= 0.5
+  std::vector<Cutout> cutouts;
+  CutoutTest cutout_test;
+  // Whether intersect() computes texture footprints (geo.duvdx, ...): some
+  // texture filters over one or reads the object-space position. From camera
+  // ray differentials at first hits, else from the camera's spread.
+  bool footprints = false;
+  CameraSpread camera_spread;
+  std::unique_ptr<Accelerator> accel;  // after what its cutout test reads
   double texture_load_seconds = 0;  // decoding the textures and the environment map; 0 if there are none
 
   // The material of a shape hit through `instance` (or placed directly, kNoInstance).
@@ -85,13 +109,24 @@ struct RenderScene {
     return shape_material[shape];
   }
   // Both count the ray in the calling thread's rays_traced_by_this_thread().
-  bool intersect(const Ray& ray, Intersection& out) const;
+  // `differential`: a camera ray's, for the footprint of its first hit (null
+  // for any other ray).
+  bool intersect(const Ray& ray, Intersection& out, const RayDifferential* differential = nullptr) const;
   bool occluded(const Ray& ray) const {
     ++detail::t_rays_traced;
     return accel->occluded(ray);
   }
   // The rest of intersect() for a hit through an instance.
   [[gnu::noinline]] void instanced_surface(const Ray& ray, const PrimHit& prim_hit, Intersection& out) const;
+  // A hit's tangent frame at work (scene_textures.cpp): its texture footprint
+  // (scenes with `footprints`) and its shading normal perturbed by the
+  // material's normal or bump map. One uv_derivatives() serves both.
+  [[gnu::noinline]] void texture_frame(const RayDifferential* differential, Intersection& out) const;
+  // Whether the surface is there at a candidate hit (the cutout test; ray in the shape's space).
+  bool keeps(const Ray& ray, uint32_t object, uint32_t prim, const PrimHit& hit, uint32_t instance) const;
+  // The first texture read that failed during rendering (a file changed or
+  // broken since the scene was built), empty if none did: the render is not to be trusted.
+  std::string texture_failure() const { return texture_cache ? texture_cache->failure() : std::string(); }
   // Radiance seen by a ray that leaves the scene in direction `dir`: the
   // environment light's (the map, or the background colour), or else the
   // background colour (black).
@@ -116,6 +151,7 @@ struct BuildOptions {
   int height_override = 0;
   ResolutionLimits limits;           // the image after the overrides, as LoadOptions
   TextureLimits textures;            // every texture and environment map, checked before decoding
+  uint64_t texture_cache_bytes = TextureCache::kDefaultBytes;  // --texture-cache
 };
 
 // The image size build_render_scene gives `film` under `options` (an override

@@ -46,15 +46,15 @@ std::optional<std::string> find_scene_file(ImportContext& ctx, const Sourced<std
   return resolved;
 }
 
-std::optional<int> add_texture(ImportContext& ctx, const Sourced<std::string>& written) {
+std::optional<int> add_texture(ImportContext& ctx, const Sourced<std::string>& written, bool raw) {
   const std::optional<std::string> resolved = find_scene_file(ctx, written, "texture file");
   if (!resolved) return std::nullopt;
   std::error_code ec;
   fs::path canonical = fs::weakly_canonical(*resolved, ec);
-  const std::string key = ec ? *resolved : canonical.string();
+  const std::string key = (ec ? *resolved : canonical.string()) + (raw ? std::string(1, '\0') + "raw" : "");
   if (const auto it = ctx.texture_ids.find(key); it != ctx.texture_ids.end()) return it->second;
   const int id = static_cast<int>(ctx.scene.textures.size());
-  ctx.scene.textures.push_back(TextureDesc{written.where, written.value, *resolved});
+  ctx.scene.textures.push_back(TextureDesc{written.where, written.value, *resolved, raw});
   ctx.texture_ids.emplace(key, id);
   return id;
 }

@@ -17,7 +17,7 @@ struct ImportContext {
   ReadContext read;
   const LoadOptions& options;
   SceneDescription& scene;
-  std::map<std::string, int> texture_ids;  // canonical path -> index in scene.textures
+  std::map<std::string, int> texture_ids;  // canonical path (+ raw mark) -> index in scene.textures
   std::optional<int> default_material;     // index, once a shape needed it
 
   Diagnostics& diag() { return read.diag; }
@@ -31,9 +31,10 @@ std::optional<std::string> find_scene_file(ImportContext& ctx, const Sourced<std
                                            const std::string& what);
 
 // Resolves a texture path written in the file (see resolve_scene_path) and
-// returns its index in scene.textures, adding it the first time. A missing
-// file is reported (saying where it was looked for) and gives std::nullopt.
-std::optional<int> add_texture(ImportContext& ctx, const Sourced<std::string>& written);
+// returns its index in scene.textures, adding it the first time (a file read
+// `raw`, without sRGB decoding, is an entry of its own). A missing file is
+// reported (saying where it was looked for) and gives std::nullopt.
+std::optional<int> add_texture(ImportContext& ctx, const Sourced<std::string>& written, bool raw = false);
 
 // Resolves and reads a mesh file into shape.geometry (a TriangleMesh) and
 // records the file in shape.file and shape.fields ("file"): OBJ for a .obj

@@ -1,5 +1,6 @@
 // The native format (docs/scene-format.md): top level, camera, film, render
-// settings, materials and lights. Shapes are in import_native_shapes.cpp.
+// settings and lights. Materials are in import_native_materials.cpp, shapes
+// in import_native_shapes.cpp.
 #include <algorithm>
 #include <iterator>
 #include <optional>
@@ -10,6 +11,7 @@
 #include "scene/importers.h"
 #include "scene/import_transform.h"
 #include "scene/native_shapes.h"
+#include "scene/native_textures.h"
 
 namespace pt {
 namespace {
@@ -146,88 +148,6 @@ void read_render(ImportContext& ctx, const JsonValue& v) {
   r.finish();
 }
 
-// The keys each material type reads besides "type" (docs/scene-format.md); a
-// key the type does not read is an error rather than silently ignored.
-const std::vector<std::string>& material_keys(MaterialType type) {
-  static const std::vector<std::string> kPhong = {"diffuse", "kd", "ka", "specular", "ks", "exponent", "reflectivity",
-                                                  "refractive", "ior", "emission", "two_sided", "light_samples", "texture"};
-  static const std::vector<std::string> kLambert = {"diffuse",  "kd",        "ka", "texture",
-                                                    "emission", "two_sided", "light_samples"};
-  static const std::vector<std::string> kMirror = {"specular", "emission", "two_sided", "light_samples"};
-  static const std::vector<std::string> kGlass = {"ior", "emission", "two_sided", "light_samples"};
-  switch (type) {
-    case MaterialType::Lambert: return kLambert;
-    case MaterialType::Mirror: return kMirror;
-    case MaterialType::Glass: return kGlass;
-    case MaterialType::Phong: break;
-  }
-  return kPhong;
-}
-
-void check_material_keys(ImportContext& ctx, ObjectReader& r, const JsonValue& object, MaterialType type,
-                         const std::string& type_name) {
-  const std::vector<std::string>& allowed = material_keys(type);
-  const std::vector<std::string>& all = material_keys(MaterialType::Phong);
-  for (const JsonMember& member : object.as_object()) {
-    if (member.duplicate || std::find(all.begin(), all.end(), member.key) == all.end()) continue;
-    if (std::find(allowed.begin(), allowed.end(), member.key) != allowed.end()) continue;
-    std::string list;
-    for (const std::string& k : allowed) list += (list.empty() ? "" : ", ") + k;
-    ctx.diag().error(ctx.doc().location(member.key_offset),
-                     "'" + member.key + "' does not apply to a " + type_name + " material (it reads: " + list + ")");
-    r.fail();
-  }
-}
-
-NativeMaterial read_material(ImportContext& ctx, const JsonMember& member) {
-  NativeMaterial out;
-  out.desc.name = member.key;
-  out.desc.where = ctx.doc().location(member.key_offset);
-  if (!expect_object(ctx.read, member.value, "material '" + member.key + "'")) {
-    out.ok = false;
-    return out;
-  }
-  ObjectReader r(ctx.read, member.value, "material '" + member.key + "'");
-  MaterialDesc& m = out.desc;
-  SourceLocation type_at;
-  static const std::vector<std::string> kTypes = {"phong", "lambert", "mirror", "glass"};
-  const int type = read_choice(r, "type", kTypes, &type_at);
-  if (type >= 0) {
-    constexpr MaterialType kTypeValues[] = {MaterialType::Phong, MaterialType::Lambert, MaterialType::Mirror,
-                                            MaterialType::Glass};
-    m.type = Sourced<MaterialType>(kTypeValues[type], type_at);
-    check_material_keys(ctx, r, member.value, m.type, kTypes[static_cast<std::size_t>(type)]);
-  }
-  r.read("diffuse", m.diffuse);
-  r.read("kd", m.kd);
-  if (Sourced<float> ka; r.get("ka") && r.read("ka", ka)) m.ka = ka;
-  r.read("specular", m.specular);
-  r.read("ks", m.ks);
-  r.read("exponent", m.exponent);
-  r.read("reflectivity", m.reflectivity);
-  r.read("refractive", m.refractive);
-  r.read("ior", m.ior);
-  r.read("emission", m.emission);
-  r.read("two_sided", m.two_sided);
-  if (r.get("light_samples") && r.read("light_samples", m.light_samples) && m.light_samples.value < 1) {
-    ctx.diag().error(m.light_samples.where, "'light_samples' must be at least 1");
-    r.fail();
-  }
-  Sourced<std::string> texture;
-  if (r.get("texture") && r.read("texture", texture)) out.texture = texture;
-  r.finish();
-  out.ok = r.ok();
-  return out;
-}
-
-std::vector<NativeMaterial> read_materials(ImportContext& ctx, const JsonValue& v) {
-  std::vector<NativeMaterial> materials;
-  if (!expect_object(ctx.read, v, "materials")) return materials;
-  for (const JsonMember& member : v.as_object())
-    if (!member.duplicate) materials.push_back(read_material(ctx, member));
-  return materials;
-}
-
 // The keys point and spot lights share: where, position, intensity, specular_intensity.
 template <class Desc>
 void read_positioned_light(ObjectReader& r, const char* what, Desc& light) {
@@ -320,7 +240,7 @@ void read_environment(ImportContext& ctx, const JsonValue& v) {
 
 // Keeps the materials some shape uses (in declaration order), registers their
 // textures, and renumbers the shapes' material indices.
-void assemble_materials(ImportContext& ctx, std::vector<NativeMaterial>& materials,
+void assemble_materials(ImportContext& ctx, std::vector<NativeMaterial>& materials, NativeTextures& textures,
                         const std::vector<int>& shape_material, const std::vector<std::vector<int>>& object_material) {
   std::vector<int> final_index(materials.size(), -1);
   for (std::size_t i = 0; i < materials.size(); ++i) {
@@ -329,7 +249,7 @@ void assemble_materials(ImportContext& ctx, std::vector<NativeMaterial>& materia
       ctx.diag().warning(m.desc.where, "material '" + m.desc.name + "' is not used by any shape");
       continue;
     }
-    if (m.texture) m.desc.texture = add_texture(ctx, *m.texture);
+    resolve_material_textures(ctx, textures, m);
     final_index[i] = static_cast<int>(ctx.scene.materials.size());
     ctx.scene.materials.push_back(std::move(m.desc));
   }
@@ -371,6 +291,8 @@ void import_native(ImportContext& ctx) {
                        "environment is what rays that leave the scene see");
   }
 
+  NativeTextures textures;
+  if (const JsonValue* v = top.get("textures")) textures = read_native_textures(ctx, *v);
   std::vector<NativeMaterial> materials;
   if (const JsonValue* v = top.get("materials")) materials = read_materials(ctx, *v);
 
@@ -388,7 +310,8 @@ void import_native(ImportContext& ctx) {
   }
   top.finish();
   warn_unplaced_objects(ctx);
-  assemble_materials(ctx, materials, shape_material, object_material);
+  assemble_materials(ctx, materials, textures, shape_material, object_material);
+  warn_unused_textures(ctx, textures);
 }
 
 }  // namespace pt

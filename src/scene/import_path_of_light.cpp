@@ -101,8 +101,11 @@ void read_transmission(ImportContext& ctx, ObjectReader& r, MaterialDesc& m) {
 // A textured surface as the course's reference render shows it (docs/rendering.md,
 // "The course reference images"): the texels, read as they are (no sRGB decoding),
 // take the place of "diffusecolor", and the surface has no specular highlight.
+// The course samples its textures at points (one bilinear lookup at the hit,
+// one sample per pixel); so do we, rather than filter them over a footprint.
 void use_course_texture(ImportContext& ctx, MaterialDesc& m) {
-  ctx.scene.textures[static_cast<std::size_t>(*m.texture)].raw = true;
+  TextureDesc& t = ctx.scene.textures[static_cast<std::size_t>(*m.texture)];
+  t.filter = Sourced<TextureFilter>(TextureFilter::Bilinear, t.where);
   m.diffuse = Sourced<RGB>(RGB(1.0f), m.diffuse.where);
   m.ks = Sourced<float>(0.0f, m.ks.where);
 }
@@ -120,7 +123,7 @@ int read_material(ImportContext& ctx, const JsonValue& v) {
   r.read("kr", m.reflectivity);
   read_transmission(ctx, r, m);
   Sourced<std::string> texture;
-  if (r.get("tPath") && r.read("tPath", texture)) m.texture = add_texture(ctx, texture);
+  if (r.get("tPath") && r.read("tPath", texture)) m.texture = add_texture(ctx, texture, /*raw=*/true);
   if (m.texture) use_course_texture(ctx, m);
   r.allow({"tWidth", "tHeight"});  // the course's claimed image size; the real size is used
   r.finish();

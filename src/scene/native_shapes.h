@@ -1,5 +1,5 @@
 // Shapes of the native format (import_native_shapes.cpp), and the material
-// table they refer to by name (filled by import_native.cpp).
+// table they refer to by name (import_native_materials.cpp).
 #pragma once
 
 #include <optional>
@@ -7,15 +7,35 @@
 #include <vector>
 
 #include "scene/import_context.h"
+#include "scene/native_textures.h"
 
 namespace pt {
 
+// Which of a material's parameters a texture reference is for.
+enum class MaterialTexture { Diffuse, URoughness, VRoughness, Eta, K, Reflectance, NormalMap, Displacement };
+
+// A texture reference (native_textures.h: a name, an image file or an inline
+// texture) read with its material, resolved once a shape uses the material.
+struct PendingTexture {
+  const JsonValue* ref;
+  const char* key;  // the material key it was given for (messages)
+  MaterialTexture slot;
+  bool data;        // numbers rather than colour: image files read without sRGB decoding
+};
+
 struct NativeMaterial {
   MaterialDesc desc;
-  std::optional<Sourced<std::string>> texture;  // registered only if the material is used
+  std::vector<PendingTexture> textures;  // resolved only if the material is used
+  const JsonValue* alpha = nullptr;      // "alpha": a number or a texture reference
   bool used = false;
   bool ok = true;
 };
+
+// The top-level "materials" object, in file order.
+std::vector<NativeMaterial> read_materials(ImportContext& ctx, const JsonValue& v);
+// Resolves the texture references and the alpha of a material some shape uses
+// (resolve_texture_ref) and stores their indices in its description.
+void resolve_material_textures(ImportContext& ctx, NativeTextures& textures, NativeMaterial& m);
 
 // Reads shapes[index] and appends it to ctx.scene.shapes, and its material
 // (index into `materials`, -1 for the default material) to `shape_material`.

@@ -89,15 +89,43 @@ struct FilmDesc {
 };
 
 // ---------------------------------------------------------------- textures
-// A reference to an image file used as a texture. `path` is resolved (absolute or
-// relative to the working directory) by the loader; `written` is the text in the file.
+// A texture (docs/scene-format.md, "Textures"; docs/textures.md): an image
+// file, or a procedural checker or noise, read through a mapping. Materials
+// refer to them by index into SceneDescription::textures.
+enum class TextureType { Image, Checker, Noise };
+inline constexpr const char* kTextureTypeNames[] = {"image", "checker", "noise"};
+
+// How an image texture is filtered (pbrt-v4's ImageTexture "filter"): the
+// nearest texel or bilinear on the finest level (point lookups), trilinear
+// between two MIP levels chosen by the footprint's longer axis, or
+// OpenImageIO's anisotropic filter (trilinear probes along the footprint).
+enum class TextureFilter { Point, Bilinear, Trilinear, Anisotropic };
+inline constexpr const char* kTextureFilterNames[] = {"point", "bilinear", "trilinear", "anisotropic"};
+
+// What a lookup outside [0, 1] reads (pbrt-v4's "wrap"; "mirror" is OpenImageIO's).
+enum class TextureWrap { Repeat, Clamp, Black, Mirror };
+inline constexpr const char* kTextureWrapNames[] = {"repeat", "clamp", "black", "mirror"};
+
 struct TextureDesc {
   SourceLocation where;
-  std::string written;   // the path as written in the scene file
-  std::string resolved;  // the file that exists on disk
-  // Texel values used as they are, without sRGB decoding (the Path of Light
-  // course's linear pipeline: docs/rendering.md). Set only by that importer.
+  std::string written;   // image: the path as written in the scene file
+  std::string resolved;  // image: the file that exists on disk
+  // Texel values used as they are, without sRGB decoding ("encoding": "linear";
+  // the Path of Light course's linear pipeline: docs/rendering.md).
   bool raw = false;
+  TextureType type = TextureType::Image;
+  std::string name;      // its name in the native "textures", if it has one
+  Sourced<TextureFilter> filter{TextureFilter::Anisotropic};  // image
+  Sourced<TextureWrap> wrap{TextureWrap::Repeat};             // image
+  Sourced<RGB> color0{RGB(0.0f)};  // checker, noise
+  Sourced<RGB> color1{RGB(1.0f)};
+  Sourced<int> octaves{6};         // noise
+  Sourced<float> roughness{0.5f};  // noise: amplitude ratio of successive octaves
+  // Mapping: texture coordinates c = scale * transform^-1(x), x = (u, v, 0) or
+  // the object-space position ("mapping": "object").
+  Sourced<bool> object_mapping{false};
+  Sourced<Vec3f> scale{Vec3f(1.0f)};
+  std::optional<Sourced<Transform>> transform;
 };
 
 // ---------------------------------------------------------------- render settings
@@ -131,8 +159,19 @@ struct RenderDesc {
 // as Blinn-Phong + mirror + Fresnel refraction; the path integrator as a
 // normalised Blinn-Phong BRDF with a mirror lobe, or a dielectric when
 // `refractive`. Lambert, Mirror and Glass are the physical materials of the
-// path integrator; each reads only some of the keys (docs/scene-format.md).
-enum class MaterialType { Phong, Lambert, Mirror, Glass };
+// path integrator; Conductor, Dielectric and CoatedDiffuse its microfacet
+// materials (GGX, docs/path-tracing.md). Each type reads only some of the keys
+// (docs/scene-format.md).
+enum class MaterialType { Phong, Lambert, Mirror, Glass, Conductor, Dielectric, CoatedDiffuse };
+
+// A material parameter that may be textured (docs/scene-format.md, "Textured
+// parameters"): the constant `value`, times the texture's value where
+// `texture` is set (an index into SceneDescription::textures).
+template <class T>
+struct TexturedParam {
+  Sourced<T> value;
+  std::optional<int> texture;
+};
 
 struct MaterialDesc {
   SourceLocation where;
@@ -145,7 +184,7 @@ struct MaterialDesc {
   Sourced<float> exponent{1.0f};       // Blinn-Phong exponent
   Sourced<float> reflectivity{0.0f};   // mirror weight in [0,1] (kr)
   Sourced<bool> refractive{false};
-  Sourced<float> ior{1.0f};
+  Sourced<float> ior{1.0f};             // glass, dielectric, the coating of coateddiffuse
   std::optional<Sourced<float>> ka;     // weight of the classic ambient term; absent: kd (the path equivalent's)
   Sourced<RGB> emission{RGB(0, 0, 0)};  // emitted radiance, on the front (ng) side only unless two_sided
   Sourced<bool> two_sided{false};       // emission from both sides
@@ -153,6 +192,40 @@ struct MaterialDesc {
   // point (a Path of Light area light's "samples"); 0: its default (16).
   Sourced<int> light_samples{0};
   std::optional<int> texture;           // index into SceneDescription::textures; modulates diffuse
+  // Alpha cutout (docs/scene-format.md): the surface is there where alpha is at
+  // least 0.5 (the constant, or the texture's alpha at the hit) and absent
+  // for every ray elsewhere.
+  Sourced<float> alpha{1.0f};
+  std::optional<int> alpha_texture;     // index into SceneDescription::textures; replaces `alpha`
+
+  // Microfacet materials: GGX roughness along the shading frame's two tangent
+  // axes ("roughness" sets both; "uroughness", "vroughness" each), in [0, 1];
+  // alpha = sqrt(roughness) when remap_roughness (pbrt-v4's remaproughness).
+  TexturedParam<float> uroughness{Sourced<float>(0.0f), {}};
+  TexturedParam<float> vroughness{Sourced<float>(0.0f), {}};
+  Sourced<bool> remap_roughness{true};
+  // Conductor: complex index of refraction eta + i k per channel (a preset's
+  // values when "metal" names one; copper by default, as pbrt-v4), or, when
+  // `schlick`, Schlick's Fresnel term with normal-incidence reflectance
+  // `reflectance`. CoatedDiffuse: `reflectance` is the diffuse base's albedo.
+  TexturedParam<RGB> eta{Sourced<RGB>(RGB(0.3512f, 0.5855f, 1.2923f)), {}};
+  TexturedParam<RGB> k{Sourced<RGB>(RGB(4.3225f, 2.6787f, 2.1364f)), {}};
+  TexturedParam<RGB> reflectance{Sourced<RGB>(RGB(0.5f)), {}};
+  bool schlick = false;
+  // Any type: a tangent-space normal map and a bump map (displacement along
+  // the normal, in scene units; docs/path-tracing.md, "Normal and bump maps").
+  std::optional<int> normal_map;
+  std::optional<TexturedParam<float>> displacement;
+
+  // Calls f(texture index) for every texture the material reads.
+  template <class F>
+  void for_each_texture(F&& f) const {
+    for (const std::optional<int>& t : {texture, uroughness.texture, vroughness.texture, eta.texture, k.texture,
+                                        reflectance.texture, normal_map})
+      if (t) f(*t);
+    if (displacement && displacement->texture) f(*displacement->texture);
+    if (alpha_texture) f(*alpha_texture);
+  }
 };
 
 // ---------------------------------------------------------------- lights

@@ -94,6 +94,28 @@ class Validator {
     colour(m.specular, "specular colour");
     colour(m.emission, "emission");
     radiometric(m.emission, "emission of material '" + m.name + "'");
+    if (m.type == MaterialType::Conductor || m.type == MaterialType::Dielectric ||
+        m.type == MaterialType::CoatedDiffuse)
+      microfacet(m);
+  }
+
+  // The keys of the microfacet types (docs/scene-format.md).
+  void microfacet(const MaterialDesc& m) {
+    unit_interval(m.uroughness.value, m.uroughness.texture ? "roughness scale" : "roughness");
+    const SourceLocation &u = m.uroughness.value.where, &v = m.vroughness.value.where;
+    if (v.line != u.line || v.col != u.col)  // not "roughness" for both
+      unit_interval(m.vroughness.value, m.vroughness.texture ? "roughness scale" : "roughness");
+    if (m.type == MaterialType::Conductor && !m.schlick) {
+      const RGB eta = m.eta.value;
+      if (!(eta.r > 0.0f && eta.g > 0.0f && eta.b > 0.0f))
+        diag_.error(m.eta.value.where, "a conductor's eta must be > 0 in every channel, got " + str(eta));
+      colour(m.k.value, "a conductor's k");
+    }
+    if (m.type == MaterialType::CoatedDiffuse || m.schlick) {
+      const RGB r = m.reflectance.value;
+      if (!(r.r >= 0.0f && r.g >= 0.0f && r.b >= 0.0f && r.r <= 1.0f && r.g <= 1.0f && r.b <= 1.0f))
+        diag_.error(m.reflectance.value.where, "reflectance must be between 0 and 1 in every channel, got " + str(r));
+    }
   }
 
   // After every radiometric value was seen: a reflectance that overflows
@@ -173,6 +195,11 @@ class Validator {
     if (v.value < 1 || v.value > options_.limits.max_resolution)
       diag_.error(v.where, std::string(name) + " must be between 1 and " +
                                std::to_string(options_.limits.max_resolution) + ", got " + std::to_string(v.value));
+  }
+
+  void unit_interval(const Sourced<float>& v, const char* name) {
+    if (!(v.value >= 0.0f && v.value <= 1.0f))
+      diag_.error(v.where, std::string(name) + " must be between 0 and 1, got " + str(v.value));
   }
 
   void non_negative(const Sourced<float>& v, const char* name) {

@@ -387,19 +387,25 @@ TEST(MemoryEstimate, TexturesFromTheirFileHeaders) {
   MaterialDesc material;
   material.texture = 1;
   scene.materials.push_back(material);
-  EXPECT_EQ(texture_bytes(scene), 64u * 32u * 12u + 64u * 32u * 3u * 4u);  // RGB float, and its decode buffer
+  // A material's image is in the texture cache: its MIP pyramid at 4 bytes a
+  // channel (4/3 of 64 * 32 * 12 bytes), and its decode buffer.
+  constexpr uint64_t kCached = 64u * 32u * 12u + 64u * 32u * 12u / 3u, kDecode = 64u * 32u * 3u * 4u;
+  EXPECT_EQ(texture_bytes(scene), kCached + kDecode);
+  // The cache holds no more than its size (--texture-cache).
+  EXPECT_EQ(texture_bytes(scene, TextureLimits{}, 1000), 1000 + kDecode);
+  EXPECT_EQ(estimate_memory(scene, 1, {40, 32}, 1, AccelKind::Bvh, 1000).textures, 1000 + kDecode);
   scene.environment = EnvironmentDesc{};
   scene.environment->resolved = (dir / "env.exr").string();
-  EXPECT_EQ(texture_bytes(scene), 64u * 32u * 12u + 16u * 8u * 24u + 64u * 32u * 3u * 4u);
+  EXPECT_EQ(texture_bytes(scene), kCached + 16u * 8u * 24u + kDecode);  // the environment map is decoded
   EXPECT_EQ(estimate_memory(scene, 1, {40, 32}).textures, texture_bytes(scene));
   scene.environment->resolved = (dir / "missing.exr").string();  // the build reports it
-  EXPECT_EQ(texture_bytes(scene), 64u * 32u * 12u + 64u * 32u * 3u * 4u);
+  EXPECT_EQ(texture_bytes(scene), kCached + kDecode);
   // An image the loader would refuse counts nothing, by either limit, at the
   // loader's exact values (Texture::load reads 3 channels as float and keeps
   // RGB texels: 64 * 32 * 24 bytes).
   scene.environment.reset();
   constexpr uint64_t kPixels = 64 * 32, kBytes = kPixels * 24;
-  EXPECT_EQ(texture_bytes(scene, TextureLimits{kPixels, kBytes}), kPixels * 12u + kPixels * 3u * 4u);
+  EXPECT_EQ(texture_bytes(scene, TextureLimits{kPixels, kBytes}), kCached + kDecode);
   EXPECT_EQ(texture_bytes(scene, TextureLimits{kPixels - 1, kBytes}), 0u);
   EXPECT_EQ(texture_bytes(scene, TextureLimits{kPixels, kBytes - 1}), 0u);
   std::filesystem::remove_all(dir);

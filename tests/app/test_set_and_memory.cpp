@@ -150,5 +150,41 @@ TEST_F(MaxMemory, TheAovSetAloneCanExceedTheLimitAndACropBringsItBack) {
   EXPECT_TRUE(std::filesystem::exists(path("c.exr")));
 }
 
+// --texture-cache SIZE (docs/cli.md): a cache far smaller than the texture
+// (1 MiB against 768 x 768 texels, 3.4 MiB of half-float RGB with its MIP
+// levels) changes memory, not the image; a size that is not one is a usage error.
+class TextureCacheOption : public AppTest {};
+
+TEST_F(TextureCacheOption, ChangesNoPixelAndRefusesBadSizes) {
+  Image noise(768, 768);
+  for (std::size_t i = 0; i < noise.pixels.size(); ++i) {
+    const uint32_t h = static_cast<uint32_t>(i) * 2654435761u;
+    noise.pixels[i] = RGB(static_cast<float>(h >> 24) / 255.0f, static_cast<float>((h >> 16) & 255u) / 255.0f, 0.5f);
+  }
+  std::string error;
+  ASSERT_TRUE(pt::write_image(path("noise.png"), noise, DisplaySettings{}, error)) << error;
+  write("t.json", R"({"format": "pathtracer-scene", "version": 1,
+  "camera": {"position": [0, 1, 2], "look_at": [0, 0, -4], "fov": 60},
+  "film": {"width": 48, "height": 32},
+  "render": {"integrator": "whitted", "spp": 4},
+  "materials": {"floor": {"type": "lambert", "texture": {"type": "image", "file": "noise.png", "scale": 3}}},
+  "lights": [{"type": "directional", "direction": [0, -1, 0], "irradiance": [3, 3, 3]}],
+  "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "floor"}]
+})");
+  ASSERT_EQ(run("t.json -o small.exr --texture-cache 1M --quiet").status, 0);
+  ASSERT_EQ(run("t.json -o large.exr --texture-cache 1G --quiet").status, 0);
+  Image small, large;
+  ASSERT_TRUE(read_image(path("small.exr"), small, error)) << error;
+  ASSERT_TRUE(read_image(path("large.exr"), large, error)) << error;
+  EXPECT_TRUE(small.pixels == large.pixels);
+  RunResult r = run("t.json -o a.exr --texture-cache lots");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("'lots' is not a size"), std::string::npos) << r.err;
+  r = run("t.json -o a.exr --texture-cache 512K");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("at least 1M"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(path("a.exr")));
+}
+
 }  // namespace
 }  // namespace pt::test

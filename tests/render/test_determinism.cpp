@@ -21,7 +21,18 @@ using test::add_z_square;
 SceneDescription scene_with_everything() {
   SceneDescription d = test::empty_scene(53, 41, {0.5f, -4, 2.5f}, {0, 0, 0.4f}, {0, 0, 1}, 45);
   d.render.background = RGB(0.05f, 0.1f, 0.2f);
+  // Textures too: a filtered checker (footprints from ray differentials and,
+  // after the mirror bounce, from the camera's spread), object-space noise,
+  // and a sphere cut out by a checker alpha.
+  TextureDesc checker, noise;
+  checker.type = TextureType::Checker;
+  checker.scale = Vec3f(6.0f);
+  noise.type = TextureType::Noise;
+  noise.object_mapping = true;
+  noise.scale = Vec3f(3.0f);
+  d.textures = {checker, noise};
   MaterialDesc floor = test::diffuse_material(RGB(0.8f, 0.7f, 0.6f), 0.9f);
+  floor.texture = 0;
   floor.ks = 0.3f;
   floor.exponent = 8;
   floor.reflectivity = 0.3f;
@@ -30,7 +41,10 @@ SceneDescription scene_with_everything() {
   glass.refractive = true;
   glass.ior = 1.5f;
   add_sphere(d, {-0.6f, 0, 0.5f}, 0.5f, add_material(d, glass));
-  add_sphere(d, {0.7f, 0.5f, 0.6f}, 0.6f, add_material(d, test::diffuse_material(RGB(0.2f, 0.5f, 0.9f))));
+  MaterialDesc cut = test::diffuse_material(RGB(0.2f, 0.5f, 0.9f));
+  cut.texture = 1;
+  cut.alpha_texture = 0;
+  add_sphere(d, {0.7f, 0.5f, 0.6f}, 0.6f, add_material(d, cut));
   add_point_light(d, {1, -2, 3}, RGB(20), RGB(20));
   add_point_light(d, {-2, 1, 2}, RGB(5, 2, 1), RGB(5, 2, 1));
   return d;

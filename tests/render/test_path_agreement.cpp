@@ -129,6 +129,39 @@ TEST(PathAgreement, LightSamplingBsdfSamplingAndMisConvergeToTheSameImage) {
   EXPECT_TRUE(agree(light, bsdf)) << "light vs BSDF sampling";
 }
 
+MaterialDesc microfacet(MaterialType type, float ax, float ay) {
+  MaterialDesc m;
+  m.type = type;
+  m.remap_roughness = false;
+  m.uroughness.value = ax;
+  m.vroughness.value = ay;
+  m.ior = 1.5f;
+  return m;
+}
+
+// The MIS scene with its glossy sphere an anisotropic rough conductor, its
+// diffuse sphere a rough coated diffuse, and a rough dielectric sphere in front.
+SceneDescription microfacet_scene() {
+  SceneDescription d = mis_scene();
+  d.materials[2] = microfacet(MaterialType::Conductor, 0.15f, 0.4f);
+  MaterialDesc plastic = microfacet(MaterialType::CoatedDiffuse, 0.2f, 0.2f);
+  plastic.reflectance.value = RGB(0.3f, 0.6f, 0.4f);
+  d.materials[3] = plastic;
+  add_sphere(d, {0.15f, 0.45f, 0.9f}, 0.3f, add_material(d, microfacet(MaterialType::Dielectric, 0.2f, 0.2f)));
+  return d;
+}
+
+TEST(PathAgreement, MicrofacetMaterialsConvergeToTheSameImageWithEveryStrategy) {
+  // Half the sample counts of the test above (the rough glass lengthens paths).
+  const SceneDescription d = microfacet_scene();
+  const BlockEstimate mis = estimate_strategy(d, LightStrategy::Mis, 16);
+  const BlockEstimate light = estimate_strategy(d, LightStrategy::LightOnly, 16);
+  const BlockEstimate bsdf = estimate_strategy(d, LightStrategy::BsdfOnly, 64);
+  EXPECT_TRUE(agree(mis, light)) << "MIS vs light sampling";
+  EXPECT_TRUE(agree(mis, bsdf)) << "MIS vs BSDF sampling";
+  EXPECT_TRUE(agree(light, bsdf)) << "light vs BSDF sampling";
+}
+
 TEST(PathAgreement, TheTestCanFail) {
   // The comparison is sharp enough to see a 5% change of one light.
   SceneDescription brighter = mis_scene();

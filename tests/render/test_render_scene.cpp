@@ -163,7 +163,7 @@ TEST_F(RenderSceneBuild, UsedTexturesAreDecodedOnceUnusedOnesNever) {
   ASSERT_NE(scene->textures[1], nullptr);
   EXPECT_EQ(scene->materials[0].texture, scene->textures[1].get());
   EXPECT_EQ(scene->materials[1].texture, scene->textures[1].get());
-  EXPECT_EQ(scene->materials[0].diffuse_at({0.25f, 0.5f}), RGB(1, 0, 0));
+  EXPECT_EQ(scene->materials[0].diffuse_at(Vec2f(0.25f, 0.5f)), RGB(1, 0, 0));
 }
 
 TEST_F(RenderSceneBuild, TextureThatFailsToDecodeIsReportedWhereItWasWritten) {
@@ -239,26 +239,26 @@ TEST(MakeMaterial, DecidesTheKindOnce) {
   MaterialDesc d;
   d.refractive = true;
   d.ior = 1.3f;
-  Material m = make_material(d, nullptr);
+  Material m = make_material(d);
   EXPECT_TRUE(m.glass());
   EXPECT_EQ(m.albedo_at(Vec2f()), RGB(1.0f));
   d.type = MaterialType::Lambert;
   d.kd = 0.5f;
   d.diffuse = RGB(0.2f, 0.4f, 0.6f);
-  m = make_material(d, nullptr);
+  m = make_material(d);
   EXPECT_FALSE(m.glass());
   EXPECT_EQ(m.ks, 0.0f);
   EXPECT_EQ(m.albedo_at(Vec2f()), RGB(0.2f, 0.4f, 0.6f) * 0.5f);
   d.type = MaterialType::Mirror;
   d.specular = RGB(0.9f, 0.8f, 0.7f);
-  m = make_material(d, nullptr);
+  m = make_material(d);
   EXPECT_FALSE(m.glass());
   EXPECT_EQ(m.reflectivity, 1.0f);
   EXPECT_EQ(m.kd, 0.0f);
   EXPECT_EQ(m.albedo_at(Vec2f()), RGB(0.9f, 0.8f, 0.7f));
   d.type = MaterialType::Glass;
   d.refractive = false;
-  EXPECT_TRUE(make_material(d, nullptr).glass());
+  EXPECT_TRUE(make_material(d).glass());
 }
 
 }  // namespace

@@ -165,6 +165,66 @@ TEST(NativeFormat, TexturesAreListedOnceAndOnlyWhenUsed) {
   EXPECT_EQ(diag.error_count(), 0);                     // so the missing file is never looked for
 }
 
+// Named textures, inline texture objects and image paths, their keys and
+// defaults; "alpha" as a number or a texture reference.
+TEST(NativeFormat, TexturesByNameInlineAndPath) {
+  TempDir dir;
+  dir.write("leaf.png", "the loader only checks that it exists");
+  const std::string path = dir.write("scene.json", native(R"(,
+  "textures": {
+    "tiles": { "type": "checker", "color0": [0.1, 0.1, 0.1], "scale": [8, 4], "mapping": "uv" },
+    "marble": { "type": "noise", "mapping": "object", "scale": 3, "octaves": 4, "roughness": 0.6,
+                "transform": [ { "translate": [1, 0, 0] } ] },
+    "photo": { "type": "image", "file": "leaf.png", "filter": "trilinear", "wrap": "clamp", "encoding": "linear" }
+  },
+  "materials": {
+    "floor": { "texture": "tiles", "alpha": "photo" },
+    "stone": { "texture": "marble", "alpha": 0 },
+    "leaf":  { "texture": "leaf.png", "alpha": { "type": "checker", "scale": 2 } }
+  },
+  "shapes": [
+    { "type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "floor" },
+    { "type": "sphere", "center": [2, 0, 0], "radius": 1, "material": "stone" },
+    { "type": "sphere", "center": [4, 0, 0], "radius": 1, "material": "leaf" }
+  ])"));
+  Diagnostics diag;
+  const auto s = load_scene(path, LoadOptions{}, diag);
+  ASSERT_TRUE(s) << diag.format();
+  EXPECT_EQ(diag.all().size(), 0u) << diag.format();
+  ASSERT_EQ(s->materials.size(), 3u);
+  const auto texture = [&](const std::optional<int>& i) -> const TextureDesc& {
+    return s->textures.at(static_cast<std::size_t>(i.value()));
+  };
+  const TextureDesc& tiles = texture(s->materials[0].texture);
+  EXPECT_EQ(tiles.type, TextureType::Checker);
+  EXPECT_EQ(tiles.name, "tiles");
+  EXPECT_EQ(tiles.color0.value, RGB(0.1f));
+  EXPECT_EQ(tiles.color1.value, RGB(1.0f));  // default
+  EXPECT_EQ(tiles.scale.value, Vec3f(8, 4, 1));
+  const TextureDesc& photo = texture(s->materials[0].alpha_texture);
+  EXPECT_EQ(photo.type, TextureType::Image);
+  EXPECT_EQ(photo.filter.value, TextureFilter::Trilinear);
+  EXPECT_EQ(photo.wrap.value, TextureWrap::Clamp);
+  EXPECT_TRUE(photo.raw);
+  EXPECT_TRUE(fs::equivalent(photo.resolved, dir.path() / "leaf.png"));
+  const TextureDesc& marble = texture(s->materials[1].texture);
+  EXPECT_EQ(marble.type, TextureType::Noise);
+  EXPECT_TRUE(marble.object_mapping.value);
+  EXPECT_EQ(marble.octaves.value, 4);
+  EXPECT_EQ(marble.roughness.value, 0.6f);
+  ASSERT_TRUE(marble.transform);
+  EXPECT_EQ(marble.transform->value.point(Vec3f(0.0f)), Vec3f(1, 0, 0));
+  EXPECT_EQ(s->materials[1].alpha.value, 0.0f);
+  EXPECT_FALSE(s->materials[1].alpha_texture);
+  // A path: an image with every default (anisotropic, repeat, sRGB); an inline object its own texture.
+  const TextureDesc& leaf = texture(s->materials[2].texture);
+  EXPECT_EQ(leaf.type, TextureType::Image);
+  EXPECT_EQ(leaf.filter.value, TextureFilter::Anisotropic);
+  EXPECT_FALSE(leaf.raw);
+  EXPECT_EQ(texture(s->materials[2].alpha_texture).type, TextureType::Checker);
+  EXPECT_EQ(s->textures.size(), 5u);  // tiles, photo, marble, leaf.png, the inline checker
+}
+
 // ---------------------------------------------------------------- path resolution
 
 TEST(ResolveScenePath, SceneDirectoryFirstThenWorkingDirectory) {

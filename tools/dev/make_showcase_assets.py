@@ -5,6 +5,7 @@
                                  per-vertex normals and texture coordinates
   scenes/assets/checker.png      floor texture: a 16x16 checkerboard
   scenes/assets/uv_grid.png      sphere texture: a colour-coded UV grid
+  scenes/assets/dimples_normal.png  tangent-space normal map (green up): a grid of round dimples
 
 Only the Python standard library is used (zlib for PNG). The output is
 deterministic: running it again rewrites identical files.
@@ -66,6 +67,29 @@ def uv_grid_rows(width=1024, height=512, cells_u=16, cells_v=8):
                 light = 0.35 + 0.3 * (1.0 - v) + 0.08 * checker
                 rgb = colorsys.hls_to_rgb(u, light, 0.65)
             row += bytes(int(round(255 * max(0.0, min(1.0, c)))) for c in rgb)
+        rows.append(bytes(row))
+    return rows
+
+
+def dimples_normal_rows(size=256, cells=8, radius=0.38, depth=0.35):
+    """A tangent-space normal map of round dimples (spherical caps pressed into
+    the surface): x to the right, y up the image, z out of the surface."""
+    rows = []
+    cell = size / cells
+    for y in range(size):
+        row = bytearray()
+        for x in range(size):
+            # Position in the cell, in cell units, y up the image.
+            px = ((x + 0.5) % cell) / cell - 0.5
+            py = 0.5 - ((y + 0.5) % cell) / cell
+            r2 = px * px + py * py
+            if r2 < radius * radius:
+                # Inside a dimple the surface slopes down towards its centre:
+                # the normal leans towards the centre.
+                n = normalize((-px * depth / radius, -py * depth / radius, 1.0))
+            else:
+                n = (0.0, 0.0, 1.0)
+            row += bytes(int(round(255 * (0.5 * c + 0.5))) for c in n)
         rows.append(bytes(row))
     return rows
 
@@ -152,7 +176,8 @@ def main():
     write_ply(os.path.join(args.out, "torus_knot.ply"), positions, normals, uvs, triangles)
     write_png(os.path.join(args.out, "checker.png"), 512, 512, checker_rows())
     write_png(os.path.join(args.out, "uv_grid.png"), 1024, 512, uv_grid_rows())
-    for name in ("torus_knot.ply", "checker.png", "uv_grid.png"):
+    write_png(os.path.join(args.out, "dimples_normal.png"), 256, 256, dimples_normal_rows())
+    for name in ("torus_knot.ply", "checker.png", "uv_grid.png", "dimples_normal.png"):
         path = os.path.join(args.out, name)
         print("%-40s %8d bytes" % (os.path.relpath(path), os.path.getsize(path)))
     print("torus knot: %d vertices, %d triangles" % (len(positions), len(triangles)))

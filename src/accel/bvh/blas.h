@@ -43,7 +43,7 @@ struct Blas {
   TreeStats stats;
 
   BlasData view() const {
-    return BlasData{nodes.data(), root, kind, blocks.data(), prims.data(), object, kNoInstanceId, nullptr};
+    return BlasData{nodes.data(), root, kind, 0, blocks.data(), prims.data(), object, kNoInstanceId, nullptr};
   }
 };
 

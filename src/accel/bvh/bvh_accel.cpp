@@ -92,13 +92,13 @@ class BvhAccelerator final : public Accelerator {
  private:
   void build_bottom_levels(const SceneGeometry& geometry, std::vector<Group>& groups,
                            const BuildSettings& settings);
-  void place(const SceneGeometry& geometry, const std::vector<Group>& groups);
+  void place(const SceneGeometry& geometry, const std::vector<Group>& groups, const CutoutTest* cutouts);
 
   std::vector<Blas> blas_;
   std::vector<BlasData> views_;  // the top level's items
   std::vector<Bounds3f> boxes_;  // their world bounds, while building
   TopLevel top_;
-  SceneData scene_{nullptr, kEmptyRef, nullptr, 0, 0};
+  SceneData scene_{nullptr, kEmptyRef, nullptr, 0, 0, nullptr};
   KernelTable kernels_{};
   Bounds3f bounds_;
   AccelStats stats_;
@@ -217,15 +217,27 @@ void BvhAccelerator::build_bottom_levels(const SceneGeometry& geometry, std::vec
   }
 }
 
+// Whether a shape of bottom level `b` may be cut out when placed by `instance`.
+uint16_t may_cut(const Blas& b, const CutoutTest* cutouts, uint32_t instance) {
+  if (cutouts == nullptr) return 0;
+  if (b.kind == BlasKind::Triangles) return cutouts->may_cut(b.object, instance) ? 1 : 0;
+  for (const AnalyticPrim& p : b.prims) {
+    if (cutouts->may_cut(p.object, instance)) return 1;
+  }
+  return 0;
+}
+
 // The top level's items: each bottom level placed directly, then each
 // instance's placement of its prototype's bottom levels.
-void BvhAccelerator::place(const SceneGeometry& geometry, const std::vector<Group>& groups) {
+void BvhAccelerator::place(const SceneGeometry& geometry, const std::vector<Group>& groups,
+                           const CutoutTest* cutouts) {
   std::size_t count = groups[0].blas_count;
   for (const Instance& inst : geometry.instances) count += groups[1 + inst.prototype].blas_count;
   views_.reserve(count);
   boxes_.reserve(count);
   for (std::size_t b = 0; b < groups[0].blas_count; ++b) {
     views_.push_back(blas_[b].view());
+    views_.back().cutout = may_cut(blas_[b], cutouts, kNoInstance);
     boxes_.push_back(blas_[b].bounds);
   }
   for (std::size_t i = 0; i < geometry.instances.size(); ++i) {
@@ -235,6 +247,7 @@ void BvhAccelerator::place(const SceneGeometry& geometry, const std::vector<Grou
       BlasData v = blas_[b].view();
       v.instance = static_cast<uint32_t>(i);
       v.transform = &inst.transform;
+      v.cutout = may_cut(blas_[b], cutouts, static_cast<uint32_t>(i));
       views_.push_back(v);
       boxes_.push_back(inst.transform.bounds(blas_[b].bounds));
     }
@@ -258,7 +271,7 @@ bool BvhAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, Diag
   bool placed = false;
   pool.run([&] {
     build_bottom_levels(geometry, groups, options.build);
-    place(geometry, groups);
+    place(geometry, groups, options.cutouts);
     placed = views_.size() > 1 || !geometry.instances.empty();
     if (placed && views_.size() >= kMaxItems) return;
     if (placed) top_ = build_top_level(boxes_, options.build);
@@ -274,7 +287,11 @@ bool BvhAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, Diag
 
   for (const Blas& b : blas_) tree_stats_.bottom.add(b.stats);
   const auto instanced = static_cast<uint32_t>(views_.size() - groups[0].blas_count);
-  scene_ = SceneData{top_.nodes.data(), top_.root, views_.data(), static_cast<uint32_t>(views_.size()), instanced};
+  bool cut = false;
+  for (const BlasData& v : views_) cut = cut || v.cutout != 0;
+  const CutoutTest* cutouts = cut ? options.cutouts : nullptr;
+  scene_ = SceneData{top_.nodes.data(), top_.root,          views_.data(), static_cast<uint32_t>(views_.size()),
+                     instanced + (cut ? 1u : 0u), cutouts};
   tree_stats_.top = top_.stats;
   tree_stats_.bottom_levels = blas_.size();
   tree_stats_.isa = kernels_.isa;

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "accel/accelerator.h"
+#include "accel/cutout.h"
 #include "accel/bvh/blas.h"
 #include "accel/bvh/build.h"
 
@@ -19,6 +20,7 @@ enum class Isa { Auto, Sse2, Avx2 };
 struct Options {
   BuildSettings build;
   Isa isa = Isa::Auto;  // Auto: AVX2 where the CPU has AVX2 and FMA, else SSE2
+  const CutoutTest* cutouts = nullptr;  // the scene's alpha cutouts (accel/cutout.h); must outlive the accelerator
 };
 
 // Statistics of the whole structure, for the benchmark and docs/bvh.md.

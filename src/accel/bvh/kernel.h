@@ -143,16 +143,65 @@ inline bool traverse_blas(const Ops& ops, const BlasData& b, RayQuery& q, HitRec
   });
 }
 
+// A bottom level some of whose shapes may be cut out: every candidate goes
+// through the reference routines and the cutout test (leaf_tests.cpp), lane
+// by lane in lane order, as the reference order of the SIMD filter.
+template <bool kAnyHit, bool kCount, class Ops>
+bool traverse_blas_cutout(const Ops& ops, const BlasData& b, const CutoutTest& cutouts, RayQuery& q, HitRecord& hit,
+                          Counters* counters) {
+  if (b.kind == BlasKind::Triangles) {
+    return traverse<kAnyHit, kCount>(ops, b.nodes, b.root, q, counters, [&](uint32_t ref) {
+      const TriangleBlock* block = b.blocks + (ref & kLeafIndexMask);
+      const uint32_t count = item_count(ref);
+      bool found = false;
+      for (uint32_t i = 0; i < count; ++i) {
+        for (uint32_t lane = 0; lane < 4; ++lane) {
+          if (block[i].prim[lane] == kNoPrim) continue;
+          if constexpr (kCount) ++counters->prims;
+          if (intersect_block_lane_cutout(block[i], lane, b.object, b.instance, cutouts, q, hit)) {
+            found = true;
+            if constexpr (kAnyHit) return true;
+          }
+        }
+      }
+      return found;
+    });
+  }
+  return traverse<kAnyHit, kCount>(ops, b.nodes, b.root, q, counters, [&](uint32_t ref) {
+    const uint32_t first = ref & kLeafIndexMask;
+    const uint32_t count = item_count(ref);
+    bool found = false;
+    for (uint32_t i = 0; i < count; ++i) {
+      if constexpr (kCount) ++counters->prims;
+      if (intersect_analytic_cutout(b.prims, first + i, b.instance, cutouts, q, hit)) {
+        found = true;
+        if constexpr (kAnyHit) return true;
+      }
+    }
+    return found;
+  });
+}
+
+// One bottom level in a scene with cutouts.
+template <bool kAnyHit, bool kCount, class Ops>
+bool traverse_blas_of(const Ops& ops, const BlasData& b, const CutoutTest* cutouts, RayQuery& q, HitRecord& hit,
+                      Counters* counters) {
+  if (cutouts != nullptr && b.cutout != 0) return traverse_blas_cutout<kAnyHit, kCount>(ops, b, *cutouts, q, hit, counters);
+  return traverse_blas<kAnyHit, kCount>(ops, b, q, hit, counters);
+}
+
 // A top-level item placed by an instance: the ray taken to its object space
 // (same t parameter), traversed with a kernel state of its own. Out of line,
 // so the loop over items placed directly compiles as it did before instancing.
+// `cutouts`: the scene's, or null (a scene without any, or an instance of a
+// prototype nothing of which may be cut out).
 template <bool kAnyHit, bool kCount, class Ops>
-__attribute__((noinline)) bool traverse_instance(const BlasData& b, RayQuery& q, HitRecord& hit,
-                                                 Counters* counters) {
+__attribute__((noinline)) bool traverse_instance(const BlasData& b, RayQuery& q, HitRecord& hit, Counters* counters,
+                                                 const CutoutTest* cutouts = nullptr) {
   RayQuery local;
   if (!to_object_space(*b.transform, q, local)) return false;
   const Ops local_ops(local);
-  if (!traverse_blas<kAnyHit, kCount>(local_ops, b, local, hit, counters)) return false;
+  if (!traverse_blas_of<kAnyHit, kCount>(local_ops, b, cutouts, local, hit, counters)) return false;
   q.tmax = local.tmax;
   hit.instance = b.instance;
   return true;
@@ -189,10 +238,27 @@ __attribute__((noinline)) bool traverse_instanced_scene(const SceneData& s, RayQ
   });
 }
 
+// A scene with cutouts (and perhaps instances): bottom levels that may be
+// cut out take the cutout leaf routines. Out of line for the same reason.
+template <bool kAnyHit, bool kCount, class Ops>
+__attribute__((noinline)) bool traverse_cutout_scene(const SceneData& s, RayQuery& q, HitRecord& hit,
+                                                     Counters* counters) {
+  const Ops ops(q);
+  const auto item = [&](const BlasData& b) {
+    return b.transform == nullptr ? traverse_blas_of<kAnyHit, kCount>(ops, b, s.cutouts, q, hit, counters)
+                                  : traverse_instance<kAnyHit, kCount, Ops>(b, q, hit, counters, s.cutouts);
+  };
+  if (s.blas_count == 1 && s.blas[0].transform == nullptr) return item(s.blas[0]);  // no top level
+  return traverse_top<kAnyHit, kCount>(ops, s, q, counters, item);
+}
+
 template <bool kAnyHit, bool kCount, class Ops>
 inline bool traverse_scene(const SceneData& s, RayQuery& q, HitRecord& hit, Counters* counters) {
   if (s.blas_count == 0) return false;
-  if (s.instanced != 0) return traverse_instanced_scene<kAnyHit, kCount, Ops>(s, q, hit, counters);
+  if (s.general != 0) {
+    return s.cutouts != nullptr ? traverse_cutout_scene<kAnyHit, kCount, Ops>(s, q, hit, counters)
+                                : traverse_instanced_scene<kAnyHit, kCount, Ops>(s, q, hit, counters);
+  }
   // A hit recorded by a leaf test has instance kNoInstanceId (HitRecord's default).
   const Ops ops(q);
   if (s.blas_count == 1) return traverse_blas<kAnyHit, kCount>(ops, s.blas[0], q, hit, counters);

@@ -12,7 +12,8 @@
 #include <cstdint>
 
 namespace pt {
-struct Transform;  // core/transform.h; the kernels only pass it on (to_object_space)
+struct Transform;   // core/transform.h; the kernels only pass it on (to_object_space)
+struct CutoutTest;  // accel/cutout.h; the kernels only pass it on (the *_cutout leaf routines)
 }
 
 namespace pt::bvh {
@@ -56,7 +57,7 @@ static_assert(sizeof(TriangleBlock) == 160);
 // kernels merely pass the leaf's array and index on to intersect_analytic()).
 struct AnalyticPrim;
 
-enum class BlasKind : uint32_t { Triangles, Analytic };
+enum class BlasKind : uint16_t { Triangles, Analytic };
 
 // The instance id of a hit on a shape placed directly (geometry's kNoInstance).
 inline constexpr uint32_t kNoInstanceId = 0xFFFFFFFFu;
@@ -68,12 +69,14 @@ struct BlasData {
   const Node8* nodes;
   uint32_t root;                 // a node or a leaf reference
   BlasKind kind;
+  uint16_t cutout;               // nonzero: a shape of it may be cut out in this placement (SceneData::cutouts)
   const TriangleBlock* blocks;   // Triangles
   const AnalyticPrim* prims;     // Analytic
   uint32_t object;               // Triangles: the mesh's object id
   uint32_t instance;             // the instance id, or kNoInstanceId
   const Transform* transform;    // object to world, or nullptr when placed directly
 };
+static_assert(sizeof(BlasData) == 48);
 
 // The whole scene: a top-level BVH whose leaves are bottom-level BVHs. With a
 // single bottom-level BVH placed directly the top level is skipped.
@@ -82,7 +85,11 @@ struct SceneData {
   uint32_t root;
   const BlasData* blas;
   uint32_t blas_count;
-  uint32_t instanced;  // items placed by instances (0: the top level's items need no transform test)
+  // Nonzero when the items need the general loop: some are placed by
+  // instances (a transform to test) or some may be cut out. 0: the loop of a
+  // scene of shapes placed directly, as before either existed.
+  uint32_t general;
+  const CutoutTest* cutouts;  // the scene's cutout test; null if nothing is cut out
 };
 
 // ---------------------------------------------------------------- rays
@@ -120,6 +127,14 @@ struct Counters {
 // Each updates `hit` and q.tmax on a hit with q.tmin < t < q.tmax.
 bool intersect_block_lane(const TriangleBlock& block, uint32_t lane, uint32_t object, RayQuery& q, HitRecord& hit);
 bool intersect_analytic(const AnalyticPrim* prims, uint32_t index, RayQuery& q, HitRecord& hit);
+// The same for a leaf of a bottom level that may be cut out (placed by
+// `instance`, kNoInstanceId if directly): a candidate counts only if the
+// cutout test keeps it (accel/cutout.h); past a dropped one the shape's next
+// hit along the ray is tried.
+bool intersect_block_lane_cutout(const TriangleBlock& block, uint32_t lane, uint32_t object, uint32_t instance,
+                                 const CutoutTest& cutouts, RayQuery& q, HitRecord& hit);
+bool intersect_analytic_cutout(const AnalyticPrim* prims, uint32_t index, uint32_t instance,
+                               const CutoutTest& cutouts, RayQuery& q, HitRecord& hit);
 // The world query `world` in the object space of `t` (same t parameter and
 // interval, the direction not renormalised), prepared as bvh_accel.cpp's
 // prepare() prepares a ray. False if the ray cannot hit anything there.

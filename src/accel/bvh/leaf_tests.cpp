@@ -5,6 +5,7 @@
 #include <variant>
 
 #include "accel/bvh/analytic.h"
+#include "accel/cutout.h"
 #include "accel/bvh/kernels.h"
 #include "accel/bvh/layout.h"
 #include "accel/bvh/ray_frame.h"
@@ -47,6 +48,32 @@ bool intersect_analytic(const AnalyticPrim* prims, uint32_t index, RayQuery& q, 
           return intersect(*shape, to_ray(q), h);
         } else {
           return false;  // never in an analytic leaf (meshes have bottom levels of their own)
+        }
+      },
+      prim.shape);
+  return found && record(h, prim.object, 0, q, hit);
+}
+
+bool intersect_block_lane_cutout(const TriangleBlock& block, uint32_t lane, uint32_t object, uint32_t instance,
+                                 const CutoutTest& cutouts, RayQuery& q, HitRecord& hit) {
+  const auto vertex = [&](int j) { return Vec3f{block.v[j][0][lane], block.v[j][1][lane], block.v[j][2][lane]}; };
+  const Ray ray = to_ray(q);
+  PrimHit h;
+  if (!intersect_triangle(vertex(0), vertex(1), vertex(2), ray, h)) return false;
+  if (!cutouts.keeps_hit(ray, object, block.prim[lane], h, instance)) return false;
+  return record(h, object, block.prim[lane], q, hit);
+}
+
+bool intersect_analytic_cutout(const AnalyticPrim* prims, uint32_t index, uint32_t instance,
+                               const CutoutTest& cutouts, RayQuery& q, HitRecord& hit) {
+  const AnalyticPrim& prim = prims[index];
+  PrimHit h;
+  const bool found = std::visit(
+      [&](const auto* shape) {
+        if constexpr (WholeShape<std::remove_cvref_t<decltype(*shape)>>) {
+          return intersect_kept(*shape, 0, to_ray(q), h, cutouts, prim.object, instance);
+        } else {
+          return false;  // never in an analytic leaf
         }
       },
       prim.shape);

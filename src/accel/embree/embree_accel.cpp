@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <string>
 #include <variant>
 
@@ -85,16 +86,26 @@ inline bool to_embree(const Ray& ray, RTCRay& out) {
   return true;
 }
 
-// The geometry of one shape, not yet committed: Embree's triangles for a mesh,
-// user geometry for everything else.
-RTCGeometry new_geometry(RTCDevice device, const Shape& shape, TriangleBuffers& buffers) {
-  if (const auto* mesh = std::get_if<TriangleMesh>(&shape)) return new_triangle_geometry(device, *mesh, buffers);
-  return new_user_geometry(device, shape);
+// The geometry of one shape, not yet committed: Embree's triangles for a mesh
+// (with the cutout filter if it may be cut out), user geometry for everything
+// else (whose callbacks apply the cutout test themselves).
+RTCGeometry new_geometry(RTCDevice device, const Shape& shape, const CutoutGeometry* cutout,
+                         TriangleBuffers& buffers) {
+  if (const auto* mesh = std::get_if<TriangleMesh>(&shape)) {
+    RTCGeometry geom = new_triangle_geometry(device, *mesh, buffers);
+    if (geom != nullptr && cutout != nullptr) {
+      rtcSetGeometryUserData(geom, const_cast<CutoutGeometry*>(cutout));
+      rtcSetGeometryIntersectFilterFunction(geom, &cutout_filter);
+      rtcSetGeometryOccludedFilterFunction(geom, &cutout_filter);
+    }
+    return geom;
+  }
+  return new_user_geometry(device, shape, cutout);
 }
 
 class EmbreeAccelerator final : public Accelerator {
  public:
-  EmbreeAccelerator() = default;
+  explicit EmbreeAccelerator(const CutoutTest* cutouts) : cutouts_(cutouts) {}
   ~EmbreeAccelerator() override {
     if (scene_ != nullptr) rtcReleaseScene(scene_);
     for (RTCScene s : prototypes_) {
@@ -139,8 +150,11 @@ class EmbreeAccelerator final : public Accelerator {
   RTCScene new_scene(Diagnostics& diag);
   bool attach_shapes(const SceneGeometry& geometry, Diagnostics& diag);
   bool attach_shape(RTCScene scene, const SceneGeometry& geometry, uint32_t object, Diagnostics& diag);
+  const CutoutGeometry* cutout_geometry(const Shape& shape, uint32_t object);
   bool attach_instance(const SceneGeometry& geometry, uint32_t instance, Diagnostics& diag);
 
+  const CutoutTest* cutouts_;  // null: the scene has no cutouts
+  std::vector<std::unique_ptr<CutoutGeometry>> cutout_geometries_;  // user data of the geometries that may be cut out
   Device device_;  // destroyed after the scenes are released
   RTCScene scene_ = nullptr;
   // One scene per prototype, placed in scene_ by instance geometries with
@@ -173,10 +187,22 @@ RTCScene EmbreeAccelerator::new_scene(Diagnostics& diag) {
   return scene;
 }
 
+// The user data of a shape that may be cut out (null for any other).
+const CutoutGeometry* EmbreeAccelerator::cutout_geometry(const Shape& shape, uint32_t object) {
+  if (cutouts_ == nullptr || !cutouts_->may_cut_anywhere(object)) return nullptr;
+  auto g = std::make_unique<CutoutGeometry>();
+  g->shape = std::visit([](const auto& s) -> const void* { return &s; }, shape);
+  g->test = cutouts_;
+  g->instance_base = instance_base_;
+  cutout_geometries_.push_back(std::move(g));
+  return cutout_geometries_.back().get();
+}
+
 bool EmbreeAccelerator::attach_shape(RTCScene scene, const SceneGeometry& geometry, uint32_t object,
                                      Diagnostics& diag) {
+  const Shape& shape = geometry.shapes[object];
   TriangleBuffers buffers;
-  RTCGeometry geom = new_geometry(device_.get(), geometry.shapes[object], buffers);
+  RTCGeometry geom = new_geometry(device_.get(), shape, cutout_geometry(shape, object), buffers);
   if (geom == nullptr) {
     if (!report_device_errors(device_, diag)) {
       diag.error(SourceLocation{}, "Embree: cannot create the geometry of shape " + std::to_string(object));
@@ -262,8 +288,9 @@ bool EmbreeAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, D
 
 }  // namespace
 
-std::unique_ptr<Accelerator> build(const SceneGeometry& geometry, WorkerPool& pool, Diagnostics& diag) {
-  auto accel = std::make_unique<EmbreeAccelerator>();
+std::unique_ptr<Accelerator> build(const SceneGeometry& geometry, WorkerPool& pool, Diagnostics& diag,
+                                   const CutoutTest* cutouts) {
+  auto accel = std::make_unique<EmbreeAccelerator>(cutouts);
   if (!accel->build(geometry, pool, diag)) return nullptr;
   return accel;
 }

@@ -6,9 +6,14 @@
 #include <memory>
 
 #include "accel/accelerator.h"
+#include "accel/cutout.h"
 
 namespace pt::embree {
 
-std::unique_ptr<Accelerator> build(const SceneGeometry& geometry, WorkerPool& pool, Diagnostics& diag);
+// `cutouts` (null: none; it must outlive the accelerator): see accel/cutout.h.
+// Meshes become Embree's own triangle geometry, analytic shapes user geometry
+// (docs/geometry.md).
+std::unique_ptr<Accelerator> build(const SceneGeometry& geometry, WorkerPool& pool, Diagnostics& diag,
+                                   const CutoutTest* cutouts = nullptr);
 
 }  // namespace pt::embree

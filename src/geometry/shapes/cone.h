@@ -135,6 +135,21 @@ inline SurfaceGeometry surface(const Cone& cone, const Ray& ray, const PrimHit& 
   return sg;
 }
 
+// u is the longitude about the axis; v runs along the slant from the base rim
+// to the top rim (constant on the caps).
+inline UvDerivatives uv_derivatives(const Cone& cone, const SurfaceGeometry& sg) {
+  const Vec3f axis = cone.p1 - cone.p0;
+  const float len = length(axis);
+  if (!(len > 0.0f)) return {};
+  const Vec3f a = axis / len;
+  const Vec3f radial = (sg.p - cone.p0) - a * dot(sg.p - cone.p0, a);
+  const float r = length(radial);
+  const Vec3f dir = r > 0.0f ? radial / r : Vec3f(0.0f);
+  const bool cap = std::fabs(dot(sg.ng, a)) > 1.0f - 1e-6f;  // a cap's normal is the axis
+  const Vec3f slant = axis + dir * (cone.top_radius - cone.radius);
+  return {cross(a, radial) * (2.0f * kPi), cap ? Vec3f(0.0f) : slant};
+}
+
 inline uint32_t primitive_count(const Cone&) { return 1; }
 
 // Validation (fields as the native format names them).

@@ -103,6 +103,17 @@ inline SurfaceGeometry surface(const Cylinder& cyl, const Ray& ray, const PrimHi
   return sg;
 }
 
+// u is the longitude about the axis; v runs along the side (constant on the caps).
+inline UvDerivatives uv_derivatives(const Cylinder& cyl, const SurfaceGeometry& sg) {
+  const Vec3f axis = cyl.p1 - cyl.p0;
+  const float len = length(axis);
+  if (!(len > 0.0f)) return {};
+  const Vec3f a = axis / len;
+  const Vec3f radial = (sg.p - cyl.p0) - a * dot(sg.p - cyl.p0, a);
+  const bool cap = std::fabs(dot(sg.ng, a)) > 0.5f;
+  return {cross(a, radial) * (2.0f * kPi), cap ? Vec3f(0.0f) : axis};
+}
+
 inline uint32_t primitive_count(const Cylinder&) { return 1; }
 
 // Validation (fields as the native format names them).

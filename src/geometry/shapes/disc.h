@@ -80,6 +80,14 @@ inline SurfaceGeometry surface(const Disc& d, const Ray& ray, const PrimHit& hit
   return sg;
 }
 
+// u is the longitude about the normal, v = (radius - r) / (radius - inner_radius).
+inline UvDerivatives uv_derivatives(const Disc& d, const SurfaceGeometry& sg) {
+  const Vec3f q = sg.p - d.center;
+  const float r = length(q);
+  const Vec3f dir = r > 0.0f ? q / r : Vec3f(0.0f);
+  return {cross(d.normal, q) * (2.0f * kPi), dir * -(d.radius - d.inner_radius)};
+}
+
 inline uint32_t primitive_count(const Disc&) { return 1; }
 
 // Validation (fields as the native format names them).

@@ -35,6 +35,9 @@ Bounds3f bounds(const TriangleMesh& m);                 // every referenced vert
 Bounds3f bounds(const TriangleMesh& m, uint32_t tri);   // one triangle
 bool intersect(const TriangleMesh& m, uint32_t tri, const Ray& ray, PrimHit& hit);
 SurfaceGeometry surface(const TriangleMesh& m, uint32_t tri, const Ray& ray, const PrimHit& hit);
+// From the triangle's texture coordinates (its barycentrics (b1, b2) without
+// them, or where they are degenerate): constant over the triangle.
+UvDerivatives uv_derivatives(const TriangleMesh& m, uint32_t tri, const SurfaceGeometry& sg);
 inline uint32_t primitive_count(const TriangleMesh& m) { return static_cast<uint32_t>(m.triangle_count()); }
 
 // A single triangle (a scene file's "triangle"): a one-triangle mesh.

@@ -63,6 +63,11 @@ inline Vec3f project(Vec3f point, Vec3f n, Vec3f p) { return p - n * dot(p - poi
 // No primitive in the backends' sense; an empty box (extending by it changes nothing).
 inline Bounds3f bounds(const InfinitePlane&) { return Bounds3f{}; }
 inline Bounds3f bounds(const InfinitePlane&, uint32_t) { return Bounds3f{}; }
+// uv are distances along tangent and normal x tangent, in units of uv_scale.
+inline UvDerivatives uv_derivatives(const InfinitePlane& pl, const SurfaceGeometry&) {
+  return {pl.tangent * pl.uv_scale, cross(pl.normal, pl.tangent) * pl.uv_scale};
+}
+
 inline uint32_t primitive_count(const InfinitePlane&) { return 0; }
 
 // Addressed like a shape of primitives (prim is ignored), so that neither

@@ -121,6 +121,11 @@ inline SurfaceGeometry surface(const ConvexPolygon& p, const Ray& ray, const Pri
   return sg;
 }
 
+// uv = ((dot(p - v0, eu), dot(p - v0, ev)) - uv_lo) * uv_inv.
+inline UvDerivatives uv_derivatives(const ConvexPolygon& p, const SurfaceGeometry&) {
+  return {p.eu / p.uv_inv.x, p.ev / p.uv_inv.y};
+}
+
 inline uint32_t primitive_count(const ConvexPolygon&) { return 1; }
 
 namespace polygon_detail {

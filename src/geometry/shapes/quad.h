@@ -136,6 +136,13 @@ inline SurfaceGeometry surface(const Quad& q, const Ray& /*ray*/, const PrimHit&
   return sg;
 }
 
+// The bilinear map: v0 at (0, 0), v1 at (1, 0), v2 at (1, 1), v3 at (0, 1).
+inline UvDerivatives uv_derivatives(const Quad& q, const SurfaceGeometry& sg) {
+  const float u = sg.uv.x, v = sg.uv.y;
+  return {(q.v[1] - q.v[0]) * (1.0f - v) + (q.v[2] - q.v[3]) * v,
+          (q.v[3] - q.v[0]) * (1.0f - u) + (q.v[2] - q.v[1]) * u};
+}
+
 inline uint32_t primitive_count(const Quad&) { return 1; }
 
 // Validation: planar (within 1e-3 of its size), corners in perimeter order

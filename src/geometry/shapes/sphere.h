@@ -104,6 +104,16 @@ inline SurfaceGeometry surface(const Sphere& s, const Ray& ray, const PrimHit& h
   return sg;
 }
 
+// u is the longitude about the pole, v = theta / pi from it.
+inline UvDerivatives uv_derivatives(const Sphere& s, const SurfaceGeometry& sg) {
+  const Vec3f pole = sphere_detail::unit_pole(s.pole);
+  const Vec3f n = sg.ng;
+  const float cos_theta = std::clamp(dot(n, pole), -1.0f, 1.0f);
+  const float sin_theta = std::sqrt(std::max(0.0f, 1.0f - cos_theta * cos_theta));
+  const Vec3f radial = sin_theta > 0.0f ? (n - pole * cos_theta) / sin_theta : Vec3f(0.0f);
+  return {cross(pole, n) * (2.0f * kPi * s.radius), (radial * cos_theta - pole * sin_theta) * (kPi * s.radius)};
+}
+
 inline uint32_t primitive_count(const Sphere&) { return 1; }
 
 // Validation (fields as the native format names them).

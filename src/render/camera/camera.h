@@ -20,6 +20,7 @@
 
 #include "core/math.h"
 #include "render/camera/orthographic.h"
+#include "render/camera/ray_differential.h"
 #include "render/camera/perspective.h"
 #include "render/camera/spherical.h"
 #include "scene/scene_description.h"
@@ -42,6 +43,14 @@ class Camera {
   // disk); a camera without a lens ignores the sample.
   Ray generate_ray(Vec2f film_px, Vec2f lens_sample) const {
     return std::visit([&](const auto& c) { return c.generate_ray(film_px, lens_sample); }, kind_);
+  }
+  // The differential of the ray generate_ray(film_px, lens_sample) makes: the
+  // rays one pixel right and one pixel down, same lens sample (every kind, as
+  // pbrt-v4's CameraBase::GenerateRayDifferential does by default).
+  RayDifferential differential(Vec2f film_px, Vec2f lens_sample) const {
+    const Ray rx = generate_ray(film_px + Vec2f(1.0f, 0.0f), lens_sample);
+    const Ray ry = generate_ray(film_px + Vec2f(0.0f, 1.0f), lens_sample);
+    return {rx.origin, rx.dir, ry.origin, ry.dir};
   }
   // True for a thin lens with a non-zero aperture (rays depend on the lens sample).
   bool has_lens() const {

@@ -36,7 +36,8 @@ class PathTracer {
         inv_roulette_threshold_(settings.roulette_threshold > 0.0f ? 1.0f / settings.roulette_threshold : 1.0f) {}
 
   // `aov`, when not null, receives the lighting split (path_aov.h).
-  CameraEstimate radiance(Ray ray, Sampler& sampler, AovSample* aov = nullptr) const {
+  CameraEstimate radiance(const CameraRay& camera_ray, Sampler& sampler, AovSample* aov = nullptr) const {
+    Ray ray = camera_ray;
     PathAovRecorder rec(aov);
     bool camera_hit = false;
     RGB L, beta(1.0f);
@@ -46,7 +47,7 @@ class PathTracer {
     float eta2 = 1.0f;  // product of the refraction radiance scales along the path
     for (int depth = 0;; ++depth) {
       Intersection isect;
-      if (!scene_.intersect(ray, isect)) {
+      if (!scene_.intersect(ray, isect, depth == 0 ? camera_ray.differential_or_null() : nullptr)) {
         const RGB le = depth == 0 ? scene_.camera_ray_escaped(ray) : scene_.escaped_radiance(ray.dir);
         if (!le.is_black()) {
           const RGB term = beta * le * escape_weight(ray.dir, specular, prev_pdf);
@@ -70,7 +71,7 @@ class PathTracer {
 
       const Bsdf bsdf(m, isect.geo, wo);
       if (bsdf.black()) break;
-      if (rec.active() && depth == 0) rec.first_vertex(m, isect.geo, wo, bsdf);
+      if (rec.active() && depth == 0) rec.first_vertex(bsdf);
       if (!bsdf.delta_only() && !lights_.empty()) {
         Vec3f wi_light;
         const RGB term = beta * direct_light(isect, bsdf, wo, sampler, &wi_light);
@@ -183,7 +184,7 @@ class PathIntegrator final : public Integrator {
     const PathTracer tracer(scene, settings_);
     render_samples(scene, film, pool, settings_, make_sampler(settings_.sampler, settings_.spp, settings_.seed),
                    filter_,
-                   [&](const Ray& ray, Sampler& sampler, AovSample* aov) { return tracer.radiance(ray, sampler, aov); });
+                   [&](const CameraRay& ray, Sampler& sampler, AovSample* aov) { return tracer.radiance(ray, sampler, aov); });
   }
 
  private:

@@ -5,18 +5,17 @@
 //  - direct: light arriving at the first surface hit (next-event estimation
 //    there, or an emitter or the environment found by its BSDF sample);
 //  - indirect: everything that scattered more than once.
-// Diffuse vs specular is decided at the first hit: its Lambert lobe's share of
-// f (per channel) is diffuse, the rest (Blinn-Phong, mirror, glass) specular.
+// Diffuse vs specular is decided at the first hit: its BSDF's diffuse part's
+// share of f (Bsdf::f_diffuse, per channel) is diffuse, the rest (Blinn-Phong,
+// mirror, glass, microfacet lobes) specular.
 // Inactive (no cost beyond a branch) when the film asks for no lighting AOV.
 #pragma once
 
 #include <algorithm>
-#include <optional>
 
 #include "core/color.h"
 #include "render/film/aov.h"
 #include "render/materials/bsdf.h"
-#include "render/materials/material.h"
 
 namespace pt {
 
@@ -41,23 +40,8 @@ class PathAovRecorder {
       split(term, continuation_, false);
     }
   }
-  // The first hit's material, geometry and the BSDF built from them: sets up
-  // the diffuse lobe's share of f.
-  void first_vertex(const Material& m, const SurfaceGeometry& geo, Vec3f wo, const Bsdf& bsdf) {
-    bsdf_ = &bsdf;
-    mixed_ = false;
-    all_diffuse_ = m.type == MaterialType::Lambert;
-    if (m.type != MaterialType::Phong || m.kd <= 0.0f) return;
-    // Phong: the same material without its glossy lobe, with kd scaled as the
-    // BSDF scales kd Cd + ks Cs (render/materials/bsdf.cpp), has exactly the
-    // full BSDF's Lambert lobe.
-    Material diffuse = m;
-    const float total = (m.diffuse_at(geo.uv) * m.kd + m.specular * m.ks).max_component();
-    diffuse.kd = total > 1.0f ? m.kd / total : m.kd;
-    diffuse.ks = 0.0f;
-    diffuse_bsdf_.emplace(diffuse, geo, wo);
-    mixed_ = true;
-  }
+  // The BSDF of the first hit: the diffuse share of f is its f_diffuse / f.
+  void first_vertex(const Bsdf& bsdf) { bsdf_ = &bsdf; }
   // The first bounce: the sampled direction (delta lobes are specular).
   void first_bounce(Vec3f wo, const BsdfSample& bs) {
     continuation_ = bs.delta ? RGB() : diffuse_share(wo, bs.wi);
@@ -70,9 +54,7 @@ class PathAovRecorder {
 
  private:
   RGB diffuse_share(Vec3f wo, Vec3f wi) const {
-    if (all_diffuse_) return RGB(1.0f);
-    if (!mixed_) return RGB();
-    const RGB f = bsdf_->f(wo, wi), fd = diffuse_bsdf_->f(wo, wi);
+    const RGB f = bsdf_->f(wo, wi), fd = bsdf_->f_diffuse(wo, wi);
     const auto ratio = [](float d, float t) { return t > 0.0f ? std::clamp(d / t, 0.0f, 1.0f) : 0.0f; };
     return {ratio(fd.r, f.r), ratio(fd.g, f.g), ratio(fd.b, f.b)};
   }
@@ -84,8 +66,6 @@ class PathAovRecorder {
 
   AovSample* out_;
   const Bsdf* bsdf_ = nullptr;
-  std::optional<Bsdf> diffuse_bsdf_;
-  bool mixed_ = false, all_diffuse_ = false;
   RGB continuation_;  // the first bounce's diffuse share
 };
 

@@ -27,6 +27,18 @@ std::pair<int, int> sample_range(const IntegratorSettings& settings) {
   return {first, first + std::max(0, settings.spp)};
 }
 
+// The camera ray through `film_px`, with its differential when the scene's
+// textures filter over footprints (RenderScene::footprints).
+CameraRay camera_ray(const RenderScene& scene, Sampler& sampler, Vec2f film_px, bool lens, bool differentials) {
+  const Vec2f lens_sample = lens ? sampler.get_2d() : Vec2f(0.5f, 0.5f);
+  CameraRay ray(lens ? scene.camera.generate_ray(film_px, lens_sample) : scene.camera.generate_ray(film_px));
+  if (differentials) {
+    ray.differential = scene.camera.differential(film_px, lens_sample);
+    ray.has_differential = true;
+  }
+  return ray;
+}
+
 }  // namespace
 
 Vec2f sample_position(int x, int y, int index, int spp, uint64_t seed, uint64_t pixel_index) {
@@ -35,11 +47,11 @@ Vec2f sample_position(int x, int y, int index, int spp, uint64_t seed, uint64_t 
   return Vec2f(static_cast<float>(x), static_cast<float>(y)) + sampler.get_pixel_2d();
 }
 
-void first_hit_aovs(const RenderScene& scene, const Ray& ray, AovSample& aov) {
+void first_hit_aovs(const RenderScene& scene, const CameraRay& ray, AovSample& aov) {
   Intersection isect;
-  if (!scene.intersect(ray, isect)) return;
+  if (!scene.intersect(ray, isect, ray.differential_or_null())) return;
   aov.hit = true;
-  aov.albedo = isect.material->albedo_at(isect.geo.uv);
+  aov.albedo = isect.material->albedo_at(tex_coord(isect.geo));
   const Vec3f wo = -ray.dir;
   const bool front = dot(isect.geo.ng, wo) >= 0.0f;
   aov.normal = front ? isect.geo.ns : -isect.geo.ns;
@@ -84,7 +96,7 @@ void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, cons
       sampler.start_pixel_sample(x, y, s);
       const FilterSample fs = filter.sample(sampler.get_pixel_2d());
       const Vec2f film_px = corner + fs.offset;
-      const Ray ray = lens ? scene.camera.generate_ray(film_px, sampler.get_2d()) : scene.camera.generate_ray(film_px);
+      const CameraRay ray = camera_ray(scene, sampler, film_px, lens, scene.footprints);
       if (aov_doubles > 0) aov = AovSample{};
       CameraEstimate e = radiance(ray, sampler, lighting ? &aov : nullptr);
       if (transparent && !e.hit) {  // the background is not part of the image: only lights the scene
@@ -145,7 +157,7 @@ void render_pixels_with_split(const RenderScene& scene, Film& film, WorkerPool& 
 void render_pixels(const RenderScene& scene, Film& film, WorkerPool& pool, const IntegratorSettings& settings,
                    RadianceFn radiance) {
   render_pixels_with_split(scene, film, pool, settings,
-                           [&](const Ray& ray, Sampler&, AovSample*) { return radiance(ray); });
+                           [&](const CameraRay& ray, Sampler&, AovSample*) { return radiance(ray); });
 }
 
 }  // namespace pt

@@ -10,6 +10,7 @@
 #include "core/color.h"
 #include "core/function_ref.h"
 #include "core/math.h"
+#include "render/camera/ray_differential.h"
 #include "render/film/aov.h"
 #include "render/film/filter.h"
 #include "render/integrators/integrator.h"
@@ -38,12 +39,14 @@ struct CameraEstimate {
   bool hit = false;
 };
 
-// Computes one radiance estimate for a camera ray.
-using RadianceFn = FunctionRef<CameraEstimate(const Ray&)>;
+// Computes one radiance estimate for a camera ray (with its differential in a
+// scene whose textures filter: pass ray.differential_or_null() to the first
+// RenderScene::intersect; a callable taking a plain Ray works too).
+using RadianceFn = FunctionRef<CameraEstimate(const CameraRay&)>;
 // Computes one radiance estimate for a camera ray, drawing further dimensions
 // from `sampler`. `aov` is null unless the film asks for the lighting split
 // (Film::wants_lighting()); then the estimate's parts go there.
-using SampleRadianceFn = FunctionRef<CameraEstimate(const Ray&, Sampler&, AovSample* aov)>;
+using SampleRadianceFn = FunctionRef<CameraEstimate(const CameraRay&, Sampler&, AovSample* aov)>;
 
 // The general loop: for samples [settings.first_sample, + settings.spp) of every
 // pixel, starts `sampler` (a prototype copied into each task) at the sample,
@@ -61,7 +64,7 @@ void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, cons
 
 // Fills the geometric part of `aov` (albedo, normal, position, depth, ids,
 // Cryptomatte ids) for a camera ray.
-void first_hit_aovs(const RenderScene& scene, const Ray& ray, AovSample& aov);
+void first_hit_aovs(const RenderScene& scene, const CameraRay& ray, AovSample& aov);
 
 // The classic integrators' loop: render_samples with the StratifiedPixelSampler
 // and the box filter, so each pixel is the average (in double) of `radiance`

@@ -73,7 +73,7 @@ struct ClassicShading {
   // The Blinn-Phong lobes of light arriving from unit direction l (cos_theta =
   // dot(n, l) > 0, unoccluded), each intensity times `falloff`.
   void shade_lobes(Vec3f l, float cos_theta, float falloff, const RGB& intensity, const RGB& specular_intensity) const {
-    add(m.kd * cos_theta * falloff * (m.diffuse_at(geo.uv) * intensity), true);
+    add(m.kd * cos_theta * falloff * (m.diffuse_at(tex_coord(geo)) * intensity), true);
     if (m.ks > 0.0f) {
       const Vec3f h = normalize(l + wo);
       const float spec = std::pow(std::max(0.0f, dot(n, h)), m.exponent);
@@ -119,7 +119,7 @@ struct ClassicShading {
     if (cos_theta <= 0.0f) return;
     if (scene.occluded(spawn_ray(geo, l))) return;
     const RGB e = light.irradiance * kInvPi;
-    add(m.kd * cos_theta * (m.diffuse_at(geo.uv) * e), true);
+    add(m.kd * cos_theta * (m.diffuse_at(tex_coord(geo)) * e), true);
     if (m.ks > 0.0f) {
       const float spec = std::pow(std::max(0.0f, dot(n, normalize(l + wo))), m.exponent);
       add(m.ks * spec * (m.specular * e), false);
@@ -174,10 +174,12 @@ class Whitted {
   // result: emission (the surface's own, or what the ray sees leaving the
   // scene), ambient, diffuse and specular direct light at the first hit, and
   // specular_indirect (what its mirror reflection or refraction brings).
-  // `hit` (the camera ray's only) is set when the ray hits a surface.
-  RGB trace(const Ray& ray, int depth, AovSample* aov = nullptr, bool* hit = nullptr) const {
+  // `differential`: the camera ray's (depth 0), or null. `hit` (the camera
+  // ray's only) is set when the ray hits a surface.
+  RGB trace(const Ray& ray, int depth, AovSample* aov = nullptr, const RayDifferential* differential = nullptr,
+            bool* hit = nullptr) const {
     Intersection isect;
-    const bool found = scene_.intersect(ray, isect);
+    const bool found = scene_.intersect(ray, isect, differential);
     if (hit != nullptr) *hit = found;
     if (!found) {
       const RGB seen = depth == 0 ? scene_.camera_ray_escaped(ray) : scene_.escaped_radiance(ray.dir);
@@ -204,7 +206,7 @@ class Whitted {
     if (scene_.ambient.is_black()) {
       local = m.emission + direct;
     } else {
-      ambient = m.ka * (m.diffuse_at(isect.geo.uv) * scene_.ambient);
+      ambient = m.ka * (m.diffuse_at(tex_coord(isect.geo)) * scene_.ambient);
       local = m.emission + ambient + direct;
     }
     if (m.reflectivity <= 0.0f) {
@@ -261,9 +263,9 @@ class WhittedIntegrator final : public Integrator {
   explicit WhittedIntegrator(const IntegratorSettings& settings) : settings_(settings) {}
 
   void render(const RenderScene& scene, Film& film, WorkerPool& pool) const override {
-    render_pixels_with_split(scene, film, pool, settings_, [&](const Ray& ray, Sampler& sampler, AovSample* aov) {
+    render_pixels_with_split(scene, film, pool, settings_, [&](const CameraRay& ray, Sampler& sampler, AovSample* aov) {
       CameraEstimate e;
-      e.radiance = Whitted(scene, settings_.max_depth, sampler).trace(ray, 0, aov, &e.hit);
+      e.radiance = Whitted(scene, settings_.max_depth, sampler).trace(ray, 0, aov, ray.differential_or_null(), &e.hit);
       return e;
     });
   }

@@ -20,9 +20,19 @@ namespace pt {
 // eta_t, cos_i = cos(angle of incidence) in [0, 1]. 1 for total internal reflection.
 float fresnel_dielectric(float cos_i, float eta_i, float eta_t);
 
+// A BSDF kind of render/materials/bsdf.h (the smooth limit of the rough
+// dielectric, rough_dielectric.h): delta lobes only.
 struct DielectricBsdf {
+  static constexpr bool kTransmits = true;
   float ior = 1.5f;
 
+  bool delta_only() const { return true; }
+  bool black() const { return false; }
+  bool needs_lobe_choice() const { return true; }  // reflection or refraction
+  RGB f(Vec3f, Vec3f) const { return {}; }
+  float pdf(Vec3f, Vec3f) const { return 0.0f; }
+  RGB f_diffuse(Vec3f, Vec3f) const { return {}; }
+  bool sample(Vec3f wo, float u_lobe, Vec2f /*u*/, BsdfSample& s) const { return sample(wo, u_lobe, s); }
   // `u` picks reflection or refraction.
   bool sample(Vec3f wo, float u, BsdfSample& s) const;
   // The probability that sample() reflects (the Fresnel reflectance for wo).

@@ -1,10 +1,83 @@
 #include "render/materials/material.h"
 
 #include <algorithm>
+#include <cmath>
+
+#include "render/materials/fresnel.h"
+#include "render/materials/microfacet.h"
 
 namespace pt {
 
-Material make_material(const MaterialDesc& d, const Texture* texture) {
+namespace {
+
+// Fills `out` from a textured parameter of the description.
+template <class Param, class T>
+void resolve(Param& out, const TexturedParam<T>& in, const std::vector<const Texture*>& textures) {
+  out.value = in.value.value;
+  if (in.texture && static_cast<std::size_t>(*in.texture) < textures.size())
+    out.texture = textures[static_cast<std::size_t>(*in.texture)];
+}
+
+const Texture* texture_of(const std::optional<int>& index, const std::vector<const Texture*>& textures) {
+  return index && static_cast<std::size_t>(*index) < textures.size() ? textures[static_cast<std::size_t>(*index)]
+                                                                      : nullptr;
+}
+
+// The Blinn-Phong exponent with the same width as GGX of this alpha (Walter et
+// al. 2007's e = 2 / alpha^2 - 2), for the classic integrator.
+float phong_exponent(float alpha) { return std::max(0.0f, 2.0f / std::max(alpha * alpha, 1e-6f) - 2.0f); }
+
+// The closest classic meaning of the microfacet types: the course fields the
+// classic integrator reads (docs/path-tracing.md).
+void give_classic_meaning(Material& m) {
+  // The constants (a textured roughness's scale): the classic model has no textures but the diffuse one.
+  const float ax = roughness_to_alpha(m.uroughness.value, m.remap_roughness);
+  const float ay = roughness_to_alpha(m.vroughness.value, m.remap_roughness);
+  const float alpha = std::sqrt(ax * ay);
+  const bool smooth = TrowbridgeReitz::smooth(ax, ay);
+  switch (m.type) {
+    case MaterialType::Conductor: {
+      const RGB f0 = m.schlick ? m.reflectance.value : fresnel_conductor(1.0f, m.eta.value, m.k.value);
+      m.kd = 0.0f;
+      m.ks = smooth ? 0.0f : 1.0f;
+      m.specular = f0;
+      m.exponent = phong_exponent(alpha);
+      m.reflectivity = smooth ? 1.0f : 0.0f;
+      break;
+    }
+    case MaterialType::CoatedDiffuse: {
+      const float f0 = ((m.ior - 1.0f) / (m.ior + 1.0f)) * ((m.ior - 1.0f) / (m.ior + 1.0f));
+      m.kd = 1.0f;
+      m.diffuse = m.reflectance.value;
+      m.texture = m.reflectance.texture;
+      m.ks = smooth ? 0.0f : f0;
+      m.specular = RGB(1.0f);
+      m.exponent = phong_exponent(alpha);
+      m.reflectivity = smooth ? f0 : 0.0f;
+      break;
+    }
+    default:
+      break;
+  }
+}
+
+}  // namespace
+
+float Material::roughness_alpha(float roughness) const { return roughness_to_alpha(roughness, remap_roughness); }
+
+RGB Material::albedo_at(const TexCoord& tc) const {
+  if (glass()) return RGB(1.0f);
+  switch (type) {
+    case MaterialType::Mirror: return specular;
+    case MaterialType::Conductor:
+      return schlick ? reflectance.at(tc) : fresnel_conductor(1.0f, eta.at(tc), k.at(tc));
+    case MaterialType::CoatedDiffuse: return reflectance.at(tc);
+    default: return diffuse_at(tc) * kd;
+  }
+}
+
+Material make_material(const MaterialDesc& d, const std::vector<const Texture*>& textures,
+                       const CoatingTable* coating) {
   Material m;
   m.kd = d.kd;
   m.ks = d.ks;
@@ -17,6 +90,17 @@ Material make_material(const MaterialDesc& d, const Texture* texture) {
   m.two_sided = d.two_sided;
   m.light_samples = d.light_samples;
   m.type = d.type;
+  m.texture = texture_of(d.texture, textures);
+  resolve(m.uroughness, d.uroughness, textures);
+  resolve(m.vroughness, d.vroughness, textures);
+  m.remap_roughness = d.remap_roughness;
+  resolve(m.eta, d.eta, textures);
+  resolve(m.k, d.k, textures);
+  resolve(m.reflectance, d.reflectance, textures);
+  m.schlick = d.schlick;
+  m.coating = coating;
+  m.normal_map = texture_of(d.normal_map, textures);
+  if (d.displacement) resolve(m.displacement, *d.displacement, textures);
   // The classic integrator reads only the course fields: give the physical
   // types their closest classic meaning (docs/path-tracing.md).
   switch (m.type) {
@@ -30,13 +114,17 @@ Material make_material(const MaterialDesc& d, const Texture* texture) {
       m.reflectivity = 1.0f;
       break;
     case MaterialType::Glass:
+    case MaterialType::Dielectric:
+      break;
+    case MaterialType::Conductor:
+    case MaterialType::CoatedDiffuse:
+      give_classic_meaning(m);
       break;
     case MaterialType::Phong:
       if (d.refractive) m.type = MaterialType::Glass;  // the course's dielectric
       break;
   }
   m.ka = d.ka ? d.ka->value : m.kd;  // after the classic meanings: a mirror has none
-  m.texture = texture;
   return m;
 }
 

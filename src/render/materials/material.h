@@ -1,11 +1,13 @@
-// Render-time material, with its texture resolved to a pointer. One struct for
+// Render-time material, with its textures resolved to pointers. One struct for
 // every type (docs/path-tracing.md, docs/scene-format.md):
 //  - Phong: the course model. The classic integrator reads kd, ks, diffuse,
 //    specular, exponent, reflectivity and ior as Blinn-Phong + mirror (+
 //    Fresnel refraction for glass); the path integrator as Lambert +
 //    normalised Blinn-Phong + mirror lobes.
 //  - Lambert, Mirror, Glass: the physical materials (render/materials/bsdf.h).
-// Emission (radiance) applies to every type.
+//  - Conductor, Dielectric, CoatedDiffuse: the microfacet materials; the
+//    classic integrator reads the course fields make_material gives them.
+// Emission (radiance) applies to every type, normal and bump maps too.
 //
 // The material's kind is decided once, by make_material(), when the render
 // scene is built: `type` is the BSDF every integrator builds, so a Phong
@@ -15,15 +17,20 @@
 // texture can make its diffuse lobe black at one texel (Bsdf::needs_lobe_choice).
 #pragma once
 
+#include <vector>
+
 #include "core/color.h"
 #include "core/math.h"
+#include "render/materials/texture_param.h"
 #include "render/textures/texture.h"
 #include "scene/scene_description.h"
 
 namespace pt {
 
+class CoatingTable;
+
 struct Material {
-  MaterialType type = MaterialType::Phong;  // decided: Glass for every dielectric
+  MaterialType type = MaterialType::Phong;  // decided: Glass for a refractive Phong
   float kd = 1, ks = 0;
   float ka = 1;  // the classic ambient term's weight: ka Cd times the ambient light (kd unless given)
   RGB diffuse{0.8f, 0.8f, 0.8f};
@@ -36,21 +43,42 @@ struct Material {
   int light_samples = 0;             // the classic integrator's samples of this emitter; 0: its default
   const Texture* texture = nullptr;  // modulates `diffuse` when set
 
-  bool glass() const { return type == MaterialType::Glass; }
-  RGB diffuse_at(Vec2f uv) const { return texture ? diffuse * texture->lookup(uv) : diffuse; }
-  // The albedo AOV: the diffuse colour kd * Cd (texture applied) of Phong and
-  // Lambert materials, the tint of a mirror, white for glass.
-  RGB albedo_at(Vec2f uv) const {
-    if (glass()) return RGB(1.0f);
-    if (type == MaterialType::Mirror) return specular;
-    return diffuse_at(uv) * kd;
+  // Microfacet materials (Conductor, Dielectric, CoatedDiffuse; render/materials/bsdf.h).
+  FloatParam uroughness, vroughness;  // roughness, alpha = sqrt(roughness) if remap_roughness
+  bool remap_roughness = true;
+  RGBParam eta, k;          // a conductor's complex index
+  RGBParam reflectance;     // a conductor's F0 (when schlick), a coated diffuse's base albedo
+  bool schlick = false;
+  const CoatingTable* coating = nullptr;  // a coated diffuse's albedo tables (owned by the render scene)
+  // Normal perturbation, any type (docs/path-tracing.md, "Normal and bump maps").
+  const Texture* normal_map = nullptr;
+  FloatParam displacement;  // used where textured
+
+  // Whether the BSDF refracts (glass and dielectric): the classic integrator
+  // refracts through it, and its BSDF keeps the shape's orientation.
+  bool glass() const { return type == MaterialType::Glass || type == MaterialType::Dielectric; }
+  bool perturbs_normal() const { return normal_map != nullptr || displacement.textured(); }
+  RGB diffuse_at(const TexCoord& tc) const { return texture ? diffuse * texture_rgb(*texture, tc) : diffuse; }
+  // GGX alpha along the shading frame's two tangent axes.
+  Vec2f alpha_at(const TexCoord& tc) const {
+    return {roughness_alpha(uroughness.at(tc)), roughness_alpha(vroughness.at(tc))};
   }
+  // The albedo AOV: the diffuse colour kd * Cd (texture applied) of Phong and
+  // Lambert materials, the tint of a mirror, white for glass and dielectrics,
+  // a conductor's normal-incidence reflectance, a coated diffuse's base albedo.
+  RGB albedo_at(const TexCoord& tc) const;
   bool emits() const { return !emission.is_black(); }
   // Radiance leaving a surface with geometric normal ng towards direction w.
   RGB emitted(Vec3f ng, Vec3f w) const { return (two_sided || dot(ng, w) > 0.0f) ? emission : RGB(); }
+
+ private:
+  float roughness_alpha(float roughness) const;
 };
 
-// The render-time material of a description; `texture` is its decoded texture (or null).
-Material make_material(const MaterialDesc& d, const Texture* texture);
+// The render-time material of a description. `textures` are the decoded
+// textures by SceneDescription::textures index (null where not decoded);
+// `coating` the albedo tables of a coated diffuse's index of refraction.
+Material make_material(const MaterialDesc& d, const std::vector<const Texture*>& textures = {},
+                       const CoatingTable* coating = nullptr);
 
 }  // namespace pt
