@@ -67,7 +67,8 @@ std::unique_ptr<Texture> load_texture(const TextureDesc& t, const char* what, co
   auto tex = std::make_unique<Texture>();
   std::string error;
   const auto start = Clock::now();
-  const bool loaded = Texture::load(t.resolved, *tex, error, limits, t.raw);
+  const bool loaded = t.embedded ? Texture::load_memory(*t.embedded, t.embedded_format, *tex, error, limits, t.raw)
+                                 : Texture::load(t.resolved, *tex, error, limits, t.raw);
   scene.texture_load_seconds += seconds_since(start);
   if (loaded) return tex;
   diag.error(t.where, std::string("cannot read ") + what + " '" + t.written + "': " + error);

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
@@ -98,6 +99,10 @@ struct TextureDesc {
   // Texel values used as they are, without sRGB decoding (the Path of Light
   // course's linear pipeline: docs/rendering.md). Set only by that importer.
   bool raw = false;
+  // An image embedded in a model file (glTF): its encoded bytes (PNG, JPEG,
+  // ...) and a format hint ("png"); `resolved` is then empty.
+  std::shared_ptr<const std::vector<unsigned char>> embedded;
+  std::string embedded_format;
 };
 
 // ---------------------------------------------------------------- render settings

@@ -5,6 +5,7 @@
 #include <limits>
 #include <utility>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include "core/file_access.h"
@@ -47,21 +48,11 @@ uint64_t TextureLimits::decoded_bytes(uint64_t pixels, int file_channels) {
 Texture::Texture(int width, int height, std::vector<RGB> pixels)
     : width_(width), height_(height), pixels_(std::move(pixels)) {}
 
-bool Texture::load(const std::string& path, Texture& out, std::string& error, const TextureLimits& limits,
-                   bool raw) {
-  if (const std::string why = why_unreadable(path); !why.empty()) {
-    error = "cannot open the file: " + why;
-    return false;
-  }
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);  // do not premultiply colour by alpha
-  auto in = OIIO::ImageInput::open(path, &config);
-  if (!in) {
-    error = OIIO::geterror();
-    if (error.empty()) error = "cannot open image";
-    return false;
-  }
-  const OIIO::ImageSpec& spec = in->spec();
+namespace {
+
+// Decodes the image `in` opened into linear RGB texels (see Texture::load).
+bool decode(OIIO::ImageInput& in, Texture& out, std::string& error, const TextureLimits& limits, bool raw) {
+  const OIIO::ImageSpec& spec = in.spec();
   const int w = spec.width, h = spec.height, nc = spec.nchannels;
   if (w <= 0 || h <= 0 || nc <= 0 || spec.depth > 1) {
     error = "unsupported image layout (" + std::to_string(w) + "x" + std::to_string(h) + ", " +
@@ -80,8 +71,8 @@ bool Texture::load(const std::string& path, Texture& out, std::string& error, co
     return false;
   }
   std::vector<float> data(static_cast<std::size_t>(count) * static_cast<std::size_t>(channels));
-  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data())) {
-    error = in->geterror();
+  if (!in.read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data())) {
+    error = in.geterror();
     if (error.empty()) error = "cannot decode image";
     return false;
   }
@@ -95,6 +86,42 @@ bool Texture::load(const std::string& path, Texture& out, std::string& error, co
   }
   out = Texture(w, h, std::move(pixels));
   return true;
+}
+
+}  // namespace
+
+bool Texture::load(const std::string& path, Texture& out, std::string& error, const TextureLimits& limits,
+                   bool raw) {
+  if (const std::string why = why_unreadable(path); !why.empty()) {
+    error = "cannot open the file: " + why;
+    return false;
+  }
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);  // do not premultiply colour by alpha
+  auto in = OIIO::ImageInput::open(path, &config);
+  if (!in) {
+    error = OIIO::geterror();
+    if (error.empty()) error = "cannot open image";
+    return false;
+  }
+  return decode(*in, out, error, limits, raw);
+}
+
+bool Texture::load_memory(const std::vector<unsigned char>& bytes, const std::string& format, Texture& out,
+                          std::string& error, const TextureLimits& limits, bool raw) {
+  // OpenImageIO reads from memory through an IOProxy, for the formats that
+  // support one (PNG, JPEG, ...); the name only chooses the reader.
+  OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
+  const std::string name = "embedded." + (format.empty() ? std::string("png") : format);
+  auto in = OIIO::ImageInput::create(name, false, nullptr, &memory);
+  OIIO::ImageSpec config, spec;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  if (!in || !in->supports("ioproxy") || !in->set_ioproxy(&memory) || !in->open(name, spec, config)) {
+    error = in ? in->geterror() : OIIO::geterror();
+    if (error.empty()) error = "cannot decode the embedded '" + format + "' image";
+    return false;
+  }
+  return decode(*in, out, error, limits, raw);
 }
 
 RGB Texture::lookup(Vec2f uv) const {

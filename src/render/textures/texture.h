@@ -42,6 +42,10 @@ class Texture {
   // be read or declares a size beyond `limits`.
   static bool load(const std::string& path, Texture& out, std::string& error, const TextureLimits& limits = {},
                    bool raw = false);
+  // The same for an image held in memory (a model file's embedded PNG or
+  // JPEG); `format` is its kind as a file extension without the dot ("png").
+  static bool load_memory(const std::vector<unsigned char>& bytes, const std::string& format, Texture& out,
+                          std::string& error, const TextureLimits& limits = {}, bool raw = false);
 
   RGB lookup(Vec2f uv) const;  // bilinear, repeat wrap
   // Texel (x, y), 0 <= x < width, 0 <= y < height, row 0 at the top.
