@@ -81,14 +81,18 @@ MemoryEstimate estimate_memory(const SceneDescription& scene, uint64_t pixels, c
   e.film = pixels * per_pixel.film * static_cast<uint64_t>(films);
   e.images = pixels * per_pixel.images;
   e.textures = texture_bytes(scene);
-  for (const ShapeDesc& shape : scene.shapes) {
+  const auto add_shape = [&](const ShapeDesc& shape) {
     e.geometry += kBytesPerShape;
     // A file's "triangle" (a one-triangle mesh) counts as one shape, as it
     // always has: run records keep their figures.
     const auto* mesh = std::get_if<TriangleMesh>(&shape.geometry);
     if (mesh && shape.type != "triangle")
       e.geometry += mesh->indices.size() / 3 * kBytesPerTriangle + mesh->positions.size() * kBytesPerVertex;
-  }
+  };
+  for (const ShapeDesc& shape : scene.shapes) add_shape(shape);
+  // An object's shapes are stored once, however many instances place them.
+  for (const ObjectDesc& object : scene.objects)
+    for (const ShapeDesc& shape : object.shapes) add_shape(shape);
   return e;
 }
 

@@ -5,7 +5,9 @@
 #include <memory>
 #include <system_error>
 
+#include "scene/asset_reader.h"
 #include "scene/detect.h"
+#include "scene/import_asset.h"
 #include "scene/importers.h"
 #include "scene/json.h"
 #include "scene/overrides.h"
@@ -54,6 +56,13 @@ std::optional<SceneDescription> load_scene(const std::string& path, const LoadOp
   if (fs::is_directory(path, ec)) {
     diag.error(file_only(path), "is a directory, not a scene file");
     return std::nullopt;
+  }
+  // A model file as the scene: a native scene that imports it (import_asset.h).
+  if (asset_format_of(path)) {
+    std::optional<SceneDescription> scene =
+        load_scene_from_string(path + " (the scene made for it)", model_scene_text(path), options, diag);
+    if (scene) light_model_scene(*scene, diag);
+    return scene;
   }
   const std::uintmax_t size = fs::file_size(path, ec);
   if (ec) {
