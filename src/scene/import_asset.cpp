@@ -83,7 +83,8 @@ std::vector<int> place_materials(ImportContext& ctx, const ImportedAsset& asset,
       if (std::find(textures.begin(), textures.end(), *mapped.desc.texture) == textures.end())
         textures.push_back(*mapped.desc.texture);
     }
-    mapped.desc.name = req.file.value + ":" + mapped.desc.name;
+    // "file.gltf:name": unique across imports, and Cryptomatte's material name.
+    mapped.desc.name = fs::path(req.file.value).filename().string() + ":" + mapped.desc.name;
     NativeMaterial m;
     m.desc = std::move(mapped.desc);
     m.used = true;
@@ -163,7 +164,7 @@ void place_object(ImportContext& ctx, ImportedAsset& asset, const ImportRequest&
   const auto& [meshes, placements] = groups.list[g];
   ObjectDesc object;
   object.where = req.where;
-  object.name = req.file.value + "#" + std::to_string(ctx.scene.objects.size());
+  object.name = fs::path(req.file.value).filename().string() + "#" + std::to_string(ctx.scene.objects.size());
   std::vector<int> object_material;
   for (int m : meshes) {
     object_material.push_back(material_of(asset, material, m));
@@ -177,6 +178,7 @@ void place_object(ImportContext& ctx, ImportedAsset& asset, const ImportRequest&
     }
     InstanceDesc inst;
     inst.where = req.where;
+    inst.name = asset.placements[p].node;  // Cryptomatte's object name, as Blender names the node's object
     inst.object = static_cast<int>(ctx.scene.objects.size());
     inst.transform = sourced(*t, req.where);
     ctx.scene.instances.push_back(std::move(inst));
@@ -205,7 +207,9 @@ void place_meshes(ImportContext& ctx, ImportedAsset& asset, const ImportRequest&
       continue;
     }
     for (int m : meshes) {
-      ShapeDesc s = make_shape(req, p.node + "/" + asset.meshes[static_cast<std::size_t>(m)].name, groups.take(asset, m));
+      // Named by its node, as Blender names the node's object (Cryptomatte's object name).
+      const std::string& name = p.node.empty() ? asset.meshes[static_cast<std::size_t>(m)].name : p.node;
+      ShapeDesc s = make_shape(req, name, groups.take(asset, m));
       s.transform = sourced(*t, req.where);
       tables.shape_material.push_back(material_of(asset, material, m));
       ctx.scene.shapes.push_back(std::move(s));

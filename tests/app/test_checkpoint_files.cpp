@@ -113,7 +113,7 @@ TEST_F(ResumeHostile, DamagedFilmStatesAreRefused) {
   expect_refused(good_.magic + good_.header + good_.body + "x", "film state has trailing data");
   // A NaN in the first pixel's red sum: the film would put it in the image.
   std::string body = good_.body;
-  const std::size_t first_pixel = body.size() - 8 * 6 * 40;  // 8x6 pixels of 40 bytes, no AOVs
+  const std::size_t first_pixel = body.size() - 8 * 6 * 48;  // 8x6 pixels of 48 bytes, no AOVs
   const double nan = std::numeric_limits<double>::quiet_NaN();
   body.replace(first_pixel, sizeof nan, reinterpret_cast<const char*>(&nan), sizeof nan);
   expect_refused(good_.magic + good_.header + body, "corrupt film state (pixel (0, 0) holds a non-finite sum)");

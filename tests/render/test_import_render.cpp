@@ -1,6 +1,7 @@
 // Imported model files rendered (docs/importing.md): one image test per
 // importer (statistical, small, few samples) on the assets of
 // tests/data/assets, and the memory of a glTF mesh placed 1000 times.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -126,6 +127,28 @@ TEST(ImportRender, ColladaPanelsOnTheGround) {
   const RGB ground = around(img, *scene, {0, 0, 2.5f});
   EXPECT_GT(ground.g, 0.05f);
   EXPECT_NEAR(ground.r / ground.g, 1.0f, 0.1f);
+}
+
+// Cryptomatte's names (RenderScene::names) of an imported file: its nodes, as
+// Blender names their objects, and its materials.
+TEST(ImportRender, NodesAndMaterialsHaveCryptomatteNames) {
+  const SceneDescription d = load(kAssets + "dae/scene.dae");
+  WorkerPool pool(2);
+  const std::unique_ptr<RenderScene> scene = test::build(d, pool);
+  ASSERT_TRUE(scene);
+  const SceneNames& n = scene->names;
+  const auto has = [](const std::vector<std::string>& list, const std::string& name) {
+    return std::find(list.begin(), list.end(), name) != list.end();
+  };
+  for (const char* node : {"ground", "panel_left", "panel_right"}) EXPECT_TRUE(has(n.objects, node)) << node;
+  // The panels (one object, placed twice) are the last two instances (the
+  // transformed ground is one before them), each with its node's name.
+  ASSERT_EQ(n.instance_object.size(), 3u);
+  EXPECT_EQ(n.objects[n.instance_object[1]], "panel_left");
+  EXPECT_EQ(n.objects[n.instance_object[2]], "panel_right");
+  EXPECT_TRUE(has(n.materials, "scene.dae:red"));
+  EXPECT_TRUE(has(n.materials, "scene.dae:grey"));
+  EXPECT_EQ(n.object_ids.size(), n.objects.size());
 }
 
 // One 12-triangle box, 1000 nodes: one stored copy, 1000 instances.

@@ -1,7 +1,9 @@
 #include "render/film/film.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <utility>
 #include <sstream>
 #include <tuple>
 
@@ -30,6 +32,45 @@ void set_first(double* s, int n, const float* v) {
   if (s[n] != 0.0) return;
   for (int c = 0; c < n; ++c) s[c] = v[c];
   s[n] = 1.0;
+}
+
+// Ranked (Cryptomatte) layers: `ranks` slots of (id, weight sum); id 0 marks
+// a free slot (no name hashes to 0). A weight goes to its id's slot, else to
+// the first free one; when every slot holds another id it is dropped (as
+// Cycles does), so the ids kept are the first `ranks` distinct ones in sample
+// order, and the result does not depend on scheduling.
+void add_ranked(double* slots, int ranks, double id, double w) {
+  if (id == 0.0) return;  // the camera ray hit nothing
+  for (int k = 0; k < ranks; ++k) {
+    double* slot = slots + 2 * k;
+    if (slot[0] == id) {
+      slot[1] += w;
+      return;
+    }
+    if (slot[0] == 0.0) {
+      slot[0] = id;
+      slot[1] = w;
+      return;
+    }
+  }
+}
+
+// The ranked ids and coverages (weight / the pixel's total weight, clamped
+// to [0, 1]) into out[0 .. 2 * ranks), highest coverage first (ties: the
+// smaller id first); free slots give (0, 0).
+void ranked_values(const double* slots, int ranks, double weight, float* out) {
+  std::array<int, kCryptomatteMaxRanks> order{};
+  for (int k = 0; k < ranks; ++k) order[static_cast<std::size_t>(k)] = k;
+  const auto key = [slots](int k) { return std::make_pair(slots[2 * k] == 0.0, -slots[2 * k + 1]); };
+  std::sort(order.begin(), order.begin() + ranks, [&](int a, int b) {
+    return key(a) != key(b) ? key(a) < key(b) : slots[2 * a] < slots[2 * b];
+  });
+  for (int k = 0; k < ranks; ++k) {
+    const double* slot = slots + 2 * order[static_cast<std::size_t>(k)];
+    const bool used = slot[0] != 0.0 && weight != 0.0;
+    out[2 * k] = used ? static_cast<float>(slot[0]) : 0.0f;
+    out[2 * k + 1] = used ? static_cast<float>(std::clamp(slot[1] / weight, 0.0, 1.0)) : 0.0f;
+  }
 }
 
 }  // namespace
@@ -80,11 +121,14 @@ Film::Film(int width, int height, PixelRect crop, std::vector<AovRequest> aovs)
     : width_(std::max(width, 0)), height_(std::max(height, 0)), crop_(clip(crop, width_, height_)),
       pixels_(static_cast<std::size_t>(crop_.width()) * static_cast<std::size_t>(crop_.height())),
       aovs_(std::move(aovs)) {
-  for (const AovRequest& r : aovs_) {
-    offset_.push_back(stride_);
+  for (AovRequest& r : aovs_) {
     const AovInfo& info = aov_info(r.type);
-    stride_ += info.state_doubles;
-    if (r.type <= AovType::MaterialId) wants_geometry_ = true;
+    r.ranks = info.accumulation != Accumulation::Ranked ? 0
+              : r.ranks <= 0                             ? kCryptomatteDefaultRanks
+                                                         : std::min(r.ranks, kCryptomatteMaxRanks);
+    offset_.push_back(stride_);
+    stride_ += aov_state_doubles(r);
+    if (aov_bit(r.type) & kGeometryAovs) wants_geometry_ = true;
     if (info.lighting) wants_lighting_ = true;
   }
   aov_data_.assign(pixels_.size() * static_cast<std::size_t>(stride_), 0.0);
@@ -141,6 +185,8 @@ void Film::accumulate(double* scratch, const AovSample& a, RGB radiance, float w
         break;
       case AovType::Samples: break;  // the beauty's count
       case AovType::NonFinite: if (non_finite) s[0] = 1.0; break;
+      case AovType::CryptoObject: add_ranked(s, aovs_[i].ranks, a.crypto_object, w); break;
+      case AovType::CryptoMaterial: add_ranked(s, aovs_[i].ranks, a.crypto_material, w); break;
     }
   }
 }
@@ -163,6 +209,9 @@ void Film::add_aovs(int x, int y, const double* scratch) {
       case Accumulation::Max:
         d[0] = std::max(d[0], s[0]);
         break;
+      case Accumulation::Ranked:
+        for (int k = 0; k < aovs_[i].ranks; ++k) add_ranked(d, aovs_[i].ranks, s[2 * k], s[2 * k + 1]);
+        break;
     }
   }
 }
@@ -172,11 +221,17 @@ void Film::aov_values(std::size_t layer, std::size_t pixel, float* out) const {
   const AovInfo& info = aov_info(type);
   const double* d = aov_data_.data() + pixel * static_cast<std::size_t>(stride_) + offset_[layer];
   const PixelSum& p = pixels_[pixel];
-  std::fill(out, out + info.channels, 0.0f);
+  std::fill(out, out + aov_channel_count(aovs_[layer]), 0.0f);
   switch (info.accumulation) {
     case Accumulation::FilteredAverage:
       if (p.weight != 0.0)
         for (int c = 0; c < info.channels; ++c) out[c] = static_cast<float>(d[c] / p.weight);
+      // A reflectance: a filter's negative lobes must not make it negative.
+      if (type == AovType::Albedo)
+        for (int c = 0; c < 3; ++c) out[c] = std::max(out[c], 0.0f);
+      break;
+    case Accumulation::Ranked:
+      ranked_values(d, aovs_[layer].ranks, p.weight, out);
       break;
     case Accumulation::FirstSample:
       for (int c = 0; c < info.channels; ++c) out[c] = static_cast<float>(d[c]);
@@ -202,7 +257,7 @@ void Film::aov_values(std::size_t layer, std::size_t pixel, float* out) const {
 std::vector<float> Film::aov_value(AovType type, int x, int y) const {
   for (std::size_t i = 0; i < aovs_.size(); ++i) {
     if (aovs_[i].type != type) continue;
-    std::vector<float> out(static_cast<std::size_t>(aov_info(type).channels));
+    std::vector<float> out(static_cast<std::size_t>(aov_channel_count(aovs_[i])));
     aov_values(i, index(x, y), out.data());
     return out;
   }
@@ -225,21 +280,28 @@ LayeredImage Film::layers(ChannelType beauty_type) const {
     p[0] = v.r;
     p[1] = v.g;
     p[2] = v.b;
-    p[3] = pixels_[i].samples > 0 ? 1.0f : 0.0f;
+    p[3] = pixels_[i].alpha();
   }
   out.layers.push_back(std::move(beauty));
   for (std::size_t l = 0; l < aovs_.size(); ++l) {
     const AovRequest& r = aovs_[l];
-    const AovInfo& info = aov_info(r.type);
-    ImageLayer layer;
-    layer.name = info.name;
-    layer.type = r.channel_type;
-    for (int c = 0; c < info.channels; ++c)
-      layer.channels.push_back(info.channels == 1 ? std::string(info.name)
-                                                  : std::string(info.name) + "." + info.suffix[c]);
-    layer.values.resize(n * static_cast<std::size_t>(info.channels));
-    for (std::size_t i = 0; i < n; ++i) aov_values(l, i, &layer.values[i * static_cast<std::size_t>(info.channels)]);
-    out.layers.push_back(std::move(layer));
+    const std::vector<std::string> names = aov_channel_names(r);
+    const std::size_t nc = names.size();
+    std::vector<float> values(n * nc);
+    for (std::size_t i = 0; i < n; ++i) aov_values(l, i, &values[i * nc]);
+    // A Ranked AOV is a layer per two ranks ("CryptoObject00": r, g, b, a); any other one layer.
+    const std::size_t per_layer = aov_info(r.type).accumulation == Accumulation::Ranked ? 4 : nc;
+    for (std::size_t first = 0; first < nc; first += per_layer) {
+      ImageLayer layer;
+      layer.name = names[first].substr(0, names[first].find('.'));
+      layer.type = r.channel_type;
+      layer.channels.assign(names.begin() + static_cast<std::ptrdiff_t>(first),
+                            names.begin() + static_cast<std::ptrdiff_t>(first + per_layer));
+      layer.values.resize(n * per_layer);
+      for (std::size_t i = 0; i < n; ++i)
+        std::copy_n(&values[i * nc + first], per_layer, &layer.values[i * per_layer]);
+      out.layers.push_back(std::move(layer));
+    }
   }
   return out;
 }

@@ -15,6 +15,7 @@
 // does not depend on the tile order.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <iosfwd>
 #include <string>
@@ -31,13 +32,16 @@ namespace pt {
 struct PixelSum {
   double r = 0, g = 0, b = 0;  // sum of weight * radiance
   double weight = 0;           // sum of filter weights
+  double coverage = 0;         // sum of the weights of the samples whose camera ray hit a surface
   uint64_t samples = 0;        // number of samples (non-finite ones included, as black)
 
-  void add(RGB value, float w) {
+  // One sample: its radiance, filter weight and whether its camera ray hit a surface.
+  void add(RGB value, float w, bool hit) {
     r += static_cast<double>(w) * value.r;
     g += static_cast<double>(w) * value.g;
     b += static_cast<double>(w) * value.b;
     weight += w;
+    if (hit) coverage += w;
     ++samples;
   }
   void add(const PixelSum& o) {
@@ -45,6 +49,7 @@ struct PixelSum {
     g += o.g;
     b += o.b;
     weight += o.weight;
+    coverage += o.coverage;
     samples += o.samples;
   }
   // sum / weight; black for a pixel without weight.
@@ -52,6 +57,13 @@ struct PixelSum {
     if (weight == 0.0) return {};
     const double inv = 1.0 / weight;
     return {static_cast<float>(r * inv), static_cast<float>(g * inv), static_cast<float>(b * inv)};
+  }
+  // The beauty's alpha: coverage / weight, the filter-weighted fraction of
+  // the samples whose camera ray hit a surface, clamped to [0, 1] (a filter
+  // with negative lobes can take the ratio out of it); 0 without weight.
+  float alpha() const {
+    if (weight == 0.0) return 0.0f;
+    return static_cast<float>(std::clamp(coverage / weight, 0.0, 1.0));
   }
 };
 
@@ -108,15 +120,17 @@ class Film {
   int aov_doubles() const { return stride_; }
   void accumulate(double* scratch, const AovSample& sample, RGB radiance, float weight, bool non_finite) const;
   void add_aovs(int x, int y, const double* scratch);
-  // The final values of AOV `type` at (x, y) (channels().size() floats); empty if not requested.
+  // The final values of AOV `type` at (x, y) (aov_channel_names().size()
+  // floats); empty if not requested.
   std::vector<float> aov_value(AovType type, int x, int y) const;
 
   const NonFiniteReport& non_finite() const { return non_finite_; }
   void add_non_finite(const NonFiniteReport& r) { non_finite_.merge(r); }
 
-  // The beauty (R, G, B, A; A = 1 where the pixel has samples), stored as
-  // `beauty` (float by default, half with "--aov beauty:half"), and every
-  // requested AOV over the crop window, for the image writers.
+  // The beauty (R, G, B, A; RGB premultiplied, A = PixelSum::alpha()), stored
+  // as `beauty` (float by default, half with "--aov beauty:half"), and every
+  // requested AOV over the crop window, for the image writers (a Ranked AOV
+  // becomes one layer per two ranks).
   LayeredImage layers(ChannelType beauty = ChannelType::Float) const;
 
   // The film's complete state (every pixel's sums and counts, the AOV sums,

@@ -12,18 +12,19 @@ namespace pt {
 
 namespace {
 
-// State layout (version 2), all little-endian:
+// State layout (version 3), all little-endian:
 //   the 8-byte magic; uint32 version, width, height; int32 crop x0, y0, x1, y1;
-//   uint32 AOV count, then per AOV uint8 type and uint8 channel type;
+//   uint32 AOV count, then per AOV uint8 type, uint8 channel type and uint8
+//   ranks (Cryptomatte; 0 for the others);
 //   the non-finite report: uint64 nan, pos_inf, neg_inf; uint8 has_first;
 //   int32 x, y, sample; float r, g, b;
-//   per pixel of the crop (row-major, top row first): r, g, b, weight as IEEE
-//   doubles and samples as uint64;
+//   per pixel of the crop (row-major, top row first): r, g, b, weight,
+//   coverage as IEEE doubles and samples as uint64;
 //   then the AOV block: per pixel, aov_doubles() doubles.
-// Version 1 (beauty only, no crop) is no longer read: its checkpoints predate
-// AOVs and the non-finite report.
+// Versions 1 (beauty only, no crop) and 2 (no coverage, hence no alpha; no
+// ranks) are no longer read.
 constexpr char kMagic[8] = {'P', 'T', 'F', 'I', 'L', 'M', '\r', '\n'};
-constexpr uint32_t kStateVersion = 2;
+constexpr uint32_t kStateVersion = 3;
 static_assert(std::endian::native == std::endian::little, "film states are written in the host's byte order");
 
 template <typename T>
@@ -42,6 +43,7 @@ std::string describe_aovs(const std::vector<AovRequest>& aovs) {
     if (!s.empty()) s += ',';
     s += aov_info(r.type).name;
     s += r.channel_type == ChannelType::Half ? ":half" : ":float";
+    if (r.ranks > 0) s += " (" + std::to_string(r.ranks) + " ranks)";
   }
   return s;
 }
@@ -54,19 +56,19 @@ bool read_aov_list(std::istream& in, uint32_t count, const std::vector<AovReques
   }
   std::vector<AovRequest> aovs;
   for (uint32_t i = 0; i < count; ++i) {
-    uint8_t type = 0, channel_type = 0;
-    if (!get(in, type) || !get(in, channel_type)) {
+    uint8_t type = 0, channel_type = 0, ranks = 0;
+    if (!get(in, type) || !get(in, channel_type) || !get(in, ranks)) {
       error = "truncated film state header";
       return false;
     }
-    if (type >= aov_catalogue().size() || channel_type > 1) {
+    if (type >= aov_catalogue().size() || channel_type > 1 || ranks > kCryptomatteMaxRanks) {
       error = "film state lists an unknown AOV (corrupt)";
       return false;
     }
-    aovs.push_back({static_cast<AovType>(type), static_cast<ChannelType>(channel_type)});
+    aovs.push_back({static_cast<AovType>(type), static_cast<ChannelType>(channel_type), ranks});
   }
   const auto same = [](const AovRequest& a, const AovRequest& b) {
-    return a.type == b.type && a.channel_type == b.channel_type;
+    return a.type == b.type && a.channel_type == b.channel_type && a.ranks == b.ranks;
   };
   if (!std::equal(aovs.begin(), aovs.end(), expected.begin(), expected.end(), same)) {
     error = "film state has AOVs " + describe_aovs(aovs) + ", the render asks for " + describe_aovs(expected);
@@ -134,7 +136,8 @@ bool read_non_finite(std::istream& in, NonFiniteReport& nf, std::string& error) 
 // The sums of every pixel of `crop` (`pixels` has its size).
 bool read_pixel_sums(std::istream& in, const PixelRect& crop, std::vector<PixelSum>& pixels, std::string& error) {
   for (PixelSum& p : pixels) {
-    if (!get(in, p.r) || !get(in, p.g) || !get(in, p.b) || !get(in, p.weight) || !get(in, p.samples)) {
+    if (!get(in, p.r) || !get(in, p.g) || !get(in, p.b) || !get(in, p.weight) || !get(in, p.coverage) ||
+        !get(in, p.samples)) {
       error = "truncated film state";
       return false;
     }
@@ -143,7 +146,8 @@ bool read_pixel_sums(std::istream& in, const PixelRect& crop, std::vector<PixelS
   // always finite: anything else is corruption, which would reach the image.
   for (std::size_t i = 0; i < pixels.size(); ++i) {
     const PixelSum& p = pixels[i];
-    if (!std::isfinite(p.r) || !std::isfinite(p.g) || !std::isfinite(p.b) || !std::isfinite(p.weight)) {
+    if (!std::isfinite(p.r) || !std::isfinite(p.g) || !std::isfinite(p.b) || !std::isfinite(p.weight) ||
+        !std::isfinite(p.coverage)) {
       const std::size_t row = static_cast<std::size_t>(crop.width());
       error = "corrupt film state (pixel (" + std::to_string(crop.x0 + static_cast<int>(i % row)) + ", " +
               std::to_string(crop.y0 + static_cast<int>(i / row)) + ") holds a non-finite sum)";
@@ -165,6 +169,7 @@ bool Film::write_state(std::ostream& out) const {
   for (const AovRequest& r : aovs_) {
     put(out, static_cast<uint8_t>(r.type));
     put(out, static_cast<uint8_t>(r.channel_type));
+    put(out, static_cast<uint8_t>(r.ranks));
   }
   const NonFiniteReport& nf = non_finite_;
   put(out, nf.nan);
@@ -178,6 +183,7 @@ bool Film::write_state(std::ostream& out) const {
     put(out, p.g);
     put(out, p.b);
     put(out, p.weight);
+    put(out, p.coverage);
     put(out, p.samples);
   }
   if (!aov_data_.empty())
