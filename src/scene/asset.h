@@ -99,7 +99,8 @@ struct AssetMaterial {
 };
 
 // One triangle mesh with one material. `tangents` (xyz and the bitangent
-// sign w, as glTF's TANGENT) are kept for normal maps, which do not exist yet.
+// sign w, as glTF's TANGENT) are read for normal maps, which do not exist
+// yet: they do not reach the scene (counted as left out).
 struct AssetMesh {
   std::string name;
   TriangleMesh mesh;  // normals and uvs: one per vertex or none; uvs of the set the diffuse texture reads

@@ -102,7 +102,7 @@ bool read_import_request(ImportContext& ctx, const JsonValue& v, std::vector<Nat
   req.resolved = *resolved;
   if (!asset_format_of(*resolved)) {
     const std::string ext = fs::path(*resolved).extension().string();
-    ctx.diag().error(req.file.where, "unsupported model format '" + ext + "' (supported: " + supported_extensions() + ")");
+    ctx.diag().error(req.file.where, "unsupported mesh format '" + ext + "' (supported: " + supported_extensions() + ")");
     return false;
   }
   return true;

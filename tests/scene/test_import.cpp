@@ -150,7 +150,7 @@ TEST(ImportGltf, HierarchyInstancesCameraLightsAndMaterials) {
   EXPECT_NE(text.find("perfect mirror (material 'gold')"), std::string::npos) << text;
   const ImportSummary& sum = s->imports.at(0);
   EXPECT_EQ(count_of(sum.imported, "instances"), 3u);
-  EXPECT_EQ(count_of(sum.imported, "meshes with tangents (kept for normal maps)"), 1u);
+  EXPECT_EQ(count_of(sum.skipped, "mesh tangents (unused until normal maps exist)"), 1u);
   EXPECT_EQ(count_of(sum.skipped, "cameras (not chosen)"), 1u);
 }
 
@@ -224,7 +224,7 @@ TEST(ImportErrors, FormatsAndFilesAreNamed) {
   dir.write("model.xyz", "x");
   Loaded xyz = load_import(dir, "model.xyz");
   EXPECT_FALSE(xyz.scene);
-  EXPECT_NE(messages(xyz.diag).find("unsupported model format '.xyz' (supported: .obj, .gltf, .glb and .dae"),
+  EXPECT_NE(messages(xyz.diag).find("unsupported mesh format '.xyz' (supported: .obj, .gltf, .glb and .dae"),
             std::string::npos) << messages(xyz.diag);
   dir.write("broken.gltf", "{ \"asset\": { \"version\": \"2.0\" }, \"meshes\": [ { \"primitives\": [ 7 ] } ] }");
   Loaded broken = load_import(dir, "broken.gltf");
