@@ -59,6 +59,15 @@ std::string run_record_json(const RunRecord& r) {
   j["display"] = {{"transform", d.transform}, {"exposure", d.exposure}, {"view", d.view},
                   {"display", d.display},     {"look", d.look},         {"ocio_config", path_or_null(d.ocio_config)},
                   {"pipeline", d.pipeline}};
+  nlohmann::ordered_json imports = nlohmann::ordered_json::array();
+  for (const RunRecord::Import& i : r.imports) {
+    nlohmann::ordered_json imported = nlohmann::ordered_json::object(), skipped = nlohmann::ordered_json::object();
+    for (const auto& [what, n] : i.imported) imported[what] = n;
+    for (const auto& [what, n] : i.skipped) skipped[what] = n;
+    imports.push_back({{"file", i.file}, {"format", i.format}, {"seconds", i.seconds}, {"imported", imported},
+                       {"skipped", skipped}});
+  }
+  j["imports"] = imports;
   const RunRecord::NonFinite& nf = r.non_finite;
   j["non_finite"] = {{"nan", nf.nan}, {"pos_inf", nf.pos_inf}, {"neg_inf", nf.neg_inf},
                      {"first", nf.has_first ? nlohmann::ordered_json{{"x", nf.x}, {"y", nf.y}, {"sample", nf.sample}}

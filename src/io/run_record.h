@@ -92,6 +92,14 @@ struct RunRecord {
     float exposure = 0;
     std::string view, display, look, ocio_config, pipeline;
   } display;
+  // Model files the scene imported (docs/importing.md): what each brought in
+  // and what it left out, as (what, count) pairs.
+  struct Import {
+    std::string file, format;
+    double seconds = 0;
+    std::vector<std::pair<std::string, uint64_t>> imported, skipped;
+  };
+  std::vector<Import> imports;
   uint64_t memory_estimate_bytes = 0;  // the pre-flight estimate
   std::vector<std::pair<std::string, uint64_t>> memory_estimate_parts;  // its parts (app/memory_estimate.h)
   uint64_t peak_memory_bytes = 0;      // getrusage ru_maxrss

@@ -50,6 +50,23 @@ bool needs_footprint(const TextureDesc& t) {
   return t.filter.value == TextureFilter::Trilinear || t.filter.value == TextureFilter::Anisotropic;
 }
 
+// An image embedded in a model file (glTF): decoded into memory once (the
+// texture cache reads files only) and looked up bilinearly, without the
+// footprint filter of cached images.
+std::unique_ptr<Texture> embedded_texture(const TextureDesc& t, RenderScene& scene, const TextureLimits& limits,
+                                          Diagnostics& diag) {
+  auto tex = std::make_unique<Texture>();
+  std::string error;
+  const auto start = Clock::now();
+  const bool loaded = Texture::load_memory(*t.embedded, t.embedded_format, *tex, error, limits, t.raw);
+  scene.texture_load_seconds += seconds_since(start);
+  if (!loaded) {
+    diag.error(t.where, "cannot read texture '" + t.written + "': " + error);
+    return nullptr;
+  }
+  return std::make_unique<Texture>(tex->source(), mapping_of(t));
+}
+
 // One texture: an image through the cache, or a procedural one.
 std::unique_ptr<Texture> make_texture(const TextureDesc& t, RenderScene& scene, const BuildOptions& options,
                                       Diagnostics& diag) {
@@ -60,6 +77,7 @@ std::unique_ptr<Texture> make_texture(const TextureDesc& t, RenderScene& scene, 
       return std::make_unique<Texture>(NoiseTexture{t.color0, t.color1, t.octaves, t.roughness}, mapping_of(t));
     case TextureType::Image: break;
   }
+  if (t.embedded) return embedded_texture(t, scene, options.textures, diag);
   if (!scene.texture_cache) scene.texture_cache = std::make_unique<TextureCache>(options.texture_cache_bytes);
   OpenedImage opened;
   std::string error;

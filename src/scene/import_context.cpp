@@ -63,16 +63,27 @@ bool load_mesh_file(ImportContext& ctx, const Sourced<std::string>& written, Sha
   shape.file = shape.field("file", written);
   const std::optional<std::string> resolved = find_scene_file(ctx, written, "mesh file");
   if (!resolved) return false;
-  // The reader by extension: .obj (any case) is OBJ, anything else PLY.
+  // The reader by extension (any case): .ply or .obj. Model files with a
+  // scene of their own (glTF, COLLADA) are placed by {"type": "import"}.
   std::string extension = fs::path(*resolved).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (extension != ".ply" && extension != ".obj") {
+    const bool model = extension == ".gltf" || extension == ".glb" || extension == ".dae";
+    ctx.diag().error(written.where, model ? "a mesh reads a PLY or OBJ file; place a '" + extension +
+                                                "' file with {\"type\": \"import\", \"file\": ...} (docs/importing.md)"
+                                          : "unsupported mesh format '" + extension +
+                                                "' (supported: .ply, .obj; .gltf, .glb and .dae through "
+                                                "{\"type\": \"import\"})");
+    return false;
+  }
   TriangleMesh mesh;
   const auto start = Clock::now();
   std::string error;
   bool loaded = false;
+  ObjInfo obj;
   if (extension == ".obj") {
-    loaded = load_obj(*resolved, mesh, error);
+    loaded = load_obj(*resolved, mesh, error, &obj);
   } else if (PlyError ply_error; !(loaded = load_ply(*resolved, mesh, ply_error))) {
     error = ply_error.message;
     if (ply_error.line > 0) error += " (header line " + std::to_string(ply_error.line) + ")";
@@ -82,6 +93,10 @@ bool load_mesh_file(ImportContext& ctx, const Sourced<std::string>& written, Sha
     ctx.diag().error(written.where, "cannot read mesh '" + written.value + "': " + error);
     return false;
   }
+  if (obj.materials > 0)
+    ctx.diag().warning(written.where, "'" + written.value + "' names " + std::to_string(obj.materials) +
+                                          " material(s) (MTL); a mesh has one material, so they are not used: place "
+                                          "the file with {\"type\": \"import\"} to use them (docs/importing.md)");
   shape.geometry = std::move(mesh);
   return true;
 }

@@ -13,12 +13,21 @@
 
 namespace pt {
 
+// A camera an imported model file brought (import_asset.cpp), for a scene
+// without a camera of its own.
+struct ImportedCamera {
+  CameraDesc camera;
+  float aspect = 0;  // the file's width / height; 0 if it gives none
+  std::string file, name;
+};
+
 struct ImportContext {
   ReadContext read;
   const LoadOptions& options;
   SceneDescription& scene;
   std::map<std::string, int> texture_ids;  // canonical path (+ raw mark) -> index in scene.textures
   std::optional<int> default_material;     // index, once a shape needed it
+  std::optional<ImportedCamera> imported_camera;  // the first import's camera, if it brought one
 
   Diagnostics& diag() { return read.diag; }
   const JsonDocument& doc() { return read.doc; }

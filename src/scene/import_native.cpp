@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "scene/detect.h"
+#include "scene/import_asset.h"
 #include "scene/importers.h"
 #include "scene/import_transform.h"
 #include "scene/native_shapes.h"
@@ -269,6 +270,14 @@ void assemble_materials(ImportContext& ctx, std::vector<NativeMaterial>& materia
   }
 }
 
+// Whether "shapes" holds an import (one that failed counts: its error is reported).
+bool has_import(ObjectReader& top) {
+  const JsonValue* shapes = top.get("shapes");
+  if (!shapes || !shapes->is_array()) return false;
+  const JsonValue::Array& list = shapes->as_array();
+  return std::any_of(list.begin(), list.end(), [](const JsonValue& s) { return is_import(s); });
+}
+
 }  // namespace
 
 void import_native(ImportContext& ctx) {
@@ -280,7 +289,9 @@ void import_native(ImportContext& ctx) {
     ctx.diag().error(version.where, "unsupported version " + std::to_string(version.value) +
                                         "; this build reads version " + std::to_string(kNativeFormatVersion));
   }
-  if (const JsonValue* v = top.require("camera")) read_camera(ctx, *v);
+  // Without a "camera", an imported model file's or a framing one (import_asset.h).
+  const JsonValue* camera = top.get("camera");
+  if (camera) read_camera(ctx, *camera);
   if (const JsonValue* v = top.get("film")) read_film(ctx, *v);
   if (const JsonValue* v = top.get("render")) read_render(ctx, *v);
   if (const JsonValue* v = top.get("environment")) {
@@ -306,8 +317,10 @@ void import_native(ImportContext& ctx) {
   std::vector<int> shape_material;  // per shape: index into `materials`, -1 for the default
   if (const JsonValue* v = top.get("shapes"); v && expect_array(ctx.read, *v, "shapes")) {
     const JsonValue::Array& shapes = v->as_array();
-    for (std::size_t i = 0; i < shapes.size(); ++i) read_native_shape(ctx, shapes[i], i, materials, shape_material);
+    for (std::size_t i = 0; i < shapes.size(); ++i)
+      read_native_shape(ctx, shapes[i], i, materials, shape_material, &object_material);
   }
+  if (!camera && !camera_from_imports(ctx, has_import(top))) top.require("camera");
   top.finish();
   warn_unplaced_objects(ctx);
   assemble_materials(ctx, materials, textures, shape_material, object_material);

@@ -45,7 +45,7 @@ void read_native_objects(ImportContext& ctx, const JsonValue& v, std::vector<Nat
         ctx.diag().error(ctx.read.at(s), "an object cannot place instances (one level of instancing)");
         continue;
       }
-      read_native_shape(ctx, s, k, materials, material);
+      read_native_shape(ctx, s, k, materials, material, nullptr);
     }
     object.shapes = std::exchange(ctx.scene.shapes, std::move(top));
     ctx.scene.objects.push_back(std::move(object));

@@ -1,6 +1,7 @@
 // Native-format shapes: sphere, quad, triangle, cylinder, mesh, disc, polygon, cone, plane.
 #include <string>
 
+#include "scene/import_asset.h"
 #include "scene/import_transform.h"
 #include "scene/json_lists.h"
 #include "scene/native_shapes.h"
@@ -180,12 +181,20 @@ int resolve_material(ImportContext& ctx, ObjectReader& r, std::vector<NativeMate
 }
 
 void read_native_shape(ImportContext& ctx, const JsonValue& v, std::size_t index,
-                       std::vector<NativeMaterial>& materials, std::vector<int>& shape_material) {
+                       std::vector<NativeMaterial>& materials, std::vector<int>& shape_material,
+                       std::vector<std::vector<int>>* object_material) {
   if (!expect_object(ctx.read, v, "shapes[" + std::to_string(index) + "]")) return;
   if (is_instance(v)) return read_native_instance(ctx, v, materials);
+  if (is_import(v)) {
+    if (object_material) return read_native_import(ctx, v, materials, shape_material, *object_material);
+    ctx.diag().error(ctx.read.at(v), "an object cannot import a model file (the import places its own instances); "
+                                     "import it under \"shapes\"");
+    return;
+  }
   ObjectReader r(ctx.read, v, "shape");
-  static const std::vector<std::string> kTypes = {"sphere", "quad", "triangle", "cylinder", "mesh",
-                                                  "disc", "polygon", "cone", "plane"};
+  // "instance" and "import" are read above; listed for the "did you mean" of a misspelt type.
+  static const std::vector<std::string> kTypes = {"sphere", "quad",    "triangle", "cylinder", "mesh", "disc",
+                                                  "polygon", "cone", "plane",    "instance", "import"};
   const int type = read_choice(r, "type", kTypes);
   if (type == -1) r.require("type");
   if (type < 0) return;

@@ -6,7 +6,9 @@
 #include <system_error>
 
 #include "core/file_access.h"
+#include "scene/asset_reader.h"
 #include "scene/detect.h"
+#include "scene/import_asset.h"
 #include "scene/importers.h"
 #include "scene/json.h"
 #include "scene/overrides.h"
@@ -72,6 +74,13 @@ std::optional<SceneDescription> load_scene(const std::string& path, const LoadOp
   if (const std::string why = why_unreadable(path); !why.empty()) {
     diag.error(file_only(path), "cannot read the scene file: " + why);
     return std::nullopt;
+  }
+  // A model file as the scene: a native scene that imports it (import_asset.h).
+  if (asset_format_of(path)) {
+    std::optional<SceneDescription> scene =
+        load_scene_from_string(path + " (the scene made for it)", model_scene_text(path), options, diag);
+    if (scene) light_model_scene(*scene, diag);
+    return scene;
   }
   const std::uintmax_t size = fs::file_size(path, ec);
   if (ec) {

@@ -4,6 +4,7 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -39,13 +40,13 @@ bool check_obj_file(const std::string& path, std::string& error) {
 
 }  // namespace
 
-bool load_obj(const std::string& path, TriangleMesh& out, std::string& error) {
+bool load_obj(const std::string& path, TriangleMesh& out, std::string& error, ObjInfo* info) {
   if (!check_obj_file(path, error)) return false;
 
   Assimp::Importer importer;
   // SortByPType splits points and lines into meshes of their own, skipped below.
   const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
-                         aiProcess_ValidateDataStructure;
+                         aiProcess_ValidateDataStructure | aiProcess_FlipUVs;
   const aiScene* scene = importer.ReadFile(path, flags);
   if (scene == nullptr) {
     error = importer.GetErrorString();
@@ -74,6 +75,17 @@ bool load_obj(const std::string& path, TriangleMesh& out, std::string& error) {
     return false;
   }
 
+  if (info) {
+    std::vector<bool> named(scene->mNumMaterials, false);
+    for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+      const unsigned k = scene->mMeshes[m]->mMaterialIndex;
+      aiString name;
+      if (k < named.size() && scene->mMaterials[k]->Get(AI_MATKEY_NAME, name) == AI_SUCCESS &&
+          std::string(name.C_Str()) != AI_DEFAULT_MATERIAL_NAME)
+        named[k] = true;
+    }
+    info->materials = static_cast<int>(std::count(named.begin(), named.end(), true));
+  }
   out = TriangleMesh{};
   out.positions.reserve(vertices + 1);  // one spare: the Embree backend can share the buffer
   out.indices.reserve(3 * triangles);

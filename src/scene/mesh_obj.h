@@ -1,9 +1,12 @@
 // Wavefront OBJ mesh reader (through Assimp). Every mesh in the file (OBJ
 // groups and material switches become separate Assimp meshes) is merged into
 // one triangle mesh: positions, and per-vertex normals and texture
-// coordinates where every part of the file has them. Polygons are
+// coordinates where every part of the file has them (v measured from the
+// image's top, as our textures: OBJ's v is flipped). Polygons are
 // triangulated, identical vertices joined; points and lines are dropped.
-// Materials (MTL) are not read. Fills the same struct as the PLY reader.
+// Materials (MTL) are not read here (a model file's materials come in through
+// {"type": "import"}, asset_reader.h); `info` says how many the file names.
+// Fills the same struct as the PLY reader.
 #pragma once
 
 #include <cstdint>
@@ -16,8 +19,12 @@ namespace pt {
 // Files larger than this are refused before they are read.
 inline constexpr std::uintmax_t kMaxObjFileBytes = std::uintmax_t{2} << 30;  // 2 GiB
 
+struct ObjInfo {
+  int materials = 0;  // materials (usemtl) the faces name
+};
+
 // Returns true on success. On failure `error` says what is wrong (without the
 // path, which the caller adds, as for load_ply) and `out` is unspecified.
-bool load_obj(const std::string& path, TriangleMesh& out, std::string& error);
+bool load_obj(const std::string& path, TriangleMesh& out, std::string& error, ObjInfo* info = nullptr);
 
 }  // namespace pt

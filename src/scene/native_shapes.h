@@ -41,9 +41,13 @@ void resolve_material_textures(ImportContext& ctx, NativeTextures& textures, Nat
 // (index into `materials`, -1 for the default material) to `shape_material`.
 // A shape with errors is reported and skipped.
 // Any shape may have a "transform" (import_transform.h); a shape of type
-// "instance" goes to ctx.scene.instances instead (read_native_instance).
+// "instance" goes to ctx.scene.instances instead (read_native_instance); one
+// of type "import" places a model file (import_asset.h) and may add objects
+// (object_material grows with them; null inside an object, where an import
+// is refused).
 void read_native_shape(ImportContext& ctx, const JsonValue& v, std::size_t index,
-                       std::vector<NativeMaterial>& materials, std::vector<int>& shape_material);
+                       std::vector<NativeMaterial>& materials, std::vector<int>& shape_material,
+                       std::vector<std::vector<int>>* object_material);
 
 // The material a shape (or instance) names: index into `materials`, -1 for
 // none, -2 if unknown (reported with "did you mean").

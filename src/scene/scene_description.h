@@ -15,7 +15,9 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
+#include <utility>
 #include <string>
 #include <variant>
 #include <vector>
@@ -126,6 +128,10 @@ struct TextureDesc {
   Sourced<bool> object_mapping{false};
   Sourced<Vec3f> scale{Vec3f(1.0f)};
   std::optional<Sourced<Transform>> transform;
+  // An image embedded in a model file (glTF): its encoded bytes (PNG, JPEG,
+  // ...) and a format hint ("png"); `resolved` is then empty.
+  std::shared_ptr<const std::vector<unsigned char>> embedded;
+  std::string embedded_format;
 };
 
 // ---------------------------------------------------------------- render settings
@@ -338,6 +344,17 @@ struct InstanceDesc {
   std::optional<int> material;                   // replaces the object's materials
 };
 
+// ---------------------------------------------------------------- imported model files
+// What one {"type": "import"} (or a model file given as the scene) brought
+// in and what it left out, as (what, count) pairs: printed by the command
+// line, kept in the run record (docs/importing.md).
+struct ImportSummary {
+  std::string file;    // as written
+  std::string format;  // "OBJ", "glTF", "glTF binary", "COLLADA"
+  double seconds = 0;  // reading and converting the file (in mesh_load_seconds too)
+  std::vector<std::pair<std::string, uint64_t>> imported, skipped;
+};
+
 // ---------------------------------------------------------------- the scene
 enum class SceneFormat { Native, PathOfLight, Cgr };
 
@@ -354,7 +371,8 @@ struct SceneDescription {
   std::vector<ObjectDesc> objects;      // instancing: what instances place
   std::vector<InstanceDesc> instances;
   std::optional<EnvironmentDesc> environment;  // replaces render.background for rays that leave
-  double mesh_load_seconds = 0;  // time the loader spent reading mesh files (PLY, OBJ), for run records
+  double mesh_load_seconds = 0;  // time the loader spent reading mesh and model files, for run records
+  std::vector<ImportSummary> imports;  // one per imported model file, in order
 };
 
 }  // namespace pt

@@ -70,10 +70,11 @@ TEST_F(ObjFiles, TriangulatesAndMergesParts) {
     area += 0.5f * n.z;
   }
   EXPECT_FLOAT_EQ(area, 1.5f);
-  // Texture coordinates travel with their corners.
+  // Texture coordinates travel with their corners, v measured from the
+  // image's top (OBJ's vt 1 1 is the top-right corner).
   for (std::size_t v = 0; v < m.positions.size(); ++v) {
     if (m.positions[v] == Vec3f(1, 1, 0)) {
-      EXPECT_EQ(m.uvs[v], Vec2f(1, 1));
+      EXPECT_EQ(m.uvs[v], Vec2f(1, 0));
     }
   }
 }

@@ -177,5 +177,23 @@ TEST_F(RunRecordApp, SamplerAndFilterAreWhatTookTheSamples) {
   }
 }
 
+TEST_F(RunRecordApp, ImportedModelFilesArePrintedAndRecorded) {
+  // A model file given as the scene (docs/importing.md): what it brought in
+  // and left out is a note on stderr and the run record's "imports".
+  const std::string dae = std::string(PT_TEST_DATA_DIR) + "/data/assets/dae/scene.dae";
+  const RunResult r = run("'" + dae + "' -o m.png --width 24 --spp 1 --report run.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("note: imported '" + dae + "' (COLLADA, "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("2 instances"), std::string::npos) << r.err;
+  const nlohmann::json imports = read_json("run.json")["imports"];
+  ASSERT_EQ(imports.size(), 1u) << imports;
+  EXPECT_EQ(imports[0]["file"], dae);
+  EXPECT_EQ(imports[0]["format"], "COLLADA");
+  EXPECT_EQ(imports[0]["imported"]["instances"], 2);
+  EXPECT_EQ(imports[0]["imported"]["lights"], 1);
+  EXPECT_TRUE(imports[0]["skipped"].is_object());
+  EXPECT_GE(imports[0]["seconds"].get<double>(), 0.0);
+}
+
 }  // namespace
 }  // namespace pt::test

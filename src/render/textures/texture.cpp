@@ -5,6 +5,7 @@
 #include <limits>
 #include <utility>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include "core/file_access.h"
@@ -109,6 +110,36 @@ float Texture::alpha(const TexCoord& tc) const {
   return mean(eval(tc.point()));
 }
 
+namespace {
+
+// Decodes the image `in` opened into linear RGB texels (see Texture::load).
+bool decode(OIIO::ImageInput& in, Texture& out, std::string& error, const TextureLimits& limits, bool raw) {
+  const OIIO::ImageSpec& spec = in.spec();
+  if (!limits.check(spec.width, spec.height, spec.nchannels, spec.depth, error)) return false;
+  const int w = spec.width, h = spec.height, nc = spec.nchannels;
+  // Grey (and grey + alpha) images need one channel, the rest three.
+  const int channels = nc >= 3 ? 3 : 1;
+  const std::size_t count = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+  std::vector<float> data(count * static_cast<std::size_t>(channels));
+  if (!in.read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data())) {
+    error = in.geterror();
+    if (error.empty()) error = "cannot decode image";
+    return false;
+  }
+  const bool srgb = !raw && srgb_encoded(spec);
+
+  std::vector<RGB> pixels(count);
+  for (std::size_t i = 0; i < pixels.size(); ++i) {
+    RGB c = to_rgb(&data[i * static_cast<std::size_t>(channels)], channels);
+    if (srgb) c = {srgb_to_linear(c.r), srgb_to_linear(c.g), srgb_to_linear(c.b)};
+    pixels[i] = c;
+  }
+  out = Texture(w, h, std::move(pixels));
+  return true;
+}
+
+}  // namespace
+
 bool Texture::load(const std::string& path, Texture& out, std::string& error, const TextureLimits& limits,
                    bool raw) {
   if (const std::string why = why_unreadable(path); !why.empty()) {
@@ -123,28 +154,24 @@ bool Texture::load(const std::string& path, Texture& out, std::string& error, co
     if (error.empty()) error = "cannot open image";
     return false;
   }
-  const OIIO::ImageSpec& spec = in->spec();
-  if (!limits.check(spec.width, spec.height, spec.nchannels, spec.depth, error)) return false;
-  const int w = spec.width, h = spec.height, nc = spec.nchannels;
-  // Grey (and grey + alpha) images need one channel, the rest three.
-  const int channels = nc >= 3 ? 3 : 1;
-  const std::size_t count = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
-  std::vector<float> data(count * static_cast<std::size_t>(channels));
-  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data())) {
-    error = in->geterror();
-    if (error.empty()) error = "cannot decode image";
+  return decode(*in, out, error, limits, raw);
+}
+
+bool Texture::load_memory(const std::vector<unsigned char>& bytes, const std::string& format, Texture& out,
+                          std::string& error, const TextureLimits& limits, bool raw) {
+  // OpenImageIO reads from memory through an IOProxy, for the formats that
+  // support one (PNG, JPEG, ...); the name only chooses the reader.
+  OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
+  const std::string name = "embedded." + (format.empty() ? std::string("png") : format);
+  auto in = OIIO::ImageInput::create(name, false, nullptr, &memory);
+  OIIO::ImageSpec config, spec;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  if (!in || !in->supports("ioproxy") || !in->set_ioproxy(&memory) || !in->open(name, spec, config)) {
+    error = in ? in->geterror() : OIIO::geterror();
+    if (error.empty()) error = "cannot decode the embedded '" + format + "' image";
     return false;
   }
-  const bool srgb = !raw && srgb_encoded(spec);
-
-  std::vector<RGB> pixels(count);
-  for (std::size_t i = 0; i < pixels.size(); ++i) {
-    RGB c = to_rgb(&data[i * static_cast<std::size_t>(channels)], channels);
-    if (srgb) c = {srgb_to_linear(c.r), srgb_to_linear(c.g), srgb_to_linear(c.b)};
-    pixels[i] = c;
-  }
-  out = Texture(w, h, std::move(pixels));
-  return true;
+  return decode(*in, out, error, limits, raw);
 }
 
 }  // namespace pt

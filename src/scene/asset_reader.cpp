@@ -1,0 +1,285 @@
+// read_asset(): Assimp reads the file; the MTL reader and the glTF JSON add
+// what Assimp does not say; everything ends in the neutral ImportedAsset.
+#include "scene/asset_reader.h"
+
+#include <assimp/DefaultIOSystem.h>
+#include <assimp/Importer.hpp>
+#include <assimp/config.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <set>
+#include <system_error>
+
+#include "core/file_access.h"
+#include "scene/asset_internal.h"
+#include "scene/gltf_json.h"
+#include "scene/mtl.h"
+
+namespace fs = std::filesystem;
+
+namespace pt {
+namespace {
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+// Assimp's file system, recording the MTL files the OBJ reader opens (and
+// fails to), which Assimp does not otherwise tell.
+class RecordingIOSystem : public Assimp::DefaultIOSystem {
+ public:
+  struct Attempt {
+    std::string path;
+    bool opened = false;
+  };
+  std::vector<Attempt> mtl;
+
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    Assimp::IOStream* s = Assimp::DefaultIOSystem::Open(file, mode);
+    if (lower(fs::path(file).extension().string()) == ".mtl") mtl.push_back({file, s != nullptr});
+    return s;
+  }
+};
+
+std::string url_decoded(const std::string& s) {
+  std::string out;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '%' && i + 2 < s.size() && std::isxdigit(static_cast<unsigned char>(s[i + 1])) &&
+        std::isxdigit(static_cast<unsigned char>(s[i + 2]))) {
+      out += static_cast<char>(std::stoi(s.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    } else {
+      out += s[i];
+    }
+  }
+  return out;
+}
+
+bool check_file(const std::string& path, std::string& error) {
+  if (const std::string why = why_unreadable(path); !why.empty()) {
+    error = "cannot read the file: " + why;
+    return false;
+  }
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (ec) {
+    error = "cannot read the file: " + ec.message();
+    return false;
+  }
+  if (size > kMaxAssetFileBytes) {
+    error = "the file is " + std::to_string(size) + " bytes; model files over " + std::to_string(kMaxAssetFileBytes) +
+            " bytes are refused";
+    return false;
+  }
+  return true;
+}
+
+// An OBJ file's materials: each of Assimp's (one per name the file uses, and
+// its default) from the MTL files Assimp opened, read by our MTL reader.
+void read_obj_materials(const aiScene& scene, const RecordingIOSystem& io, ImportedAsset& out,
+                        AssetTextureTable& textures, Diagnostics& diag) {
+  std::vector<AssetMaterial> defined;
+  const SourceLocation file = file_location(out.path);
+  for (const RecordingIOSystem::Attempt& a : io.mtl) {
+    std::string error;
+    if (!a.opened) {
+      diag.warning(file, "material library '" + fs::path(a.path).filename().string() + "' (mtllib) not found at '" +
+                             a.path + "'");
+    } else if (!read_mtl(a.path, defined, textures, diag, error)) {
+      diag.warning(file, "cannot read material library '" + a.path + "': " + error);
+    }
+  }
+  std::set<unsigned> used;
+  for (unsigned i = 0; i < scene.mNumMeshes; ++i) used.insert(scene.mMeshes[i]->mMaterialIndex);
+  const std::vector<std::string> names = material_names(scene);
+  out.materials.resize(names.size());
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    // The last definition of a name wins, as in Assimp.
+    const auto it = std::find_if(defined.rbegin(), defined.rend(), [&](const AssetMaterial& m) { return m.name == names[i]; });
+    if (it != defined.rend()) {
+      out.materials[i] = *it;
+      continue;
+    }
+    AssetMaterial& m = out.materials[i];
+    m.name = names[i];
+    m.where = file;
+    if (used.count(static_cast<unsigned>(i)) && names[i] != AI_DEFAULT_MATERIAL_NAME)
+      diag.warning(file, "material '" + names[i] + "' (usemtl) is defined in no material library; its faces get "
+                                                   "the default material");
+  }
+}
+
+// What the glTF JSON says and Assimp 5.2 does not (gltf_json.h).
+void merge_gltf_info(ImportedAsset& out, Diagnostics& diag) {
+  GltfInfo info;
+  if (!read_gltf_info(out.path, out.format == AssetFormat::Glb, info)) return;
+  for (std::size_t i = 0; i < info.materials.size() && i < out.materials.size(); ++i) {
+    const GltfMaterialInfo& g = info.materials[i];
+    AssetMaterial& m = out.materials[i];
+    if (m.name.empty()) m.name = g.name;
+    m.where = g.where;
+    for (AssetTextureRef* ref : {&m.base_color_map, &m.metallic_roughness_map, &m.emission_map, &m.normal_map,
+                                 &m.occlusion_map}) {
+      if (*ref) ref->where = g.where;
+      if (*ref && g.texture_transform) ref->transformed = true;
+    }
+    if (g.emissive_strength) m.emission = m.emission * *g.emissive_strength;
+    if (g.transmission) m.transmission = *g.transmission;
+    if (g.ior) m.ior = *g.ior;
+    m.unlit = m.unlit || g.unlit;
+    m.unsupported.insert(m.unsupported.end(), g.unsupported.begin(), g.unsupported.end());
+  }
+  for (AssetTexture& t : out.textures) {
+    if (const auto it = info.image_uris.find(t.name); it != info.image_uris.end()) t.where = it->second;
+  }
+  for (const auto& [name, where] : info.unsupported)
+    diag.warning(where, "glTF extension '" + name + "' is not supported; what it adds is left out");
+}
+
+void count(ImportedAsset& out) {
+  ImportCounts& c = out.counts;
+  uint64_t triangles = 0, meshes = 0;
+  for (const AssetMesh& m : out.meshes) {
+    if (m.mesh.indices.empty()) continue;
+    ++meshes;
+    triangles += m.mesh.triangle_count();
+  }
+  c.imported.insert(c.imported.begin(), {{"triangles", triangles}, {"meshes", meshes},
+                                         {"placements", out.placements.size()}});
+  c.imported_n("cameras", out.cameras.size());
+  c.imported_n("lights", out.lights.size());
+  uint64_t missing = 0;
+  for (const AssetTexture& t : out.textures) missing += t.missing ? 1 : 0;
+  c.skipped_n("textures not found", missing);
+}
+
+bool convert(const aiScene& scene, const RecordingIOSystem& io, const SourceLocation& where, ImportedAsset& out,
+             Diagnostics& diag) {
+  AssetTextureTable textures(out, fs::path(out.path).parent_path().string());
+  std::vector<int> uv_sets(scene.mNumMaterials, 0);
+  if (out.format == AssetFormat::Obj) {
+    read_obj_materials(scene, io, out, textures, diag);
+  } else {
+    convert_materials(scene, out, textures);
+    uv_sets = diffuse_uv_sets(scene);
+    if (out.format != AssetFormat::Collada) merge_gltf_info(out, diag);
+  }
+  if (!convert_meshes(scene, uv_sets, out, diag, where)) return false;
+  convert_placements(scene, out);
+  convert_cameras(scene, out);
+  convert_lights(scene, out);
+  for (const AssetTexture& t : out.textures) {
+    if (t.missing)
+      diag.warning(t.where, "texture '" + t.name + "' named by '" + fs::path(out.path).filename().string() +
+                                "' not found; looked beside it in '" + fs::path(out.path).parent_path().string() +
+                                "' (as written, and by its file name alone)");
+  }
+  count(out);
+  return true;
+}
+
+}  // namespace
+
+SourceLocation file_location(const std::string& path) {
+  SourceLocation loc;
+  loc.file = std::make_shared<const SourceFile>(SourceFile{path, {}});
+  return loc;
+}
+
+std::optional<AssetFormat> asset_format_of(const std::string& path) {
+  const std::string ext = lower(fs::path(path).extension().string());
+  if (ext == ".obj") return AssetFormat::Obj;
+  if (ext == ".gltf") return AssetFormat::Gltf;
+  if (ext == ".glb") return AssetFormat::Glb;
+  if (ext == ".dae") return AssetFormat::Collada;
+  return std::nullopt;
+}
+
+const char* asset_format_name(AssetFormat format) {
+  switch (format) {
+    case AssetFormat::Obj: return "OBJ";
+    case AssetFormat::Gltf: return "glTF";
+    case AssetFormat::Glb: return "glTF binary";
+    case AssetFormat::Collada: return "COLLADA";
+  }
+  return "?";
+}
+
+std::string find_asset_file(const std::string& dir, const std::string& name) {
+  std::string slashed = name;
+  std::replace(slashed.begin(), slashed.end(), '\\', '/');
+  std::error_code ec;
+  for (const std::string& candidate : {name, slashed, url_decoded(slashed), fs::path(slashed).filename().string()}) {
+    if (candidate.empty()) continue;
+    const fs::path p = fs::path(candidate).is_absolute() ? fs::path(candidate) : fs::path(dir) / candidate;
+    if (fs::is_regular_file(p, ec)) return p.lexically_normal().string();
+  }
+  return {};
+}
+
+int AssetTextureTable::file(const std::string& name, const SourceLocation& where, const std::string& dir) {
+  const std::string resolved = find_asset_file(dir.empty() ? dir_ : dir, name);
+  const std::string key = resolved.empty() ? "?" + name : resolved;
+  if (const auto it = ids_.find(key); it != ids_.end()) return it->second;
+  AssetTexture t;
+  t.name = name;
+  t.resolved = resolved;
+  t.where = where;
+  t.missing = resolved.empty();
+  asset_.textures.push_back(std::move(t));
+  return ids_[key] = static_cast<int>(asset_.textures.size() - 1);
+}
+
+int AssetTextureTable::embedded(const std::string& key, const std::string& name,
+                                std::shared_ptr<const std::vector<unsigned char>> bytes, const std::string& hint,
+                                const SourceLocation& where) {
+  if (const auto it = ids_.find("*" + key); it != ids_.end()) return it->second;
+  AssetTexture t;
+  t.name = name;
+  t.embedded = std::move(bytes);
+  t.format_hint = hint;
+  t.where = where;
+  asset_.textures.push_back(std::move(t));
+  return ids_["*" + key] = static_cast<int>(asset_.textures.size() - 1);
+}
+
+bool read_asset(const std::string& resolved, const std::string& written, const SourceLocation& where,
+                ImportedAsset& out, Diagnostics& diag) {
+  out = ImportedAsset{};
+  out.path = resolved;
+  const std::optional<AssetFormat> format = asset_format_of(resolved);
+  std::string error;
+  if (!format || !check_file(resolved, error)) {
+    diag.error(where, "cannot read '" + written + "': " + (format ? error : "not a model file this build reads"));
+    return false;
+  }
+  out.format = *format;
+  Assimp::Importer importer;
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_USE_COLLADA_NAMES, true);
+  auto* io = new RecordingIOSystem;  // owned by the importer
+  importer.SetIOHandler(io);
+  // Triangles only (points and lines sorted into meshes of their own and
+  // counted); uvs with v downwards from the image's top, as our textures.
+  const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
+                         aiProcess_ValidateDataStructure | aiProcess_FlipUVs;
+  const aiScene* scene = importer.ReadFile(resolved, flags);
+  if (scene == nullptr || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || scene->mRootNode == nullptr) {
+    std::string reason = scene == nullptr ? importer.GetErrorString() : "the file describes no complete scene";
+    if (reason.empty()) reason = "Assimp could not read the file";
+    diag.error(where, "cannot read '" + written + "' (" + asset_format_name(*format) + "): " + reason);
+    return false;
+  }
+  if (!convert(*scene, *io, where, out, diag)) return false;
+  if (out.placements.empty()) {
+    diag.error(where, "cannot read '" + written + "': the file places no triangles (nothing to render)");
+    return false;
+  }
+  return true;
+}
+
+}  // namespace pt
