@@ -71,7 +71,11 @@ bool crop_window(const Options& o, int width, int height, PixelRect& out, std::s
 
 std::size_t film_bytes_per_pixel(const std::vector<AovRequest>& aovs) {
   std::size_t bytes = sizeof(PixelSum);
-  for (const AovRequest& r : aovs) bytes += sizeof(double) * static_cast<std::size_t>(aov_info(r.type).state_doubles);
+  for (const AovRequest& r : aovs) {
+    const AovInfo& info = aov_info(r.type);
+    bytes += sizeof(ExactSum) * static_cast<std::size_t>(info.sums) +
+             sizeof(double) * static_cast<std::size_t>(info.values);
+  }
   return bytes;
 }
 
@@ -111,7 +115,7 @@ std::string replay_text(const Film& film, int x, int y, int sample) {
   out << std::setprecision(9) << "replay pixel (" << x << ", " << y << ") sample " << sample << ": radiance " << v.r
       << " " << v.g << " " << v.b << '\n';
   // The pixel is the mean of its samples weighted by this (1 for the box filter).
-  out << "  filter weight: " << film.sum(x, y).weight << '\n';
+  out << "  filter weight: " << film.sum(x, y).weight.value() << '\n';
   for (const AovRequest& r : film.aovs()) {
     if (r.type == AovType::Samples || r.type == AovType::Variance) continue;
     out << "  " << aov_info(r.type).name << ":";

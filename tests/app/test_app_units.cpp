@@ -316,9 +316,12 @@ TEST(MemoryEstimate, OutputBuffersCountEveryAovChannel) {
   }
   EXPECT_EQ(channels, 39u);
   EXPECT_EQ(output_bytes_per_pixel(all, {"a.png", "a.exr"}), 2 * 39u * 4u);  // 312 bytes a pixel
-  // The film: PixelSum, then each AOV's doubles.
+  // The film: PixelSum (four 16-byte exact sums and a count), then each
+  // AOV's exact sums and plain values.
+  EXPECT_EQ(sizeof(PixelSum), 72u);
   EXPECT_EQ(film_bytes_per_pixel({}), sizeof(PixelSum));
   EXPECT_EQ(film_bytes_per_pixel({{AovType::Position, ChannelType::Float}}), sizeof(PixelSum) + 4 * sizeof(double));
+  EXPECT_EQ(film_bytes_per_pixel({{AovType::Variance, ChannelType::Float}}), sizeof(PixelSum) + 6 * sizeof(ExactSum));
 }
 
 // Textures are estimated from their files' headers: only those a material

@@ -12,21 +12,21 @@ constexpr ChannelType kHalf = ChannelType::Half, kFloat = ChannelType::Float;
 // Defaults: half where 11 bits of mantissa are plenty (albedo, normals, the
 // mask); float for positions, depths, ids and radiance-valued layers.
 const std::vector<AovInfo> kCatalogue = {
-    {AovType::Albedo, "albedo", 3, {"R", "G", "B"}, kHalf, A::FilteredAverage, 3, false},
-    {AovType::Normal, "N", 3, {"X", "Y", "Z"}, kHalf, A::FilteredAverage, 3, false},
-    {AovType::Position, "P", 3, {"X", "Y", "Z"}, kFloat, A::FirstSample, 4, false},
-    {AovType::Depth, "Z", 1, {"", "", ""}, kFloat, A::FirstSample, 2, false},
-    {AovType::ObjectId, "IndexOB", 1, {"", "", ""}, kFloat, A::FirstSample, 2, false},
-    {AovType::MaterialId, "IndexMA", 1, {"", "", ""}, kFloat, A::FirstSample, 2, false},
-    {AovType::Emission, "emission", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, true},
-    {AovType::DiffuseDirect, "diffuse_direct", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, true},
-    {AovType::DiffuseIndirect, "diffuse_indirect", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, true},
-    {AovType::SpecularDirect, "specular_direct", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, true},
-    {AovType::SpecularIndirect, "specular_indirect", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, true},
-    {AovType::Variance, "variance", 3, {"R", "G", "B"}, kFloat, A::Sum, 6, false},
-    {AovType::Samples, "samples", 1, {"", "", ""}, kFloat, A::Sum, 0, false},
-    {AovType::NonFinite, "nonfinite", 1, {"", "", ""}, kHalf, A::Max, 1, false},
-    {AovType::Ambient, "ambient", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, true},
+    {AovType::Albedo, "albedo", 3, {"R", "G", "B"}, kHalf, A::FilteredAverage, 3, 0, false},
+    {AovType::Normal, "N", 3, {"X", "Y", "Z"}, kHalf, A::FilteredAverage, 3, 0, false},
+    {AovType::Position, "P", 3, {"X", "Y", "Z"}, kFloat, A::FirstSample, 0, 4, false},
+    {AovType::Depth, "Z", 1, {"", "", ""}, kFloat, A::FirstSample, 0, 2, false},
+    {AovType::ObjectId, "IndexOB", 1, {"", "", ""}, kFloat, A::FirstSample, 0, 2, false},
+    {AovType::MaterialId, "IndexMA", 1, {"", "", ""}, kFloat, A::FirstSample, 0, 2, false},
+    {AovType::Emission, "emission", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, 0, true},
+    {AovType::DiffuseDirect, "diffuse_direct", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, 0, true},
+    {AovType::DiffuseIndirect, "diffuse_indirect", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, 0, true},
+    {AovType::SpecularDirect, "specular_direct", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, 0, true},
+    {AovType::SpecularIndirect, "specular_indirect", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, 0, true},
+    {AovType::Variance, "variance", 3, {"R", "G", "B"}, kFloat, A::Sum, 6, 0, false},
+    {AovType::Samples, "samples", 1, {"", "", ""}, kFloat, A::Sum, 0, 0, false},
+    {AovType::NonFinite, "nonfinite", 1, {"", "", ""}, kHalf, A::Max, 0, 1, false},
+    {AovType::Ambient, "ambient", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, 0, true},
 };
 
 std::string trim(const std::string& s) {

@@ -49,7 +49,11 @@ struct AovInfo {
   std::array<const char*, 3> suffix;   // channel names after "name."; a single channel is named `name`
   ChannelType default_type;
   Accumulation accumulation;
-  int state_doubles;                   // doubles per pixel in the film
+  // Its state per pixel in the film: exact sums (FilteredAverage, Sum; see
+  // render/film/exact_sum.h) and plain values (FirstSample: the values and a
+  // set flag; Max: the value).
+  int sums;
+  int values;
   bool lighting;                       // a part of the beauty's lighting split, filled by the integrator
                                        // (which integrator fills which: IntegratorInfo::aovs)
 };

@@ -17,13 +17,14 @@ PixelRect clip(PixelRect r, int width, int height) {
   return r;
 }
 
-void add_weighted(double* s, float w, float a, float b, float c) {
-  s[0] += static_cast<double>(w) * a;
-  s[1] += static_cast<double>(w) * b;
-  s[2] += static_cast<double>(w) * c;
+// Products of two floats: exact in double, rounded once by ExactSum.
+void add_weighted(ExactSum* s, float w, float a, float b, float c) {
+  s[0].add(static_cast<double>(w) * a);
+  s[1].add(static_cast<double>(w) * b);
+  s[2].add(static_cast<double>(w) * c);
 }
 
-void add_weighted(double* s, float w, RGB v) { add_weighted(s, w, v.r, v.g, v.b); }
+void add_weighted(ExactSum* s, float w, RGB v) { add_weighted(s, w, v.r, v.g, v.b); }
 
 // First-sample layers: n values and a flag (1 once set).
 void set_first(double* s, int n, const float* v) {
@@ -33,6 +34,12 @@ void set_first(double* s, int n, const float* v) {
 }
 
 }  // namespace
+
+std::string PixelRect::text() const {
+  std::string s = "[";  // appended, not "[" + ...: GCC 12 warns falsely about that (-Wrestrict)
+  s += std::to_string(x0) + "," + std::to_string(x1) + ")x[" + std::to_string(y0) + "," + std::to_string(y1) + ")";
+  return s;
+}
 
 void NonFiniteReport::record(int px, int py, int sample_index, RGB v) {
   if (std::isnan(v.r) || std::isnan(v.g) || std::isnan(v.b)) {
@@ -81,13 +88,16 @@ Film::Film(int width, int height, PixelRect crop, std::vector<AovRequest> aovs)
       pixels_(static_cast<std::size_t>(crop_.width()) * static_cast<std::size_t>(crop_.height())),
       aovs_(std::move(aovs)) {
   for (const AovRequest& r : aovs_) {
-    offset_.push_back(stride_);
+    sum_offset_.push_back(sum_stride_);
+    value_offset_.push_back(value_stride_);
     const AovInfo& info = aov_info(r.type);
-    stride_ += info.state_doubles;
+    sum_stride_ += info.sums;
+    value_stride_ += info.values;
     if (r.type <= AovType::MaterialId) wants_geometry_ = true;
     if (info.lighting) wants_lighting_ = true;
   }
-  aov_data_.assign(pixels_.size() * static_cast<std::size_t>(stride_), 0.0);
+  aov_sums_.assign(pixels_.size() * static_cast<std::size_t>(sum_stride_), ExactSum{});
+  aov_values_.assign(pixels_.size() * static_cast<std::size_t>(value_stride_), 0.0);
 }
 
 Image Film::image() const {
@@ -98,30 +108,39 @@ Image Film::image() const {
 
 void Film::clear() {
   std::fill(pixels_.begin(), pixels_.end(), PixelSum{});
-  std::fill(aov_data_.begin(), aov_data_.end(), 0.0);
+  std::fill(aov_sums_.begin(), aov_sums_.end(), ExactSum{});
+  std::fill(aov_values_.begin(), aov_values_.end(), 0.0);
   non_finite_ = {};
 }
 
-void Film::accumulate(double* scratch, const AovSample& a, RGB radiance, float w, bool non_finite) const {
+AovScratch Film::make_scratch() const {
+  AovScratch scratch;
+  scratch.sums.resize(static_cast<std::size_t>(sum_stride_));
+  scratch.values.resize(static_cast<std::size_t>(value_stride_));
+  return scratch;
+}
+
+void Film::accumulate(AovScratch& scratch, const AovSample& a, RGB radiance, float w, bool non_finite) const {
   for (std::size_t i = 0; i < aovs_.size(); ++i) {
-    double* s = scratch + offset_[i];
+    ExactSum* s = scratch.sums.data() + sum_offset_[i];
+    double* v = scratch.values.data() + value_offset_[i];
     switch (aovs_[i].type) {
       case AovType::Albedo: add_weighted(s, w, a.albedo); break;
       case AovType::Normal: add_weighted(s, w, a.normal.x, a.normal.y, a.normal.z); break;
       case AovType::Position: {
-        const float v[3] = {a.position.x, a.position.y, a.position.z};
-        set_first(s, 3, v);
+        const float p[3] = {a.position.x, a.position.y, a.position.z};
+        set_first(v, 3, p);
         break;
       }
-      case AovType::Depth: set_first(s, 1, &a.depth); break;
+      case AovType::Depth: set_first(v, 1, &a.depth); break;
       case AovType::ObjectId: {
-        const float v = static_cast<float>(a.object);
-        set_first(s, 1, &v);
+        const float id = static_cast<float>(a.object);
+        set_first(v, 1, &id);
         break;
       }
       case AovType::MaterialId: {
-        const float v = static_cast<float>(a.material);
-        set_first(s, 1, &v);
+        const float id = static_cast<float>(a.material);
+        set_first(v, 1, &id);
         break;
       }
       case AovType::Emission: if (!non_finite) add_weighted(s, w, a.emission); break;
@@ -133,36 +152,31 @@ void Film::accumulate(double* scratch, const AovSample& a, RGB radiance, float w
       case AovType::Variance:
         if (!non_finite) {
           for (int c = 0; c < 3; ++c) {
-            const double v = radiance[c];
-            s[c] += v;
-            s[3 + c] += v * v;
+            const double x = radiance[c];
+            s[c].add(x);
+            s[3 + c].add(x * x);  // a float squared: exact in double
           }
         }
         break;
       case AovType::Samples: break;  // the beauty's count
-      case AovType::NonFinite: if (non_finite) s[0] = 1.0; break;
+      case AovType::NonFinite: if (non_finite) v[0] = 1.0; break;
     }
   }
 }
 
-void Film::add_aovs(int x, int y, const double* scratch) {
-  double* film = aov_data_.data() + index(x, y) * static_cast<std::size_t>(stride_);
+void Film::add_aovs(int x, int y, const AovScratch& scratch) {
+  const std::size_t pixel = index(x, y);
+  ExactSum* sums = aov_sums_.data() + pixel * static_cast<std::size_t>(sum_stride_);
+  double* values = aov_values_.data() + pixel * static_cast<std::size_t>(value_stride_);
+  for (int i = 0; i < sum_stride_; ++i) sums[i].add(scratch.sums[static_cast<std::size_t>(i)]);
   for (std::size_t i = 0; i < aovs_.size(); ++i) {
     const AovInfo& info = aov_info(aovs_[i].type);
-    double* d = film + offset_[i];
-    const double* s = scratch + offset_[i];
-    switch (info.accumulation) {
-      case Accumulation::FilteredAverage:
-      case Accumulation::Sum:
-        for (int c = 0; c < info.state_doubles; ++c) d[c] += s[c];
-        break;
-      case Accumulation::FirstSample:
-        if (d[info.channels] == 0.0 && s[info.channels] != 0.0)
-          std::copy(s, s + info.state_doubles, d);
-        break;
-      case Accumulation::Max:
-        d[0] = std::max(d[0], s[0]);
-        break;
+    double* d = values + value_offset_[i];
+    const double* s = scratch.values.data() + value_offset_[i];
+    if (info.accumulation == Accumulation::FirstSample) {
+      if (d[info.channels] == 0.0 && s[info.channels] != 0.0) std::copy(s, s + info.values, d);
+    } else if (info.accumulation == Accumulation::Max) {
+      d[0] = std::max(d[0], s[0]);
     }
   }
 }
@@ -170,13 +184,16 @@ void Film::add_aovs(int x, int y, const double* scratch) {
 void Film::aov_values(std::size_t layer, std::size_t pixel, float* out) const {
   const AovType type = aovs_[layer].type;
   const AovInfo& info = aov_info(type);
-  const double* d = aov_data_.data() + pixel * static_cast<std::size_t>(stride_) + offset_[layer];
+  const ExactSum* s = aov_sums_.data() + pixel * static_cast<std::size_t>(sum_stride_) + sum_offset_[layer];
+  const double* d = aov_values_.data() + pixel * static_cast<std::size_t>(value_stride_) + value_offset_[layer];
   const PixelSum& p = pixels_[pixel];
   std::fill(out, out + info.channels, 0.0f);
   switch (info.accumulation) {
     case Accumulation::FilteredAverage:
-      if (p.weight != 0.0)
-        for (int c = 0; c < info.channels; ++c) out[c] = static_cast<float>(d[c] / p.weight);
+      if (!p.weight.is_zero()) {
+        const double weight = p.weight.value();
+        for (int c = 0; c < info.channels; ++c) out[c] = static_cast<float>(s[c].value() / weight);
+      }
       break;
     case Accumulation::FirstSample:
       for (int c = 0; c < info.channels; ++c) out[c] = static_cast<float>(d[c]);
@@ -187,8 +204,8 @@ void Film::aov_values(std::size_t layer, std::size_t pixel, float* out) const {
       } else if (p.samples >= 2) {  // variance of the mean: unbiased sample variance / n
         const double n = static_cast<double>(p.samples);
         for (int c = 0; c < 3; ++c) {
-          const double mean = d[c] / n;
-          const double var = std::max(0.0, (d[3 + c] - d[c] * mean) / (n - 1.0));
+          const double sum = s[c].value(), mean = sum / n;
+          const double var = std::max(0.0, (s[3 + c].value() - sum * mean) / (n - 1.0));
           out[c] = static_cast<float>(var / n);
         }
       }

@@ -15,6 +15,7 @@
 // does not depend on the tile order.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <iosfwd>
 #include <string>
@@ -24,34 +25,52 @@
 #include "core/image.h"
 #include "io/layered_image.h"
 #include "render/film/aov.h"
+#include "render/film/exact_sum.h"
 
 namespace pt {
 
-// The running sums of one pixel.
+// The running sums of one pixel. The sums are exact (render/film/exact_sum.h):
+// they hold the same bits whatever the grouping of the samples into passes,
+// shards or merges.
 struct PixelSum {
-  double r = 0, g = 0, b = 0;  // sum of weight * radiance
-  double weight = 0;           // sum of filter weights
-  uint64_t samples = 0;        // number of samples (non-finite ones included, as black)
+  ExactSum r, g, b;     // sum of weight * radiance
+  ExactSum weight;      // sum of filter weights
+  uint64_t samples = 0; // number of samples (non-finite ones included, as black)
 
   void add(RGB value, float w) {
-    r += static_cast<double>(w) * value.r;
-    g += static_cast<double>(w) * value.g;
-    b += static_cast<double>(w) * value.b;
-    weight += w;
+    r.add(static_cast<double>(w) * value.r);  // a product of two floats: exact in double
+    g.add(static_cast<double>(w) * value.g);
+    b.add(static_cast<double>(w) * value.b);
+    weight.add(w);
     ++samples;
   }
   void add(const PixelSum& o) {
-    r += o.r;
-    g += o.g;
-    b += o.b;
-    weight += o.weight;
+    r.add(o.r);
+    g.add(o.g);
+    b.add(o.b);
+    weight.add(o.weight);
     samples += o.samples;
   }
   // sum / weight; black for a pixel without weight.
   RGB value() const {
-    if (weight == 0.0) return {};
-    const double inv = 1.0 / weight;
-    return {static_cast<float>(r * inv), static_cast<float>(g * inv), static_cast<float>(b * inv)};
+    if (weight.is_zero()) return {};
+    const double inv = 1.0 / weight.value();
+    return {static_cast<float>(r.value() * inv), static_cast<float>(g.value() * inv),
+            static_cast<float>(b.value() * inv)};
+  }
+};
+// No padding: the film state writes the pixel sums as they are in memory.
+static_assert(sizeof(PixelSum) == 4 * sizeof(ExactSum) + sizeof(uint64_t));
+
+// One pixel's AOV samples of one pass, gathered before they are added to the
+// film (Film::make_scratch, accumulate, add_aovs): the AOVs' exact sums and
+// their plain values (first-sample values with a set flag, maxima).
+struct AovScratch {
+  std::vector<ExactSum> sums;
+  std::vector<double> values;
+  void clear() {
+    std::fill(sums.begin(), sums.end(), ExactSum{});
+    std::fill(values.begin(), values.end(), 0.0);
   }
 };
 
@@ -62,6 +81,10 @@ struct PixelRect {
   int height() const { return y1 - y0; }
   bool empty() const { return x1 <= x0 || y1 <= y0; }
   bool contains(int x, int y) const { return x >= x0 && x < x1 && y >= y0 && y < y1; }
+  bool contains(const PixelRect& r) const { return r.x0 >= x0 && r.y0 >= y0 && r.x1 <= x1 && r.y1 <= y1; }
+  bool intersects(const PixelRect& r) const { return r.x0 < x1 && x0 < r.x1 && r.y0 < y1 && y0 < r.y1; }
+  // "[x0,x1)x[y0,y1)", for messages.
+  std::string text() const;
   bool operator==(const PixelRect&) const = default;
 };
 
@@ -99,17 +122,29 @@ class Film {
   Image image() const;
   void clear();
 
-  // AOVs. A pixel's samples are gathered in a scratch array of aov_doubles()
-  // zeros (accumulate() per sample, lowest sample index first), then added
-  // with add_aovs().
+  // AOVs. A pixel's samples are gathered in a scratch of zeros from
+  // make_scratch() (accumulate() per sample, lowest sample index first), then
+  // added with add_aovs().
   const std::vector<AovRequest>& aovs() const { return aovs_; }
   bool wants_geometry() const { return wants_geometry_; }  // albedo, N, P, Z or ids
   bool wants_lighting() const { return wants_lighting_; }  // the integrator's lighting split
-  int aov_doubles() const { return stride_; }
-  void accumulate(double* scratch, const AovSample& sample, RGB radiance, float weight, bool non_finite) const;
-  void add_aovs(int x, int y, const double* scratch);
+  // Per-pixel state slots of the AOVs (exact sums and plain values); 0 when
+  // no requested AOV keeps a state (none, or "samples" alone).
+  int aov_slots() const { return sum_stride_ + value_stride_; }
+  AovScratch make_scratch() const;
+  void accumulate(AovScratch& scratch, const AovSample& sample, RGB radiance, float weight, bool non_finite) const;
+  void add_aovs(int x, int y, const AovScratch& scratch);
   // The final values of AOV `type` at (x, y) (channels().size() floats); empty if not requested.
   std::vector<float> aov_value(AovType type, int x, int y) const;
+
+  // Adds the state of `other` (a shard: docs/distributed.md) over `region`,
+  // which lies inside both films' crops; the frame and AOVs must match. Sums
+  // add exactly, maxima take the larger, and a first-sample AOV takes
+  // `other`'s value where this film has none, or wherever `other` has one when
+  // `other_first` (its samples there come before this film's). The non-finite
+  // report is not added (add_non_finite). Returns false with `error`, this
+  // film unchanged, when the frame, the AOVs or the region do not fit.
+  bool add_film(const Film& other, const PixelRect& region, bool other_first, std::string& error);
 
   const NonFiniteReport& non_finite() const { return non_finite_; }
   void add_non_finite(const NonFiniteReport& r) { non_finite_.merge(r); }
@@ -142,10 +177,12 @@ class Film {
   PixelRect crop_;
   std::vector<PixelSum> pixels_;
   std::vector<AovRequest> aovs_;
-  std::vector<int> offset_;  // per request: its first double in a pixel's AOV block
-  int stride_ = 0;           // doubles per pixel for all AOVs
+  // Per request: its first sum and first value in a pixel's AOV blocks.
+  std::vector<int> sum_offset_, value_offset_;
+  int sum_stride_ = 0, value_stride_ = 0;  // per pixel, for all AOVs
   bool wants_geometry_ = false, wants_lighting_ = false;
-  std::vector<double> aov_data_;  // pixels * stride_
+  std::vector<ExactSum> aov_sums_;  // pixels * sum_stride_
+  std::vector<double> aov_values_;  // pixels * value_stride_
   NonFiniteReport non_finite_;
 };
 

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <istream>
 #include <ostream>
+#include <vector>
 
 #include "render/film/film.h"
 
@@ -12,18 +13,20 @@ namespace pt {
 
 namespace {
 
-// State layout (version 2), all little-endian:
+// State layout (version 3), all little-endian:
 //   the 8-byte magic; uint32 version, width, height; int32 crop x0, y0, x1, y1;
 //   uint32 AOV count, then per AOV uint8 type and uint8 channel type;
 //   the non-finite report: uint64 nan, pos_inf, neg_inf; uint8 has_first;
 //   int32 x, y, sample; float r, g, b;
-//   per pixel of the crop (row-major, top row first): r, g, b, weight as IEEE
-//   doubles and samples as uint64;
-//   then the AOV block: per pixel, aov_doubles() doubles.
-// Version 1 (beauty only, no crop) is no longer read: its checkpoints predate
-// AOVs and the non-finite report.
+//   per pixel of the crop (row-major, top row first): r, g, b, weight as exact
+//   sums (render/film/exact_sum.h: 128-bit two's-complement integers, the low
+//   64 bits first, in units of 2^-44) and samples as uint64;
+//   then the AOVs' exact sums: per pixel, their sums in request order;
+//   then the AOVs' plain values: per pixel, their values as IEEE doubles.
+// Versions 1 (beauty only, no crop) and 2 (sums in double) are no longer read:
+// their checkpoints predate exact sums.
 constexpr char kMagic[8] = {'P', 'T', 'F', 'I', 'L', 'M', '\r', '\n'};
-constexpr uint32_t kStateVersion = 2;
+constexpr uint32_t kStateVersion = 3;
 static_assert(std::endian::native == std::endian::little, "film states are written in the host's byte order");
 
 template <typename T>
@@ -33,6 +36,18 @@ void put(std::ostream& out, const T& v) {
 template <typename T>
 bool get(std::istream& in, T& v) {
   return static_cast<bool>(in.read(reinterpret_cast<char*>(&v), sizeof v));
+}
+
+// A vector of trivially copyable elements, as in memory.
+template <typename T>
+void put_all(std::ostream& out, const std::vector<T>& v) {
+  const auto bytes = static_cast<std::streamsize>(v.size() * sizeof(T));
+  if (!v.empty()) out.write(reinterpret_cast<const char*>(v.data()), bytes);
+}
+template <typename T>
+bool get_all(std::istream& in, std::vector<T>& v) {
+  const auto bytes = static_cast<std::streamsize>(v.size() * sizeof(T));
+  return v.empty() || static_cast<bool>(in.read(reinterpret_cast<char*>(v.data()), bytes));
 }
 
 std::string describe_aovs(const std::vector<AovRequest>& aovs) {
@@ -131,28 +146,6 @@ bool read_non_finite(std::istream& in, NonFiniteReport& nf, std::string& error) 
   return true;
 }
 
-// The sums of every pixel of `crop` (`pixels` has its size).
-bool read_pixel_sums(std::istream& in, const PixelRect& crop, std::vector<PixelSum>& pixels, std::string& error) {
-  for (PixelSum& p : pixels) {
-    if (!get(in, p.r) || !get(in, p.g) || !get(in, p.b) || !get(in, p.weight) || !get(in, p.samples)) {
-      error = "truncated film state";
-      return false;
-    }
-  }
-  // The render loop adds non-finite samples as black, so a film's sums are
-  // always finite: anything else is corruption, which would reach the image.
-  for (std::size_t i = 0; i < pixels.size(); ++i) {
-    const PixelSum& p = pixels[i];
-    if (!std::isfinite(p.r) || !std::isfinite(p.g) || !std::isfinite(p.b) || !std::isfinite(p.weight)) {
-      const std::size_t row = static_cast<std::size_t>(crop.width());
-      error = "corrupt film state (pixel (" + std::to_string(crop.x0 + static_cast<int>(i % row)) + ", " +
-              std::to_string(crop.y0 + static_cast<int>(i / row)) + ") holds a non-finite sum)";
-      return false;
-    }
-  }
-  return true;
-}
-
 }  // namespace
 
 bool Film::write_state(std::ostream& out) const {
@@ -173,16 +166,9 @@ bool Film::write_state(std::ostream& out) const {
   put(out, static_cast<uint8_t>(nf.has_first));
   for (int v : {nf.x, nf.y, nf.sample}) put(out, static_cast<int32_t>(v));
   for (float v : {nf.value.r, nf.value.g, nf.value.b}) put(out, v);
-  for (const PixelSum& p : pixels_) {
-    put(out, p.r);
-    put(out, p.g);
-    put(out, p.b);
-    put(out, p.weight);
-    put(out, p.samples);
-  }
-  if (!aov_data_.empty())
-    out.write(reinterpret_cast<const char*>(aov_data_.data()),
-              static_cast<std::streamsize>(aov_data_.size() * sizeof(double)));
+  put_all(out, pixels_);
+  put_all(out, aov_sums_);
+  put_all(out, aov_values_);
   return static_cast<bool>(out);
 }
 
@@ -190,11 +176,12 @@ bool Film::read_state(std::istream& in, std::string& error) {
   if (!read_layout(in, width_, height_, crop_, aovs_, error)) return false;
   NonFiniteReport nf;
   if (!read_non_finite(in, nf, error)) return false;
+  // Integer sums cannot be corrupt in value (any bits are some sum); the
+  // samples are checked against the header by the checkpoint and shard readers.
   std::vector<PixelSum> pixels(pixels_.size());
-  if (!read_pixel_sums(in, crop_, pixels, error)) return false;
-  std::vector<double> aov_data(aov_data_.size());
-  if (!aov_data.empty() && !in.read(reinterpret_cast<char*>(aov_data.data()),
-                                    static_cast<std::streamsize>(aov_data.size() * sizeof(double)))) {
+  std::vector<ExactSum> sums(aov_sums_.size());
+  std::vector<double> values(aov_values_.size());
+  if (!get_all(in, pixels) || !get_all(in, sums) || !get_all(in, values)) {
     error = "truncated film state";
     return false;
   }
@@ -203,7 +190,8 @@ bool Film::read_state(std::istream& in, std::string& error) {
     return false;
   }
   pixels_ = std::move(pixels);
-  aov_data_ = std::move(aov_data);
+  aov_sums_ = std::move(sums);
+  aov_values_ = std::move(values);
   non_finite_ = nf;
   return true;
 }

@@ -50,38 +50,38 @@ void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, cons
   const bool lens = scene.camera.has_lens();
   RenderMonitor* const monitor = settings.monitor;
   const bool geometry = film.wants_geometry(), lighting = film.wants_lighting();
-  const std::size_t aov_doubles = static_cast<std::size_t>(film.aov_doubles());
+  const bool aovs = film.aov_slots() > 0;
   std::mutex report_mutex;
   NonFiniteReport report;
 
-  auto render_pixel = [&](Sampler& sampler, std::vector<double>& scratch, NonFiniteReport& bad, int x, int y) {
+  auto render_pixel = [&](Sampler& sampler, AovScratch& scratch, NonFiniteReport& bad, int x, int y) {
     const Vec2f corner(static_cast<float>(x), static_cast<float>(y));
     PixelSum sum;
-    std::fill(scratch.begin(), scratch.end(), 0.0);
+    scratch.clear();
     AovSample aov;  // reset per sample only when the film has AOVs
     for (int s = first; s < end; ++s) {
       sampler.start_pixel_sample(x, y, s);
       const FilterSample fs = filter.sample(sampler.get_pixel_2d());
       const Vec2f film_px = corner + fs.offset;
       const Ray ray = lens ? scene.camera.generate_ray(film_px, sampler.get_2d()) : scene.camera.generate_ray(film_px);
-      if (aov_doubles > 0) aov = AovSample{};
+      if (aovs) aov = AovSample{};
       const RGB c = radiance(ray, sampler, lighting ? &aov : nullptr);
       const bool finite = c.is_finite();
       if (!finite) bad.record(x, y, s, c);
       sum.add(finite ? c : RGB(), fs.weight);
-      if (aov_doubles > 0) {
+      if (aovs) {
         if (geometry) first_hit_aovs(scene, ray, aov);
-        film.accumulate(scratch.data(), aov, c, fs.weight, !finite);
+        film.accumulate(scratch, aov, c, fs.weight, !finite);
       }
     }
     film.add(x, y, sum);
-    if (aov_doubles > 0) film.add_aovs(x, y, scratch.data());
+    if (aovs) film.add_aovs(x, y, scratch);
   };
 
   pool.run([&] {
     tbb::parallel_for(tbb::blocked_range2d<int>(0, tiles_y, 0, tiles_x), [&](const tbb::blocked_range2d<int>& r) {
       Sampler sampler = prototype;
-      std::vector<double> scratch(aov_doubles);
+      AovScratch scratch = film.make_scratch();
       NonFiniteReport bad;
       for (int ty = r.rows().begin(); ty != r.rows().end(); ++ty) {
         for (int tx = r.cols().begin(); tx != r.cols().end(); ++tx) {
