@@ -15,6 +15,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-jsonschema
   python3-matplotlib  # the study_quick test (tools/study/samplers/run_study.py --quick) plots; it skips without
+  openmpi-bin libopenmpi-dev  # pathtracer --mpi and its test (mpirun -np 3); the build works without (docs/distributed.md)
 )
 
 missing=()

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "app/options.h"
+#include "app/shard.h"
 #include "io/image_io.h"
 
 namespace pt {
@@ -34,7 +35,7 @@ bool film_aovs(const Options& o, const IntegratorInfo& integrator, std::vector<A
   return true;
 }
 
-bool crop_window(const Options& o, int width, int height, PixelRect& out, std::string& error) {
+bool region_window(const Options& o, int width, int height, PixelRect& out, std::string& error) {
   out = {0, 0, width, height};
   if (o.replaying()) {
     const int x = o.replay[0], y = o.replay[1];
@@ -64,6 +65,21 @@ bool crop_window(const Options& o, int width, int height, PixelRect& out, std::s
   if (out.x0 < 0 || out.y0 < 0 || out.empty() || out.x1 > width || out.y1 > height) {
     error = "the crop [" + std::to_string(out.x0) + ", " + std::to_string(out.x1) + ") x [" + std::to_string(out.y0) +
             ", " + std::to_string(out.y1) + ") is not inside the " + frame(width, height);
+    return false;
+  }
+  return true;
+}
+
+bool crop_window(const Options& o, int width, int height, PixelRect& out, std::string& error) {
+  if (!region_window(o, width, height, out, error)) return false;
+  if (o.tile.empty() || o.replaying()) return true;
+  const std::optional<Fraction> tile = parse_fraction(o.tile, error);
+  if (!tile) return false;
+  const PixelRect region = out;
+  out = tile_of(region, *tile);
+  if (out.empty()) {
+    error = "--tile " + o.tile + ": the region has " + std::to_string(region.height()) + " rows, fewer than " +
+            std::to_string(tile->n) + " tiles";
     return false;
   }
   return true;

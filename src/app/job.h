@@ -16,6 +16,7 @@
 #include "app/memory_estimate.h"
 #include "app/render_driver.h"
 #include "app/render_settings.h"
+#include "app/shard.h"
 #include "core/diagnostics.h"
 #include "core/stopwatch.h"
 #include "io/display.h"
@@ -53,7 +54,8 @@ struct Job {
   MemoryEstimate memory;
   std::vector<AovRequest> aovs;  // --aov (every AOV for a replay)
   ChannelType beauty_type = ChannelType::Float;  // --aov beauty:half
-  CheckpointInfo identity;  // scene hash and settings, for --checkpoint and --resume
+  CheckpointInfo identity;  // scene hash and settings, for --checkpoint, --resume and shards
+  ShardPlan shard;          // a shard of a distributed render (app/shard.h)
   double parse_s = 0;       // load_scene, meshes included
 };
 

@@ -150,6 +150,7 @@ void add_options(CLI::App& app, Options& o) {
   add_render_options(app, o);
   add_output_options(app, o);
   add_film_options(app, o);
+  add_distributed_options(app, o);
   app.set_version_flag("--version", [] { return version_text(); });
 }
 
