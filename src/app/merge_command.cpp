@@ -1,4 +1,6 @@
 // `pathtracer merge` (docs/distributed.md): shard files in, one render out.
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <fstream>
 #include <iomanip>
@@ -35,6 +37,14 @@ void add_merge_options(CLI::App& app, MergeOptions& m) {
                "Merge an incomplete set (missing tiles or samples): the result is marked partial");
   app.add_option("--ocio-config", m.ocio_config, "OpenColorIO config for display images (default: the shards')");
   app.add_flag("--quiet", m.quiet, "Print errors only");
+}
+
+// CPU seconds (user + system) of this process so far.
+double cpu_seconds() {
+  rusage u{};
+  if (::getrusage(RUSAGE_SELF, &u) != 0) return 0;
+  const auto s = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
+  return s(u.ru_utime) + s(u.ru_stime);
 }
 
 struct Input {
@@ -74,8 +84,7 @@ bool add_films(const std::vector<Input>& inputs, ShardMerger& merger, std::strin
       if (error.empty()) error = "cannot open shard file '" + input.path + "'";
       return false;
     }
-    const std::optional<Film> film = read_shard_film(in, input.path, again, error);
-    if (!film || !merger.add(input.path, again, *film, error)) return false;
+    if (!merger.add(input.path, again, in, error)) return false;
   }
   return true;
 }
@@ -91,12 +100,13 @@ int merge(const MergeOptions& m) {
     return kExitUsage;
   }
   const auto t0 = Clock::now();
+  const double cpu0 = cpu_seconds();
   std::vector<Input> inputs;
   ShardMerger merger(m.allow_partial);
   bool ok = read_headers(m, inputs, error);
   for (std::size_t i = 0; ok && i < inputs.size(); ++i) ok = merger.check(inputs[i].path, inputs[i].info, error);
   ok = ok && add_films(inputs, merger, error) && merger.finish(error);
-  const double merge_s = seconds_since(t0);
+  const double merge_s = seconds_since(t0), cpu1 = cpu_seconds();
   const auto t1 = Clock::now();
   ok = ok && write_merged(merger, m.outputs, m.shard_out, m.ocio_config, error);
   if (!ok) {
@@ -112,8 +122,8 @@ int merge(const MergeOptions& m) {
     std::cout << std::fixed << std::setprecision(3) << "merged " << merger.shards() << " shard"
               << (merger.shards() == 1 ? "" : "s") << " into " << join(files, ", ") << " (" << film.crop().width()
               << "x" << film.crop().height() << ", " << merger.spp() << " spp"
-              << (merger.info().partial ? ", partial" : "") << "): read and add " << merge_s << " s, write "
-              << seconds_since(t1) << " s\n";
+              << (merger.info().partial ? ", partial" : "") << "): read and add " << merge_s << " s (CPU "
+              << cpu1 - cpu0 << " s), write " << seconds_since(t1) << " s (CPU " << cpu_seconds() - cpu1 << " s)\n";
   }
   return 0;
 }

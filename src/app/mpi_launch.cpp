@@ -7,6 +7,7 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <utility>
 
 #include "app/options.h"
 #include "app/outputs.h"
@@ -70,14 +71,20 @@ int fail_gather(int status) {
   return status;
 }
 
+// A stream over bytes in memory, without copying them (std::istringstream copies).
+class MemoryBuffer : public std::streambuf {
+ public:
+  explicit MemoryBuffer(std::string& bytes) { setg(bytes.data(), bytes.data(), bytes.data() + bytes.size()); }
+};
+
 // Rank 0: rank r's state into the merger. False with `error`.
-bool merge_rank(int r, const std::string& bytes, ShardMerger& merger, std::string& error) {
+bool merge_rank(int r, std::string& bytes, ShardMerger& merger, std::string& error) {
   const std::string name = "rank " + std::to_string(r);
-  std::istringstream in(bytes);
+  MemoryBuffer buffer(bytes);
+  std::istream in(&buffer);
   ShardInfo info;
-  if (!read_shard_info(in, name, info, error) || !merger.check(name, info, error)) return false;
-  const std::optional<Film> film = read_shard_film(in, name, info, error);
-  return film && merger.add(name, info, *film, error);
+  return read_shard_info(in, name, info, error) && merger.check(name, info, error) &&
+         merger.add(name, info, in, error);
 }
 
 }  // namespace
@@ -101,7 +108,7 @@ int mpi_gather(const Options& o, const ShardInfo& info, const Film& film) {
   if (rank_of_world() > 0) {
     std::ostringstream out;
     write_shard(out, info, film);
-    send_state(0, out.str());
+    send_state(0, std::move(out).str());  // C++20: the buffer, not a copy
     return 0;
   }
   const auto t0 = Clock::now();

@@ -1,6 +1,7 @@
 #include "app/shard_merge.h"
 
 #include <algorithm>
+#include <istream>
 #include <set>
 
 #include "app/outputs.h"
@@ -97,30 +98,69 @@ bool ShardMerger::check(const std::string& name, const ShardInfo& info, std::str
   return true;
 }
 
-bool ShardMerger::add(const std::string& name, const ShardInfo& info, const Film& film, std::string& error) {
-  if (!film_) {
-    std::vector<AovRequest> aovs;
-    ChannelType beauty;
-    if (!merged_.film_aovs(aovs, beauty, error)) return false;
-    film_.emplace(merged_.width, merged_.height, merged_.window, aovs);
-  }
+bool ShardMerger::make_film(std::string& error) {
+  if (film_) return true;
+  std::vector<AovRequest> aovs;
+  ChannelType beauty;
+  if (!merged_.film_aovs(aovs, beauty, error)) return false;
+  film_.emplace(merged_.width, merged_.height, merged_.window, aovs);
+  return true;
+}
+
+std::map<ShardMerger::Key, std::pair<bool, int>> ShardMerger::precedence(const ShardInfo& info) const {
   std::map<Key, int> starts;  // per crop of this shard: its lowest first sample
   for (const ShardPiece& p : info.pieces) {
     const Key key{p.crop.x0, p.crop.y0, p.crop.x1, p.crop.y1};
     const auto it = starts.find(key);
     starts[key] = it == starts.end() ? p.done.begin : std::min(it->second, p.done.begin);
   }
+  std::map<Key, std::pair<bool, int>> out;
   for (const auto& [key, start] : starts) {
     const auto it = first_start_.find(key);
-    const bool first = it == first_start_.end() || start < it->second;
+    out[key] = {it == first_start_.end() || start < it->second, start};
+  }
+  return out;
+}
+
+bool ShardMerger::add(const std::string& name, const ShardInfo& info, const Film& film, std::string& error) {
+  if (!make_film(error)) return false;
+  for (const auto& [key, first] : precedence(info)) {
     const PixelRect crop{std::get<0>(key), std::get<1>(key), std::get<2>(key), std::get<3>(key)};
-    if (std::string why; !film_->add_film(film, crop, first, why)) {
+    if (std::string why; !film_->add_film(film, crop, first.first, why)) {
       error = "'" + name + "': " + why;
       return false;
     }
-    if (first) first_start_[key] = start;
+    if (first.first) first_start_[key] = first.second;
   }
   film_->add_non_finite(film.non_finite());
+  return true;
+}
+
+bool ShardMerger::add(const std::string& name, const ShardInfo& info, std::istream& state, std::string& error) {
+  if (!make_film(error)) return false;
+  const PixelRect& c = info.crop;
+  const auto width = static_cast<std::size_t>(c.width());
+  StateRules rules;
+  rules.other_first.assign(width * static_cast<std::size_t>(c.height()), 0);
+  rules.max_samples.assign(rules.other_first.size(), 0);
+  std::map<Key, uint64_t> done;  // the samples each crop's pixels may hold
+  for (const ShardPiece& p : info.pieces)
+    done[{p.crop.x0, p.crop.y0, p.crop.x1, p.crop.y1}] += static_cast<uint64_t>(p.done.size());
+  for (const auto& [key, n] : done)
+    for (int y = std::get<1>(key); y < std::get<3>(key); ++y)
+      for (int x = std::get<0>(key); x < std::get<2>(key); ++x)
+        rules.max_samples[static_cast<std::size_t>(y - c.y0) * width + static_cast<std::size_t>(x - c.x0)] += n;
+  const std::map<Key, std::pair<bool, int>> order = precedence(info);
+  for (const auto& [key, first] : order)
+    for (int y = std::get<1>(key); first.first && y < std::get<3>(key); ++y)
+      for (int x = std::get<0>(key); x < std::get<2>(key); ++x)
+        rules.other_first[static_cast<std::size_t>(y - c.y0) * width + static_cast<std::size_t>(x - c.x0)] = 1;
+  if (std::string why; !film_->add_state(state, rules, why)) {
+    error = "'" + name + "': " + why;
+    return false;
+  }
+  for (const auto& [key, first] : order)
+    if (first.first) first_start_[key] = first.second;
   return true;
 }
 

@@ -31,6 +31,11 @@ class ShardMerger {
   bool check(const std::string& name, const ShardInfo& info, std::string& error);
   // Adds the film of a checked shard. False with `error`.
   bool add(const std::string& name, const ShardInfo& info, const Film& film, std::string& error);
+  // The same from its film state as it is read (read_shard_info has read the
+  // header): one block at a time, so that a merge holds one film in memory.
+  // Also checks that no pixel holds more samples than the pieces say. After
+  // a failure the merged film is unusable.
+  bool add(const std::string& name, const ShardInfo& info, std::istream& state, std::string& error);
   // After the last shard: every tile of the window and every sample of the
   // target present? Missing pieces are an error, unless allowed: then the
   // result is marked partial and notes() says what is missing.
@@ -56,6 +61,11 @@ class ShardMerger {
     std::string name;
   };
   bool check_pieces(const std::string& name, const ShardInfo& info, std::string& error) const;
+  bool make_film(std::string& error);
+  // Per crop of `info`'s pieces: whether its first-sample values come first
+  // there (its lowest first sample is below every earlier shard's), and that
+  // first sample; the caller records the ones that come first.
+  std::map<Key, std::pair<bool, int>> precedence(const ShardInfo& info) const;
   std::string missing_tiles() const;
   std::string missing_samples() const;
 

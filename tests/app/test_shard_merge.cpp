@@ -112,6 +112,7 @@ std::string state(const Film& film) {
   film.write_state(out);
   return out.str();
 }
+std::string state_of_film(const Film& film) { return state(film); }
 
 constexpr int kW = 6, kH = 5, kSpp = 30;
 
@@ -273,17 +274,23 @@ TEST(ShardFile, DamagedHeadersAndStatesAreRefused) {
   refused(bytes.substr(0, bytes.size() - 5), "truncated film state");
 }
 
-// Merges `shards` in the order given; the merged film's state, or "" with `error`.
+// Merges `shards` in the order given (their films, or with `streams` their
+// film states as read, as `pathtracer merge` does); the merged film's state,
+// or "" with `error`.
 std::string merge(const std::vector<const Shard*>& shards, std::string& error, bool allow_partial = false,
-                  ShardMerger* out = nullptr) {
+                  ShardMerger* out = nullptr, bool streams = false) {
   ShardMerger local(allow_partial);
   ShardMerger& merger = out ? *out : local;
   std::vector<std::string> names;
   for (std::size_t i = 0; i < shards.size(); ++i) names.push_back(std::string("s").append(std::to_string(i)));
   for (std::size_t i = 0; i < shards.size(); ++i)
     if (!merger.check(names[i], shards[i]->info, error)) return {};
-  for (std::size_t i = 0; i < shards.size(); ++i)
-    if (!merger.add(names[i], shards[i]->info, shards[i]->film, error)) return {};
+  for (std::size_t i = 0; i < shards.size(); ++i) {
+    std::stringstream state(state_of_film(shards[i]->film));
+    if (!(streams ? merger.add(names[i], shards[i]->info, state, error)
+                  : merger.add(names[i], shards[i]->info, shards[i]->film, error)))
+      return {};
+  }
   return merger.finish(error) ? state(merger.film()) : std::string();
 }
 
@@ -300,6 +307,7 @@ TEST(ShardMerger, AnyOrderOfAnySplitGivesTheWholeRender) {
       std::shuffle(order.begin(), order.end(), rng);
       std::string error;
       EXPECT_EQ(merge(order, error), state(whole)) << n << " shards: " << error;
+      EXPECT_EQ(merge(order, error, false, nullptr, true), state(whole)) << n << " shards, streamed: " << error;
     }
   }
   // Tiles of sample shares.
@@ -311,6 +319,22 @@ TEST(ShardMerger, AnyOrderOfAnySplitGivesTheWholeRender) {
   std::reverse(order.begin(), order.end());
   std::string error;
   EXPECT_EQ(merge(order, error), state(whole)) << error;
+  EXPECT_EQ(merge(order, error, false, nullptr, true), state(whole)) << error;
+}
+
+TEST(ShardMerger, StreamedStatesAreCheckedAsTheyAreRead) {
+  Shard a = shard({0, 15});
+  const Shard b = shard({15, kSpp});
+  a.info.pieces[0].done = {0, 14};  // its header claims fewer samples than its film holds
+  std::string error;
+  EXPECT_EQ(merge({&a, &b}, error, false, nullptr, true), "");
+  EXPECT_EQ(error, "'s0': its film state holds 15 samples in pixel (0, 0), more than its pieces' 14 "
+                   "(the two do not belong together)");
+  ShardMerger merger(false);
+  ASSERT_TRUE(merger.check("b", b.info, error)) << error;
+  std::stringstream truncated(state(b.film).substr(0, 500));
+  EXPECT_FALSE(merger.add("b", b.info, truncated, error));
+  EXPECT_EQ(error, "'b': truncated film state");
 }
 
 TEST(ShardMerger, MergesOfMergesGiveTheSameBits) {

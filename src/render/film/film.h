@@ -105,6 +105,14 @@ struct NonFiniteReport {
   std::string describe() const;
 };
 
+// What Film::add_state may take from a film state, per pixel of the state's
+// crop (row-major): whether its first-sample values come before the film's,
+// and the most samples it may hold there.
+struct StateRules {
+  std::vector<uint8_t> other_first;
+  std::vector<uint64_t> max_samples;
+};
+
 class Film {
  public:
   Film(int width, int height);
@@ -164,8 +172,16 @@ class Film {
   // unchanged, when the stream does not hold a state of a film of this size,
   // crop and AOV list.
   bool read_state(std::istream& in, std::string& error);
+  // Adds a film state (a film of this frame and AOVs whose crop lies inside
+  // this one's: a shard) while it is read, a block at a time, as add_film
+  // would add that film, so that a merge holds one film in memory. False with
+  // `error` when the state does not fit or breaks `rules` (sized for its crop);
+  // this film may then hold part of it (the merge discards it).
+  bool add_state(std::istream& in, const StateRules& rules, std::string& error);
 
  private:
+  // Adds another film's plain AOV values `s` (first-sample layers, maxima) to pixel number `pixel`.
+  void add_values(std::size_t pixel, const double* s, bool other_first);
   // The final values of AOV number `layer` of pixel number `pixel` (in the crop, row-major) into `out`.
   void aov_values(std::size_t layer, std::size_t pixel, float* out) const;
   std::size_t index(int x, int y) const {

@@ -1,5 +1,6 @@
 // Film::add_film: the state of one film (a shard: a sample range or a tile of
 // the frame) added into another, exactly (docs/distributed.md).
+#include <algorithm>
 #include <string>
 
 #include "render/film/film.h"
@@ -41,21 +42,25 @@ bool Film::add_film(const Film& other, const PixelRect& c, bool other_first, std
       for (std::size_t k = 0; k < sums; ++k) d[k].add(s[k]);
     }
     if (values == 0) continue;
-    for (std::size_t i = 0; i < static_cast<std::size_t>(c.width()); ++i) {
-      for (std::size_t a = 0; a < aovs_.size(); ++a) {
-        const AovInfo& info = aov_info(aovs_[a].type);
-        double* d = aov_values_.data() + (to + i) * values + value_offset_[a];
-        const double* s = other.aov_values_.data() + (from + i) * values + value_offset_[a];
-        if (info.accumulation == Accumulation::Max) {
-          d[0] = std::max(d[0], s[0]);
-        } else if (info.accumulation == Accumulation::FirstSample && s[info.channels] != 0.0 &&
-                   (other_first || d[info.channels] == 0.0)) {
-          std::copy(s, s + info.values, d);
-        }
-      }
-    }
+    for (std::size_t i = 0; i < static_cast<std::size_t>(c.width()); ++i)
+      add_values(to + i, other.aov_values_.data() + (from + i) * values, other_first);
   }
   return true;
+}
+
+void Film::add_values(std::size_t pixel, const double* s, bool other_first) {
+  double* d = aov_values_.data() + pixel * static_cast<std::size_t>(value_stride_);
+  for (std::size_t a = 0; a < aovs_.size(); ++a) {
+    const AovInfo& info = aov_info(aovs_[a].type);
+    double* dv = d + value_offset_[a];
+    const double* sv = s + value_offset_[a];
+    if (info.accumulation == Accumulation::Max) {
+      dv[0] = std::max(dv[0], sv[0]);
+    } else if (info.accumulation == Accumulation::FirstSample && sv[info.channels] != 0.0 &&
+               (other_first || dv[info.channels] == 0.0)) {
+      std::copy(sv, sv + info.values, dv);
+    }
+  }
 }
 
 }  // namespace pt

@@ -1,6 +1,7 @@
 // Film::write_state / read_state: checkpoints of a film, bit for bit.
 #include <algorithm>
 #include <bit>
+#include <cstddef>
 #include <cmath>
 #include <cstring>
 #include <istream>
@@ -91,9 +92,9 @@ bool read_aov_list(std::istream& in, uint32_t count, const std::vector<AovReques
 }
 
 // The header up to the AOV list; false with `error` unless it describes a
-// film of this size, crop and AOVs.
-bool read_layout(std::istream& in, int width, int height, const PixelRect& crop,
-                 const std::vector<AovRequest>& expected, std::string& error) {
+// film of this size and AOVs. `crop` is the state's.
+bool read_layout(std::istream& in, int width, int height, PixelRect& crop, const std::vector<AovRequest>& expected,
+                 std::string& error) {
   char magic[sizeof kMagic];
   uint32_t version = 0, w = 0, h = 0;
   if (!in.read(magic, sizeof magic) || std::memcmp(magic, kMagic, sizeof kMagic) != 0) {
@@ -117,13 +118,7 @@ bool read_layout(std::istream& in, int width, int height, const PixelRect& crop,
             std::to_string(width) + "x" + std::to_string(height);
     return false;
   }
-  if (PixelRect{c[0], c[1], c[2], c[3]} != crop) {
-    error = "film state covers pixels [" + std::to_string(c[0]) + "," + std::to_string(c[2]) + ")x[" +
-            std::to_string(c[1]) + "," + std::to_string(c[3]) + "), the render's crop is [" +
-            std::to_string(crop.x0) + "," + std::to_string(crop.x1) + ")x[" + std::to_string(crop.y0) + "," +
-            std::to_string(crop.y1) + ")";
-    return false;
-  }
+  crop = {c[0], c[1], c[2], c[3]};
   return read_aov_list(in, count, expected, error);
 }
 
@@ -143,6 +138,23 @@ bool read_non_finite(std::istream& in, NonFiniteReport& nf, std::string& error) 
   nf.x = fx;
   nf.y = fy;
   nf.sample = fs;
+  return true;
+}
+
+// Reads `items` groups of `per_item` values of T in blocks of about 8 MiB,
+// calling `add(block, first_item, item_count)` for each; false if the stream
+// ends first or `add` refuses.
+template <typename T, typename F>
+bool read_blocks(std::istream& in, std::size_t items, std::size_t per_item, F&& add) {
+  if (per_item == 0) return true;
+  const std::size_t per_block = std::max<std::size_t>(1, (std::size_t{8} << 20) / (sizeof(T) * per_item));
+  std::vector<T> block(std::min(items, per_block) * per_item);
+  for (std::size_t first = 0; first < items; first += per_block) {
+    const std::size_t n = std::min(per_block, items - first);
+    if (!in.read(reinterpret_cast<char*>(block.data()), static_cast<std::streamsize>(n * per_item * sizeof(T))) ||
+        !add(block.data(), first, n))
+      return false;
+  }
   return true;
 }
 
@@ -173,7 +185,12 @@ bool Film::write_state(std::ostream& out) const {
 }
 
 bool Film::read_state(std::istream& in, std::string& error) {
-  if (!read_layout(in, width_, height_, crop_, aovs_, error)) return false;
+  PixelRect crop;
+  if (!read_layout(in, width_, height_, crop, aovs_, error)) return false;
+  if (crop != crop_) {
+    error = "film state covers pixels " + crop.text() + ", the render's crop is " + crop_.text();
+    return false;
+  }
   NonFiniteReport nf;
   if (!read_non_finite(in, nf, error)) return false;
   // Integer sums cannot be corrupt in value (any bits are some sum); the
@@ -193,6 +210,69 @@ bool Film::read_state(std::istream& in, std::string& error) {
   aov_sums_ = std::move(sums);
   aov_values_ = std::move(values);
   non_finite_ = nf;
+  return true;
+}
+
+bool Film::add_state(std::istream& in, const StateRules& rules, std::string& error) {
+  PixelRect c;
+  if (!read_layout(in, width_, height_, c, aovs_, error)) return false;
+  if (!crop_.contains(c)) {
+    error = "film state covers pixels " + c.text() + ", outside " + crop_.text();
+    return false;
+  }
+  NonFiniteReport nf;
+  if (!read_non_finite(in, nf, error)) return false;
+  const auto width = static_cast<std::size_t>(c.width());
+  const std::size_t n = width * static_cast<std::size_t>(c.height());
+  if (rules.other_first.size() != n || rules.max_samples.size() != n) {
+    error = "film state rules of the wrong size";
+    return false;
+  }
+  const auto x_of = [&](std::size_t i) { return c.x0 + static_cast<int>(i % width); };
+  const auto y_of = [&](std::size_t i) { return c.y0 + static_cast<int>(i / width); };
+  const auto to = [&](std::size_t i) { return index(x_of(i), y_of(i)); };
+  std::size_t bad = n;  // the first pixel with too many samples, and its count
+  uint64_t bad_samples = 0;
+  const auto add_pixels = [&](const PixelSum* p, std::size_t first, std::size_t count) {
+    for (std::size_t i = 0; i < count; ++i) {
+      if (p[i].samples > rules.max_samples[first + i]) {
+        bad = first + i;
+        bad_samples = p[i].samples;
+        return false;
+      }
+      pixels_[to(first + i)].add(p[i]);
+    }
+    return true;
+  };
+  const bool pixels_ok = read_blocks<PixelSum>(in, n, 1, add_pixels);
+  if (bad < n) {
+    error = "its film state holds " + std::to_string(bad_samples) + " samples in pixel (" + std::to_string(x_of(bad)) +
+            ", " + std::to_string(y_of(bad)) + "), more than its pieces' " + std::to_string(rules.max_samples[bad]) +
+            " (the two do not belong together)";
+    return false;
+  }
+  const auto sums = static_cast<std::size_t>(sum_stride_), values = static_cast<std::size_t>(value_stride_);
+  const bool ok =
+      pixels_ok &&
+      read_blocks<ExactSum>(in, n, sums, [&](const ExactSum* s, std::size_t first, std::size_t count) {
+        for (std::size_t i = 0; i < count; ++i)
+          for (std::size_t k = 0; k < sums; ++k) aov_sums_[to(first + i) * sums + k].add(s[i * sums + k]);
+        return true;
+      }) &&
+      read_blocks<double>(in, n, values, [&](const double* v, std::size_t first, std::size_t count) {
+        for (std::size_t i = 0; i < count; ++i)
+          add_values(to(first + i), v + i * values, rules.other_first[first + i] != 0);
+        return true;
+      });
+  if (!ok) {
+    error = "truncated film state";
+    return false;
+  }
+  if (in.peek() != std::char_traits<char>::eof()) {
+    error = "film state has trailing data";
+    return false;
+  }
+  non_finite_.merge(nf);
   return true;
 }
 
