@@ -42,7 +42,9 @@ int finish_shard(const Options& o, const Job& job, const RenderScene& scene, con
     return exit_status_for_signal(signal);
   }
   const auto t0 = Clock::now();
-  const ImageMetadata metadata = render_metadata(job, scene, outcome, figures.render_s);
+  ImageMetadata metadata = render_metadata(job, scene, outcome, figures.render_s);
+  for (auto& [name, value] : metadata.ints)  // the shard's samples, not the index it reached
+    if (name == "pathtracer:spp") value = outcome.spp_done - job.shard.share.begin;
   const ShardInfo info = shard_info(job, film, outcome, metadata, figures.render_s);
   if (o.mpi) return mpi_gather(o, info, film);
   std::string error;
