@@ -9,6 +9,7 @@
 #include <string_view>
 #include <utility>
 
+#include "core/file_access.h"
 #include "io/atomic_file.h"
 #include "render/film/film.h"
 
@@ -144,6 +145,10 @@ bool read_json_header(std::istream& in, const std::string& path, const std::stri
 }
 
 std::string scene_content_hash(const std::string& path, const std::string& extra, std::string& error) {
+  if (const std::string why = why_unreadable(path); !why.empty()) {
+    error = "cannot read '" + path + "': " + why;
+    return {};
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     error = "cannot read '" + path + "'";
@@ -173,12 +178,16 @@ bool write_checkpoint(const std::string& path, const CheckpointInfo& info, const
       path,
       [&](const std::string& tmp, std::string& why) {
         std::ofstream out(tmp, std::ios::binary);
-        if (!write_checkpoint(out, info, film)) {
-          why = "write failed";
+        if (!out) {
+          why = stream_write_error();
           return false;
         }
-        out.close();
-        if (!out) why = "write failed";
+        if (!write_checkpoint(out, info, film)) {
+          why = stream_write_error();
+          return false;
+        }
+        out.close();  // flushes: a full disk often shows only here
+        if (!out) why = stream_write_error();
         return static_cast<bool>(out);
       },
       error);
@@ -192,6 +201,11 @@ bool read_checkpoint_info(std::istream& in, const std::string& path, CheckpointI
 }
 
 bool read_checkpoint_info(const std::string& path, CheckpointInfo& info, std::string& error) {
+  // A FIFO would block the open until a writer comes; a device never ends.
+  if (const std::string why = why_unreadable(path); !why.empty()) {
+    error = "cannot open checkpoint '" + path + "': " + why;
+    return false;
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     error = "cannot open checkpoint '" + path + "'";
@@ -226,6 +240,11 @@ bool read_checkpoint(std::istream& in, const std::string& path, CheckpointInfo& 
 }
 
 bool read_checkpoint(const std::string& path, CheckpointInfo& info, Film& film, std::string& error) {
+  // A FIFO would block the open until a writer comes; a device never ends.
+  if (const std::string why = why_unreadable(path); !why.empty()) {
+    error = "cannot open checkpoint '" + path + "': " + why;
+    return false;
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     error = "cannot open checkpoint '" + path + "'";

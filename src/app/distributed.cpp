@@ -33,7 +33,7 @@ std::string shard_line(const Options& o, const ShardInfo& info, const RunFigures
 
 }  // namespace
 
-int finish_shard(const Options& o, const Job& job, const RenderScene& scene, const Film& film,
+int finish_shard(const Options& o, Job& job, const RenderScene& scene, const Film& film,
                  const RenderOutcome& outcome, RunFigures& figures, int signal) {
   if (outcome.cancelled) {
     std::cerr << "interrupted (signal " << signal << "): the shard's last pass is incomplete, so no state was "
@@ -46,9 +46,9 @@ int finish_shard(const Options& o, const Job& job, const RenderScene& scene, con
   for (auto& [name, value] : metadata.ints)  // the shard's samples, not the index it reached
     if (name == "pathtracer:spp") value = outcome.spp_done - job.shard.share.begin;
   const ShardInfo info = shard_info(job, film, outcome, metadata, figures.render_s);
-  if (o.mpi) return mpi_gather(o, info, film);
+  if (o.mpi) return mpi_gather(o, info, film, job.exr, job.stamps);
   std::string error;
-  if (!write_outputs(o.outputs, film.layers(job.beauty_type), job.display, metadata, error) ||
+  if (!write_outputs(o.outputs, film.layers(job.beauty_type), job.display, job.exr, metadata, job.stamps, error) ||
       (!o.shard_out.empty() && !write_shard(o.shard_out, info, film, error))) {
     std::cerr << "error: " << error << '\n';
     return kExitFailure;

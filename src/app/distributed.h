@@ -18,7 +18,7 @@ struct RunFigures;
 // mpi_gather. A shard stopped by a signal writes no state (its last pass is
 // incomplete): it is rendered again, or resumed from its --checkpoint.
 // Returns the exit status.
-int finish_shard(const Options& o, const Job& job, const RenderScene& scene, const Film& film,
+int finish_shard(const Options& o, Job& job, const RenderScene& scene, const Film& film,
                  const RenderOutcome& outcome, RunFigures& figures, int signal);
 
 // `pathtracer merge SHARD... -o OUT [-o OUT2] [--shard-out FILE]

@@ -24,11 +24,13 @@ bool film_aovs(const Options& o, const IntegratorInfo& integrator, std::vector<A
   beauty = ChannelType::Float;
   if (o.replaying()) {  // a replay reports every AOV of its one sample (they draw no random numbers)
     for (const AovInfo& info : aov_catalogue())
-      if (integrator.produces(info.type)) out.push_back({info.type, info.default_type});
+      if (integrator.produces(info.type))
+        out.push_back({info.type, info.default_type, info.accumulation == Accumulation::Ranked ? 1 : 0});
     return true;
   }
   std::string why;
-  if (!o.aov.empty() && (!parse_aov_list(o.aov, out, beauty, why) || !integrator.check_aovs(out, why))) {
+  if (!o.aov.empty() &&
+      (!parse_aov_list(o.aov, out, beauty, why, o.cryptomatte_levels) || !integrator.check_aovs(out, why))) {
     error = "--aov: " + why;
     return false;
   }
@@ -87,17 +89,15 @@ bool crop_window(const Options& o, int width, int height, PixelRect& out, std::s
 
 std::size_t film_bytes_per_pixel(const std::vector<AovRequest>& aovs) {
   std::size_t bytes = sizeof(PixelSum);
-  for (const AovRequest& r : aovs) {
-    const AovInfo& info = aov_info(r.type);
-    bytes += sizeof(ExactSum) * static_cast<std::size_t>(info.sums) +
-             sizeof(double) * static_cast<std::size_t>(info.values);
-  }
+  for (const AovRequest& r : aovs)
+    bytes += sizeof(ExactSum) * static_cast<std::size_t>(aov_state_sums(r)) +
+             sizeof(double) * static_cast<std::size_t>(aov_state_values(r));
   return bytes;
 }
 
 std::size_t output_bytes_per_pixel(const std::vector<AovRequest>& aovs, const std::vector<std::string>& outputs) {
   std::size_t channels = 4;  // R, G, B, A
-  for (const AovRequest& r : aovs) channels += static_cast<std::size_t>(aov_info(r.type).channels);
+  for (const AovRequest& r : aovs) channels += static_cast<std::size_t>(aov_channel_count(r));
   const std::size_t layers = channels * sizeof(float);
   std::size_t largest = 0;
   for (const std::string& path : outputs) {
@@ -113,8 +113,13 @@ bool estimate_render_memory(const Options& o, const SceneDescription& scene, int
   PixelRect crop;
   if (!crop_window(o, width, height, crop, error)) return false;
   const uint64_t pixels = static_cast<uint64_t>(crop.width()) * static_cast<uint64_t>(crop.height());
+  AccelKind accel = AccelKind::Bvh;
+  parse_accel_kind(o.accel, accel);  // CLI11 checked the name
   out = estimate_memory(scene, pixels, {film_bytes_per_pixel(aovs), output_bytes_per_pixel(aovs, o.outputs)},
-                        o.resume.empty() ? 1 : 2);
+                        o.resume.empty() ? 1 : 2, accel);
+  out.baseline = resident_bytes();
+  out.peak_so_far = peak_resident_bytes();
+  out.reusable = std::min(free_heap_bytes(), out.baseline);
   return true;
 }
 
@@ -135,7 +140,11 @@ std::string replay_text(const Film& film, int x, int y, int sample) {
   for (const AovRequest& r : film.aovs()) {
     if (r.type == AovType::Samples || r.type == AovType::Variance) continue;
     out << "  " << aov_info(r.type).name << ":";
-    for (float c : film.aov_value(r.type, x, y)) out << ' ' << c;
+    const std::vector<float> values = film.aov_value(r.type, x, y);
+    if (r.ranks > 0)  // Cryptomatte: the id (as the manifest writes it) of what the sample hit, or none
+      out << ' ' << (values[0] != 0.0f ? cryptomatte_hex(values[0]) : std::string("none"));
+    else
+      for (float c : values) out << ' ' << c;
     out << '\n';
   }
   return out.str();

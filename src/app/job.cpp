@@ -1,9 +1,12 @@
 #include "app/job.h"
 
+#include <algorithm>
+
 #include "app/film_options.h"
 #include "app/options.h"
 #include "app/outputs.h"
 #include "core/diagnostics.h"
+#include "io/image_io.h"
 #include "scene/loader.h"
 
 namespace pt {
@@ -23,6 +26,7 @@ SettingsOverrides settings_overrides(const Options& o) {
   s.clamp = o.clamp;
   s.width = o.width;
   s.height = o.height;
+  s.film_transparent = o.film_transparent;
   return s;
 }
 
@@ -72,7 +76,15 @@ bool plan_job(const Options& o, Job& job, Messages& m) {
   }
   plan.equal_passes = job.settings.equal_passes();
 
+  job.exr = {o.exr_compression, o.multipart};
+  for (const AovRequest& r : job.aovs)
+    if (r.ranks > 0 && exr_compression_rounds_floats(job.exr.compression) && !o.replaying()) {
+      m.error("--exr-compression " + job.exr.compression + " rounds 32-bit floats to 24 bits, which destroys " +
+              aov_info(r.type).name + "'s ids; choose another compression (zip, piz, dwaa, ...)");
+      return false;
+    }
   job.display = display_settings(o, job.desc.film);
+  job.display.alpha = job.settings.integration.film_transparent;  // PNG: RGBA
   if (job.display.transform != DisplayTransform::Srgb && !(o.view.empty() && o.display.empty() && o.look.empty()))
     m.warning("--view, --display and --look apply to native scenes; this scene's display images use its course's "
               "documented curve (docs/rendering.md)");
@@ -156,11 +168,18 @@ int check_request(const Options& o, Messages& m) {
     m.error("--output is required (except for a replay, --pixel or --replay, or a shard's --shard-out)");
     return kExitUsage;
   }
-  if (std::string error; !check_outputs(o.outputs, error)) {
+  if (std::string error; !check_outputs(o.outputs, error) || !check_output_files(output_files(o), error)) {
     m.error(error);
     return kExitUsage;
   }
   const bool replay = o.replaying();
+  // A shard's AOVs go into its state (--shard-out), whatever its -o are.
+  if (!o.aov.empty() && !replay && o.shard_out.empty() &&
+      std::none_of(o.outputs.begin(), o.outputs.end(), is_exr_path)) {
+    m.error("--aov: AOV layers are written to EXR outputs only, and no -o is an EXR (" + join(o.outputs, ", ") +
+            "); add one (-o layers.exr) or leave out --aov");
+    return kExitUsage;
+  }
   if (o.time_budget > 0 && o.spp == 0 && !o.quiet && !replay && !o.sharded())
     m.note("--time-budget without --spp renders until the time is up (the scene's spp is ignored)");
   if (replay && !o.quiet && !(o.outputs.empty() && o.checkpoint.empty() && o.report.empty()))
@@ -171,7 +190,13 @@ int check_request(const Options& o, Messages& m) {
 std::optional<Job> prepare_job(const Options& o, Messages& m, int& status) {
   status = kExitFailure;
   Job job;
+  job.stamps.take(output_files(o));
   if (!load_job(o, job, m)) return std::nullopt;
+  if (std::string error; !check_outputs_are_not_inputs(o, output_files(o), job.desc, error)) {
+    m.error(error);
+    status = kExitUsage;
+    return std::nullopt;
+  }
   if (!plan_job(o, job, m)) {
     status = kExitUsage;
     return std::nullopt;

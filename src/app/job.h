@@ -14,12 +14,14 @@
 
 #include "app/checkpoint.h"
 #include "app/memory_estimate.h"
+#include "app/output_checks.h"
 #include "app/render_driver.h"
 #include "app/render_settings.h"
 #include "app/shard.h"
 #include "core/diagnostics.h"
 #include "core/stopwatch.h"
 #include "io/display.h"
+#include "io/image_io.h"
 #include "io/image_metadata.h"
 #include "render/film/aov.h"
 #include "scene/scene_description.h"
@@ -51,12 +53,14 @@ struct Job {
   RenderSettings settings;
   PassPlan plan;
   DisplaySettings display;
+  ExrSettings exr;  // --exr-compression, --multipart
   MemoryEstimate memory;
   std::vector<AovRequest> aovs;  // --aov (every AOV for a replay)
   ChannelType beauty_type = ChannelType::Float;  // --aov beauty:half
   CheckpointInfo identity;  // scene hash and settings, for --checkpoint, --resume and shards
   ShardPlan shard;          // a shard of a distributed render (app/shard.h)
   double parse_s = 0;       // load_scene, meshes included
+  OutputStamps stamps;      // every output as it was when the run started (two runs, one name)
 };
 
 // The seconds of each phase and what the render counted, for the record and the summary.
@@ -71,7 +75,9 @@ struct RunFigures {
 };
 
 // The command line's own checks before the scene is read (an output is
-// required, supported and given once) and its notes; a non-zero status stops.
+// required and supported; every output, checkpoint and run record can be
+// written and is a file of its own: app/output_checks.h) and its notes; a
+// non-zero status stops.
 int check_request(const Options& o, Messages& messages);
 
 // Loads the scene, resolves its settings and plans the render; std::nullopt
@@ -104,6 +110,7 @@ class Checkpointer {
 
  private:
   std::string path_;
+  OutputStamps stamps_;
   double every_;
   CheckpointInfo info_;
   const Film& film_;
@@ -114,7 +121,8 @@ class Checkpointer {
 // black; to replay the first, ..."), without "warning: ".
 std::string non_finite_warning(const NonFiniteReport& report);
 
-// The EXR metadata of the render: its settings, what it reached, the camera.
+// The EXR metadata of the render: its settings, what it reached, the camera,
+// and each Cryptomatte AOV's (render/film/cryptomatte.h).
 ImageMetadata render_metadata(const Job& job, const RenderScene& scene, const RenderOutcome& outcome, double render_s);
 
 // The run record (--report).

@@ -54,7 +54,12 @@ std::string replay_sample(const Options& o, const Job& job, const RenderScene& s
 }
 
 Checkpointer::Checkpointer(const Options& o, const Job& job, const Film& film)
-    : path_(o.checkpoint), every_(o.checkpoint_every), info_(job.identity), film_(film), last_(Clock::now()) {}
+    : path_(o.checkpoint),
+      stamps_(job.stamps),
+      every_(o.checkpoint_every),
+      info_(job.identity),
+      film_(film),
+      last_(Clock::now()) {}
 
 bool Checkpointer::due() const { return !path_.empty() && seconds_since(last_) >= every_; }
 
@@ -62,7 +67,9 @@ bool Checkpointer::write(int spp_done, std::string& error) {
   if (path_.empty()) return true;
   info_.spp_done = spp_done;
   last_ = Clock::now();
-  return write_checkpoint(path_, info_, film_, error);
+  return write_guarded(
+      path_, stamps_, [&](const std::string& p, std::string& e) { return write_checkpoint(p, info_, film_, e); },
+      error);
 }
 
 }  // namespace pt

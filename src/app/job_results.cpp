@@ -1,7 +1,5 @@
 // What the job reports once rendered (app/job.h): the EXR metadata, the run
 // record and the last line.
-#include <sys/resource.h>
-
 #include <iomanip>
 #include <sstream>
 
@@ -16,16 +14,6 @@
 #include "render/film/film.h"
 
 namespace pt {
-namespace {
-
-uint64_t peak_rss_bytes() {
-  rusage usage{};
-  if (::getrusage(RUSAGE_SELF, &usage) != 0) return 0;
-  return static_cast<uint64_t>(usage.ru_maxrss) * 1024;  // KiB on Linux
-}
-
-}  // namespace
-
 std::string non_finite_warning(const NonFiniteReport& report) {
   return report.describe() + "; they were added as black" + replay_hint(report);
 }
@@ -41,6 +29,10 @@ ImageMetadata render_metadata(const Job& job, const RenderScene& scene, const Re
   stamp.world_to_ndc = scene.camera.world_to_ndc();
   ImageMetadata metadata;
   add_render_stamp(metadata, stamp);
+  for (const AovRequest& r : job.aovs)  // Cryptomatte: its name, hash, conversion and manifest
+    if (r.ranks > 0)
+      add_cryptomatte_metadata(metadata, aov_info(r.type).name,
+                               r.type == AovType::CryptoObject ? scene.names.objects : scene.names.materials);
   return metadata;
 }
 
@@ -55,6 +47,7 @@ RunRecord run_record(const Options& o, const Job& job, const RenderScene& scene,
   record.time_budget = o.time_budget;
   record.passes = outcome.passes;
   record.resumed_spp = job.plan.start_spp;
+  record.last_pass_seconds = outcome.last_pass_seconds;
   record.partial = outcome.cancelled;
   record.signal = f.signal;
   record.threads = f.threads;
@@ -68,7 +61,12 @@ RunRecord run_record(const Options& o, const Job& job, const RenderScene& scene,
   record.rays = f.rays;
   record.rays_per_second = f.rays_per_second();
   record.memory_estimate_bytes = job.memory.total();
-  record.peak_memory_bytes = peak_rss_bytes();
+  record.peak_memory_bytes = peak_resident_bytes();
+  const MemoryEstimate& m = job.memory;
+  record.memory_estimate_parts = {{"baseline", m.baseline}, {"peak_so_far", m.peak_so_far},
+                                  {"reusable", m.reusable}, {"film", m.film},
+                                  {"images", m.images},     {"textures", m.textures},
+                                  {"geometry", m.geometry}, {"runtime", m.runtime}};
   record.versions = software_versions();
   const NonFiniteReport& nf = film.non_finite();
   record.non_finite = {nf.nan, nf.pos_inf, nf.neg_inf, nf.has_first, nf.x, nf.y, nf.sample};

@@ -112,16 +112,23 @@ int run(const Options& o) {
   // Write.
   t0 = Clock::now();
   const ImageMetadata metadata = render_metadata(*job, *scene, outcome, figures.render_s);
-  if (!write_outputs(o.outputs, film.layers(job->beauty_type), job->display, metadata, error))
-    return fail(error, kExitFailure);
+  // An output that cannot be written does not stop the others or the record.
+  const bool written =
+      write_outputs(o.outputs, film.layers(job->beauty_type), job->display, job->exr, metadata, job->stamps, error);
+  if (!written) std::cerr << "error: " << error << '\n';
   figures.write_s = seconds_since(t0);
 
   // Record.
   figures.samples = monitor.samples();
   figures.rays = monitor.rays();
   figures.signal = signals.received();
-  if (!o.report.empty() && !write_run_record(o.report, run_record(o, *job, *scene, film, outcome, figures), error))
+  const RunRecord record = o.report.empty() ? RunRecord{} : run_record(o, *job, *scene, film, outcome, figures);
+  if (!o.report.empty() &&
+      !write_guarded(
+          o.report, job->stamps, [&](const std::string& p, std::string& e) { return write_run_record(p, record, e); },
+          error))
     return fail(error, kExitFailure);
+  if (!written) return kExitFailure;
   if (outcome.cancelled) {
     std::cerr << interrupted_line(o, outcome, signals.received());
     return exit_status_for_signal(signals.received());
@@ -147,6 +154,11 @@ int main(int argc, char** argv) {
   pt::add_options(app, options);
   try {
     app.parse(argc, argv);
+  } catch (const CLI::ExtrasError& e) {
+    const std::string unknown = pt::unknown_option_message(app, app.remaining());
+    if (unknown.empty()) return app.exit(e) == 0 ? 0 : pt::kExitUsage;
+    std::cerr << "error: " << unknown << "\n" << "Run with --help for more information.\n";
+    return pt::kExitUsage;
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);  // prints help, version or the error
     return code == 0 ? 0 : pt::kExitUsage;

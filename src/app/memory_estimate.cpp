@@ -1,5 +1,7 @@
 #include "app/memory_estimate.h"
 
+#include <malloc.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -13,19 +15,28 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "core/file_access.h"
 #include "render/textures/texture.h"
 #include "scene/scene_description.h"
 
 namespace pt {
 namespace {
 
-// Per-primitive bytes of geometry plus acceleration structure. Upper-end
-// figures: Embree's BVH over triangles takes ~100-150 bytes per triangle with
-// the vertex and index buffers and our own per-triangle shading data;
-// analytic shapes are user geometry (one BVH leaf reference, a small record).
-constexpr uint64_t kBytesPerTriangle = 192;
-constexpr uint64_t kBytesPerVertex = 48;  // position, normal, uv in the render scene
-constexpr uint64_t kBytesPerShape = 256;
+// The acceleration structure's bytes per triangle at the peak of its build
+// (the structure, its build's primitive references and scratch, which exist
+// together), measured as peak RSS differences with tools/bench/memory
+// (docs/bench/memory.md: a 980k-triangle PLY took 82 bytes a triangle on our
+// BVH, whose final structure is 49, and 102 on Embree, final 73), with ~8%
+// to spare.
+constexpr uint64_t kBvhBytesPerTriangle = 88;
+constexpr uint64_t kEmbreeBytesPerTriangle = 112;
+// What any render adds whatever its size: the worker threads (stacks and
+// scratch), the task scheduler's and Embree's own state, the image writers'
+// buffers. Measured: 5.2 MiB (BVH) and 6.6 MiB (Embree) on the Cornell box.
+constexpr uint64_t kRuntimeBytes = uint64_t{7} << 20;
+// A shape of the render scene (its Shape variant, material and light entries)
+// and its place in the structure.
+constexpr uint64_t kBytesPerShape = 512;
 // A decoded texel (render/textures/texture.h: float RGB), and what the
 // environment map's sampling distribution adds per texel (a Distribution1D per
 // row: the function and its CDF, 8 bytes; the luminance table it is built from, 4).
@@ -41,13 +52,55 @@ uint64_t saturating_add(uint64_t a, uint64_t b) { return a > UINT64_MAX - b ? UI
 
 }  // namespace
 
+uint64_t MemoryEstimate::added() const {
+  return saturating_add(saturating_add(saturating_add(film, images), saturating_add(textures, geometry)), runtime);
+}
+
 uint64_t MemoryEstimate::total() const {
-  return saturating_add(saturating_add(film, images), saturating_add(textures, geometry));
+  const uint64_t grows = added() > reusable ? added() - reusable : 0;
+  return std::max(peak_so_far, saturating_add(baseline, grows));
+}
+
+uint64_t resident_bytes() {
+  FILE* f = std::fopen("/proc/self/statm", "r");
+  if (f == nullptr) return 0;
+  unsigned long long size = 0, resident = 0;
+  const int n = std::fscanf(f, "%llu %llu", &size, &resident);
+  std::fclose(f);
+  const long page = ::sysconf(_SC_PAGE_SIZE);
+  return n == 2 && page > 0 ? static_cast<uint64_t>(resident) * static_cast<uint64_t>(page) : 0;
+}
+
+uint64_t free_heap_bytes() {
+#if defined(__GLIBC__) && (__GLIBC__ > 2 || (__GLIBC__ == 2 && __GLIBC_MINOR__ >= 33))
+  return static_cast<uint64_t>(mallinfo2().fordblks);
+#else
+  return 0;
+#endif
+}
+
+uint64_t peak_resident_bytes() {
+  // VmHWM, the peak of this program's own address space. getrusage's
+  // ru_maxrss survives exec: a process started by a large parent (fork, then
+  // exec) reports the parent's resident size as its own peak.
+  if (FILE* f = std::fopen("/proc/self/status", "r")) {
+    char line[256];
+    unsigned long long kib = 0;
+    bool found = false;
+    while (!found && std::fgets(line, sizeof line, f) != nullptr)
+      found = std::sscanf(line, "VmHWM: %llu kB", &kib) == 1;
+    std::fclose(f);
+    if (found) return static_cast<uint64_t>(kib) * 1024;
+  }
+  rusage usage{};
+  if (::getrusage(RUSAGE_SELF, &usage) != 0) return 0;
+  return static_cast<uint64_t>(usage.ru_maxrss) * 1024;  // KiB on Linux
 }
 
 uint64_t texture_bytes(const SceneDescription& scene, const TextureLimits& limits) {
   uint64_t total = 0, largest_decode = 0;
   const auto add = [&](const std::string& path, uint64_t bytes_per_texel) {
+    if (!why_unreadable(path).empty()) return;  // no FIFO or device is opened; the build reports it
     const std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);  // the header only
     if (!in) {
       (void)OIIO::geterror();  // the build reports the file
@@ -75,20 +128,31 @@ uint64_t texture_bytes(const SceneDescription& scene, const TextureLimits& limit
   return saturating_add(total, largest_decode);
 }
 
+uint64_t geometry_bytes(const SceneDescription& scene, AccelKind accel) {
+  const uint64_t per_triangle = accel == AccelKind::Embree ? kEmbreeBytesPerTriangle : kBvhBytesPerTriangle;
+  uint64_t bytes = 0;
+  const auto add = [&](const ShapeDesc& shape) {
+    bytes += kBytesPerShape;
+    if (const auto* mesh = std::get_if<TriangleMesh>(&shape.geometry)) {
+      bytes += mesh->positions.size() * sizeof(Vec3f) + mesh->indices.size() * sizeof(uint32_t) +
+               mesh->normals.size() * sizeof(Vec3f) + mesh->uvs.size() * sizeof(Vec2f);  // the copy
+      bytes += mesh->triangle_count() * per_triangle;
+    }
+  };
+  for (const ShapeDesc& shape : scene.shapes) add(shape);
+  for (const ObjectDesc& object : scene.objects)
+    for (const ShapeDesc& shape : object.shapes) add(shape);
+  return bytes + scene.instances.size() * kBytesPerShape;
+}
+
 MemoryEstimate estimate_memory(const SceneDescription& scene, uint64_t pixels, const PixelBytes& per_pixel,
-                               int films) {
+                               int films, AccelKind accel) {
   MemoryEstimate e;
   e.film = pixels * per_pixel.film * static_cast<uint64_t>(films);
   e.images = pixels * per_pixel.images;
   e.textures = texture_bytes(scene);
-  for (const ShapeDesc& shape : scene.shapes) {
-    e.geometry += kBytesPerShape;
-    // A file's "triangle" (a one-triangle mesh) counts as one shape, as it
-    // always has: run records keep their figures.
-    const auto* mesh = std::get_if<TriangleMesh>(&shape.geometry);
-    if (mesh && shape.type != "triangle")
-      e.geometry += mesh->indices.size() / 3 * kBytesPerTriangle + mesh->positions.size() * kBytesPerVertex;
-  }
+  e.geometry = geometry_bytes(scene, accel);
+  e.runtime = kRuntimeBytes;
   return e;
 }
 
@@ -141,9 +205,12 @@ uint64_t physical_memory_bytes() {
 }
 
 std::string check_memory(const MemoryEstimate& e, uint64_t limit, uint64_t physical) {
-  const std::string detail = " (film " + byte_size_text(e.film) + ", images " + byte_size_text(e.images) +
-                             ", textures " + byte_size_text(e.textures) + ", geometry and acceleration structure " +
-                             byte_size_text(e.geometry) + ")";
+  std::string detail = " (the process so far " + byte_size_text(e.baseline) + ", film " + byte_size_text(e.film) +
+                       ", images " + byte_size_text(e.images) + ", textures " + byte_size_text(e.textures) +
+                       ", geometry and acceleration structure " + byte_size_text(e.geometry) + ", threads and " +
+                       "writers " + byte_size_text(e.runtime) + ")";
+  if (e.peak_so_far > saturating_add(e.baseline, e.added()))
+    detail = " (the peak while the scene was read " + byte_size_text(e.peak_so_far) + ")";
   if (limit > 0 && e.total() > limit)
     return "the render needs an estimated " + byte_size_text(e.total()) + detail + ", more than --max-memory " +
            byte_size_text(limit) + "; lower the resolution, crop, request fewer AOVs or raise the limit";

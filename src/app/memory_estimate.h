@@ -7,19 +7,40 @@
 #include <optional>
 #include <string>
 
+#include "accel/accelerator.h"
 #include "render/textures/texture.h"
 
 namespace pt {
 
 struct SceneDescription;
 
+// The process's peak resident memory as the render will make it: what is
+// resident when the estimate is made (measured), plus what the render will
+// allocate (estimated), or the peak so far if that is higher (docs/cli.md,
+// "Memory pre-flight"; tools/bench/memory compares it with measured peaks).
 struct MemoryEstimate {
+  uint64_t baseline = 0;  // resident when estimated: code, libraries, the parsed scene and its meshes (measured)
+  uint64_t peak_so_far = 0;  // the process's peak until then (measured): the mesh import's buffers, freed since
+  // Of the baseline, heap memory malloc holds free (measured, mallinfo2): the
+  // mesh import's freed buffers, which the render's first allocations reuse
+  // before the process grows.
+  uint64_t reusable = 0;
   uint64_t film = 0;      // the film's sums over the crop window (+ a second film while --resume reads one)
   uint64_t images = 0;    // the output buffers over the crop window: Film::layers() and the largest writer's
   uint64_t textures = 0;  // textures materials use and the environment map, decoded, from their file headers
-  uint64_t geometry = 0;  // scene geometry and acceleration structure, from primitive counts
-  uint64_t total() const;  // saturating (a file header may claim any size)
+  uint64_t geometry = 0;  // the render scene's copy of the geometry and the acceleration structure with its build
+  uint64_t runtime = 0;   // worker threads, the task scheduler, the image writers' buffers (a measured constant)
+  uint64_t added() const;  // film + images + textures + geometry + runtime, saturating (a file header may claim any size)
+  uint64_t total() const;  // max(peak_so_far, baseline + added() - reusable)
 };
+
+// The process's resident memory now (/proc/self/statm) and its peak so far
+// (/proc/self/status VmHWM; getrusage's ru_maxrss keeps a forking parent's
+// size across exec); 0 where unknown.
+uint64_t resident_bytes();
+uint64_t peak_resident_bytes();
+// Bytes malloc holds free in its heaps (mallinfo2 fordblks), 0 where unknown.
+uint64_t free_heap_bytes();
 
 // What the render allocates per pixel of its crop window.
 struct PixelBytes {
@@ -28,9 +49,16 @@ struct PixelBytes {
 };
 
 // `pixels`: the pixels of the crop window (the frame without a crop);
-// `films`: how many films exist at once.
+// `films`: how many films exist at once; `accel`: the backend that will be
+// built. The baseline and the peak so far are left 0 (the caller measures them).
 MemoryEstimate estimate_memory(const SceneDescription& scene, uint64_t pixels, const PixelBytes& per_pixel,
-                               int films = 1);
+                               int films = 1, AccelKind accel = AccelKind::Bvh);
+
+// What building the render scene adds for the geometry on `accel`: the
+// render scene's copy of every shape (meshes: their vertex, index, normal and
+// uv arrays, exactly) and the acceleration structure at its build's peak
+// (per-triangle and per-shape figures measured with tools/bench/memory).
+uint64_t geometry_bytes(const SceneDescription& scene, AccelKind accel);
 
 // The decoded size of the textures some material uses and of the environment
 // map, from their files' headers (OpenImageIO, nothing is decoded): 12 bytes a

@@ -103,7 +103,8 @@ int run_with_mpi(const Options& o, const std::function<int(const Options&)>& run
   return status;
 }
 
-int mpi_gather(const Options& o, const ShardInfo& info, const Film& film) {
+int mpi_gather(const Options& o, const ShardInfo& info, const Film& film, const ExrSettings& exr,
+               OutputStamps& stamps) {
   gathered = true;
   if (rank_of_world() > 0) {
     std::ostringstream out;
@@ -123,7 +124,7 @@ int mpi_gather(const Options& o, const ShardInfo& info, const Film& film) {
     }
     if (ok) ok = merge_rank(r, bytes, merger, error);
   }
-  ok = ok && merger.finish(error) && write_merged(merger, o.outputs, o.shard_out, "", error);
+  ok = ok && merger.finish(error) && write_merged(merger, o.outputs, o.shard_out, "", exr, stamps, error);
   if (!ok) {
     std::cerr << "error: --mpi: " << error << '\n';
     return kExitFailure;

@@ -11,6 +11,8 @@
 namespace pt {
 
 class Film;
+class OutputStamps;
+struct ExrSettings;
 struct Options;
 struct ShardInfo;
 
@@ -24,7 +26,9 @@ int run_with_mpi(const Options& o, const std::function<int(const Options&)>& run
 
 // After this rank's render: ranks above 0 send `info` and `film` to rank 0
 // and return; rank 0 merges every rank's state in rank order and writes -o
-// and --shard-out. Returns the exit status.
-int mpi_gather(const Options& o, const ShardInfo& info, const Film& film);
+// (with `exr` and `stamps`, as a render's outputs) and --shard-out. Returns
+// the exit status.
+int mpi_gather(const Options& o, const ShardInfo& info, const Film& film, const ExrSettings& exr,
+               OutputStamps& stamps);
 
 }  // namespace pt

@@ -14,6 +14,6 @@ int run_with_mpi(const Options&, const std::function<int(const Options&)>&) {
   return kExitUsage;
 }
 
-int mpi_gather(const Options&, const ShardInfo&, const Film&) { return kExitFailure; }
+int mpi_gather(const Options&, const ShardInfo&, const Film&, const ExrSettings&, OutputStamps&) { return kExitFailure; }
 
 }  // namespace pt

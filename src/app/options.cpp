@@ -1,18 +1,24 @@
 #include "app/options.h"
 
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
 #include <iterator>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include <CLI/CLI.hpp>
 
 #include "accel/accelerator.h"
 #include "app/outputs.h"
 #include "app/versions.h"
+#include "io/image_io.h"
 #include "render/film/aov.h"
 #include "render/integrators/integrator.h"
 #include "scene/resolution_limits.h"
 #include "scene/scene_description.h"
+#include "scene/suggest.h"
 
 namespace pt {
 namespace {
@@ -22,6 +28,31 @@ constexpr int kMaxSpp = 1 << 20;
 constexpr int kMaxDepth = 1 << 16;
 constexpr int kMaxResolution = ResolutionLimits{}.max_resolution;
 constexpr double kMaxSeconds = 1e7;
+
+// Numbers CLI11 would accept but the renderer cannot use (issue 20): CLI11's
+// Range lets NaN through (every comparison with it is false), and its integer
+// conversion wraps "-1" and 2^64 to 18446744073709551615.
+CLI::Validator finite_number() {
+  return CLI::Validator(
+    [](std::string& text) -> std::string {
+      char* end = nullptr;
+      const double v = std::strtod(text.c_str(), &end);
+      if (end == text.c_str()) return {};  // not a number: CLI11's own conversion says so
+      return std::isfinite(v) ? std::string() : "must be a finite number, got '" + text + "'";
+    },
+    "FINITE");
+}
+CLI::Validator seed_value() {
+  return CLI::Validator(
+    [](std::string& text) -> std::string {
+      uint64_t v = 0;
+      const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+      if (!text.empty() && ec == std::errc() && end == text.data() + text.size()) return {};
+      return "must be an integer in [0, " + std::to_string(std::numeric_limits<uint64_t>::max()) + "], got '" +
+             text + "'";
+    },
+    "UINT64");
+}
 
 }  // namespace
 
@@ -55,7 +86,7 @@ void add_render_options(CLI::App& app, Options& o) {
       ->check(CLI::Range(1, kMaxThreads));
   app.add_option("--spp", o.spp, "Samples per pixel (default: the scene's; with --time-budget: no limit)")
       ->check(CLI::Range(1, kMaxSpp));
-  app.add_option("--seed", o.seed, "Random seed")->capture_default_str();
+  app.add_option("--seed", o.seed, "Random seed")->check(seed_value())->capture_default_str();
   app.add_option("--integrator", o.integrator, "Integrator (default: the scene's)")
       ->check(CLI::IsMember(integrator_names()));
   app.add_option("--max-depth", o.max_depth, "Bounces (path) or recursion depth (whitted) (default: the scene's)")
@@ -67,7 +98,7 @@ void add_render_options(CLI::App& app, Options& o) {
       ->capture_default_str();
   app.add_option("--clamp", o.clamp,
                  "Path integrator: clamp each sample's radiance to this largest channel value (0: off, the default)")
-      ->check(CLI::Range(0.0f, std::numeric_limits<float>::max()));
+      ->check(finite_number() & CLI::Range(0.0f, std::numeric_limits<float>::max()));
   app.add_option("--width", o.width, "Image width (alone: keeps the scene's aspect ratio)")
       ->check(CLI::Range(1, kMaxResolution));
   app.add_option("--height", o.height, "Image height (alone: keeps the scene's aspect ratio)")
@@ -84,7 +115,8 @@ void add_render_options(CLI::App& app, Options& o) {
 
 // Display images, long renders and memory.
 void add_output_options(CLI::App& app, Options& o) {
-  app.add_option("--exposure", o.exposure, "Display images: exposure in stops (default: the scene's)");
+  app.add_option("--exposure", o.exposure, "Display images: exposure in stops (default: the scene's)")
+      ->check(finite_number());
   app.add_option("--view", o.view,
                  "Display images: 'standard' (sRGB) or 'aces' (ACES 1.0 SDR video), or a view of the OCIO config");
   app.add_option("--display", o.display, "Display images: a display of the OCIO config (default: its default)");
@@ -92,18 +124,18 @@ void add_output_options(CLI::App& app, Options& o) {
   app.add_option("--ocio-config", o.ocio_config, "OpenColorIO config file (default: $OCIO, if set)");
   app.add_option("--time-budget", o.time_budget,
                  "Render in progressive passes for at most this many seconds (with --spp: whichever comes first)")
-      ->check(CLI::Range(0.001, kMaxSeconds));
+      ->check(finite_number() & CLI::Range(0.001, kMaxSeconds));
   app.add_option("--pass-spp", o.pass_spp,
                  "Samples per progressive pass (default: all at once; adapted to the time under --time-budget)")
       ->check(CLI::Range(1, kMaxSpp));
   app.add_option("--checkpoint", o.checkpoint, "Write a checkpoint to this file at pass boundaries");
   app.add_option("--checkpoint-every", o.checkpoint_every, "Seconds between checkpoints")
-      ->check(CLI::Range(0.0, kMaxSeconds))
+      ->check(finite_number() & CLI::Range(0.0, kMaxSeconds))
       ->capture_default_str();
   app.add_option("--resume", o.resume, "Continue the render saved in this checkpoint (same scene and settings)");
   app.add_option("--progress-interval", o.progress_interval,
                  "Seconds between progress lines when stderr is not a terminal")
-      ->check(CLI::Range(0.05, kMaxSeconds))
+      ->check(finite_number() & CLI::Range(0.05, kMaxSeconds))
       ->capture_default_str();
   app.add_option("--max-memory", o.max_memory,
                  "Refuse renders estimated to need more memory than this (e.g. 4G, 512M)");
@@ -114,9 +146,25 @@ void add_film_options(CLI::App& app, Options& o) {
   app.add_option("--aov", o.aov,
                  "Extra EXR layers, comma-separated, each optionally ':half' or ':float' (docs/output.md): " +
                      join(aov_names(), ", ") + "; 'beauty:half' writes the beauty (R, G, B, A; float by default) as half");
+  app.add_option("--cryptomatte-levels", o.cryptomatte_levels,
+                 "Ids kept per pixel by the CryptoObject and CryptoMaterial AOVs (two per EXR layer)")
+      ->check(CLI::Range(1, kCryptomatteMaxRanks))
+      ->capture_default_str();
+  app.add_flag("--film-transparent", o.film_transparent,
+               "Leave what camera rays see when they hit nothing out of the image (alpha 0; PNG gets alpha); "
+               "it still lights the scene (default: the scene's render.film_transparent)");
+  app.add_option("--exr-compression", o.exr_compression,
+                 "EXR compression: " + join(exr_compression_names(), ", ") + " (dwaa/dwab take a level: dwaa:45)")
+      ->check([](const std::string& value) {
+        std::string error;
+        return check_exr_compression(value, error) ? std::string() : error;
+      })
+      ->capture_default_str();
+  app.add_flag("--multipart", o.multipart, "EXR: one part per layer (readers load only the parts they need)");
   auto* crop = app.add_option("--crop", o.crop, "Render only this region: X0,Y0,X1,Y1 as fractions of the frame")
                    ->delimiter(',')
-                   ->expected(4);
+                   ->expected(4)
+                   ->check(finite_number());
   app.add_option("--crop-px", o.crop_px, "Render only this region: X,Y,W,H in pixels")
       ->delimiter(',')
       ->expected(4)
@@ -145,6 +193,41 @@ void add_film_options(CLI::App& app, Options& o) {
 }
 
 }  // namespace
+
+namespace {
+
+// Options users reach for under other tools' names, and ours. Checked before
+// the edit distance: "--samples" is one edit from "--sample" (the replay's
+// index) but means --spp.
+constexpr std::pair<const char*, const char*> kOptionAliases[] = {
+    {"--samples", "--spp"},          {"--sample-count", "--spp"},      {"--samples-per-pixel", "--spp"},
+    {"--time", "--time-budget"},     {"--budget", "--time-budget"},    {"--time-limit", "--time-budget"},
+    {"--depth", "--max-depth"},      {"--bounces", "--max-depth"},     {"--max-bounces", "--max-depth"},
+    {"--out", "--output"},           {"--output-file", "--output"},    {"--override", "--set"},
+    {"--resolution", "--width"},     {"--res", "--width"},             {"--memory", "--max-memory"},
+    {"--threads-count", "--threads"}, {"--nthreads", "--threads"},     {"--aovs", "--aov"},
+    {"--restart", "--resume"},       {"--continue", "--resume"},       {"--run-report", "--report"},
+};
+
+}  // namespace
+
+std::string unknown_option_message(const CLI::App& app, const std::vector<std::string>& extras) {
+  std::vector<std::string> names;
+  for (const CLI::Option* opt : app.get_options())
+    for (const std::string& n : opt->get_lnames()) names.push_back("--" + n);
+  std::string message;
+  for (const std::string& arg : extras) {
+    if (arg.size() < 2 || arg[0] != '-') continue;
+    const std::string word = arg.substr(0, arg.find('='));
+    std::string suggestion;
+    for (const auto& [alias, name] : kOptionAliases)
+      if (word == alias) suggestion = name;
+    if (suggestion.empty()) suggestion = closest_match(word, names);
+    message += (message.empty() ? "" : "\nerror: ") + std::string("unknown option ") + pt::quoted(word) +
+               (suggestion.empty() ? "; see --help" : "; did you mean " + pt::quoted(suggestion) + "?");
+  }
+  return message;
+}
 
 void add_options(CLI::App& app, Options& o) {
   add_render_options(app, o);

@@ -43,6 +43,10 @@ struct Options {
   std::string max_memory;          // e.g. "4G"; empty: physical memory only
   // AOVs, crops and replays (docs/output.md).
   std::string aov;                 // --aov list; empty: beauty only
+  int cryptomatte_levels = 6;      // ranks per Cryptomatte AOV (kCryptomatteDefaultRanks)
+  bool film_transparent = false;   // the scene's render.film_transparent, or true
+  std::string exr_compression = "zip";
+  bool multipart = false;          // EXR: one part per layer
   std::vector<double> crop;        // fractions x0, y0, x1, y1; empty: the full frame
   std::vector<int> crop_px;        // pixels x, y, w, h; empty: the full frame
   // The replay of one sample: --pixel X,Y [--sample N], or the shorthand
@@ -74,6 +78,11 @@ constexpr int kExitUsage = 2;
 void add_options(CLI::App& app, Options& o);
 // The distributed-rendering group (shard_options.cpp), called by add_options.
 void add_distributed_options(CLI::App& app, Options& o);
+// For CLI11's "arguments were not expected": one line per unknown option in
+// `extras` (app.remaining()), "unknown option '--samples'; did you mean
+// '--spp'?" (a table of other tools' names, then the edit distance), or ""
+// when none of them looks like an option (then CLI11's message stands).
+std::string unknown_option_message(const CLI::App& app, const std::vector<std::string>& extras);
 std::string version_text();
 
 }  // namespace pt

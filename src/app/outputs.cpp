@@ -4,6 +4,7 @@
 #include <set>
 
 #include "app/options.h"
+#include "app/output_checks.h"
 #include "core/image.h"
 #include "io/image_io.h"
 #include "scene/scene_description.h"
@@ -47,10 +48,18 @@ DisplaySettings display_settings(const Options& o, const FilmDesc& film) {
 }
 
 bool write_outputs(const std::vector<std::string>& outputs, const LayeredImage& image, const DisplaySettings& display,
-                   const ImageMetadata& metadata, std::string& error) {
-  for (const std::string& path : outputs)
-    if (!write_layered_image(path, image, display, error, metadata)) return false;
-  return true;
+                   const ExrSettings& exr, const ImageMetadata& metadata, OutputStamps& stamps, std::string& error) {
+  bool all = true;
+  for (const std::string& path : outputs) {
+    std::string why;
+    const bool ok = write_guarded(
+        path, stamps,
+        [&](const std::string& p, std::string& e) { return write_layered_image(p, image, display, e, metadata, exr); },
+        why);
+    if (!ok && all) error = why;
+    all = all && ok;
+  }
+  return all;
 }
 
 }  // namespace pt

@@ -80,6 +80,7 @@ RenderOutcome render_passes(const RenderScene& scene, Film& film, WorkerPool& po
     const auto t0 = Clock::now();
     integrator->render(scene, film, pool);
     const double pass_s = seconds_since(t0);
+    out.last_pass_seconds = pass_s;
     if (settings.monitor != nullptr && settings.monitor->cancelled()) {
       out.cancelled = true;
       break;

@@ -47,6 +47,7 @@ struct RenderOutcome {
   int passes = 0;
   bool cancelled = false;   // stopped by a signal in the middle of a pass
   double seconds = 0.0;     // render time of this run (not of the resumed ones)
+  double last_pass_seconds = 0.0;  // the last pass's, complete or cancelled: how far a budget can be overrun
 };
 
 struct DriverCallbacks {

@@ -35,6 +35,7 @@ bool resolve_render_settings(const SceneDescription& desc, const SettingsOverrid
   s.clamp = o.clamp >= 0.0f ? o.clamp : desc.render.clamp.value;
   s.roulette_depth = o.roulette_depth;
   s.roulette_threshold = o.roulette_threshold;
+  s.film_transparent = o.film_transparent || desc.render.film_transparent.value;
   BuildOptions size;
   size.width_override = o.width;
   size.height_override = o.height;
@@ -59,6 +60,7 @@ RenderStamp RenderSettings::stamp() const {
   stamp.filter = filter_name();
   stamp.max_depth = integration.max_depth;
   stamp.clamp = integration.clamp;
+  stamp.film_transparent = integration.film_transparent;
   stamp.software_version = PT_VERSION;
   return stamp;
 }
@@ -77,14 +79,17 @@ void RenderSettings::describe(RunRecord& record) const {
 nlohmann::ordered_json RenderSettings::identity() const {
   // The configured sampler and filter (not the registry's names): the keys
   // every checkpoint written so far holds.
-  return {{"integrator", integrator_name()},
-          {"width", width},
-          {"height", height},
-          {"max_depth", integration.max_depth},
-          {"seed", integration.seed},
-          {"sampler", sampler_type_name(integration.sampler)},
-          {"filter", pixel_filter_name(integration.filter)},
-          {"clamp", integration.clamp}};
+  nlohmann::ordered_json id = {{"integrator", integrator_name()},
+                                {"width", width},
+                                {"height", height},
+                                {"max_depth", integration.max_depth},
+                                {"seed", integration.seed},
+                                {"sampler", sampler_type_name(integration.sampler)},
+                                {"filter", pixel_filter_name(integration.filter)},
+                                {"clamp", integration.clamp}};
+  // Only when set, so that the checkpoints of opaque renders keep their keys.
+  if (integration.film_transparent) id["film_transparent"] = true;
+  return id;
 }
 
 }  // namespace pt

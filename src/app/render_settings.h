@@ -35,6 +35,7 @@ struct SettingsOverrides {
   int roulette_depth = IntegratorSettings{}.roulette_depth;
   float roulette_threshold = IntegratorSettings{}.roulette_threshold;
   int width = 0, height = 0; // > 0: replaces the scene's (one alone keeps the aspect ratio)
+  bool film_transparent = false;  // true: transparent whatever the scene says
 };
 
 struct RenderSettings {
@@ -62,7 +63,8 @@ struct RenderSettings {
   // The run record's settings (the same, and the image size).
   void describe(RunRecord& record) const;
   // The settings a checkpoint must match to be resumed (not the pass size):
-  // integrator, width, height, max_depth, seed, sampler, filter, clamp.
+  // integrator, width, height, max_depth, seed, sampler, filter, clamp, and
+  // film_transparent when set.
   nlohmann::ordered_json identity() const;
 };
 

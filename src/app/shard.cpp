@@ -182,6 +182,8 @@ ShardInfo shard_info(const Job& job, const Film& film, const RenderOutcome& outc
   info.window = s.window;
   info.crop = film.crop();
   info.aovs = aov_list_text(job.aovs, job.beauty_type);
+  for (const AovRequest& r : job.aovs)
+    if (r.ranks > 0) info.cryptomatte_levels = r.ranks;
   info.pieces.push_back({film.crop(), s.tile, s.share, {s.share.begin, outcome.spp_done}});
   info.display = job.display;
   info.metadata = metadata;

@@ -12,11 +12,11 @@
 namespace pt {
 namespace {
 
-constexpr const char* kMagicLine = "pathtracer-shard 1";
+constexpr const char* kMagicLine = "pathtracer-shard 2";
 // Headers grow with the pieces of a merged file (about 100 bytes each).
 constexpr std::size_t kMaxHeaderBytes = 16 * 1024 * 1024;
 constexpr std::string_view kKeys[] = {"scene",  "scene_hash", "assets_hash", "version", "build",   "settings",
-                                      "frame",  "target_spp", "window",      "crop",    "aovs",    "pieces",
+                                      "frame",  "target_spp", "window",      "crop",    "aovs",    "cryptomatte_levels", "pieces",
                                       "display", "metadata",  "render_seconds", "partial"};
 
 using J = nlohmann::ordered_json;
@@ -53,6 +53,7 @@ J header_json(const ShardInfo& info) {
           {"window", rect_json(info.window)},
           {"crop", rect_json(info.crop)},
           {"aovs", info.aovs},
+          {"cryptomatte_levels", info.cryptomatte_levels},
           {"pieces", pieces},
           {"display", display_json(info.display)},
           {"metadata", metadata_json(info.metadata)},
@@ -171,7 +172,8 @@ bool read_identity(const J& j, Fields& f, ShardInfo& info) {
       !f.integer(frame[1], "the frame height", 1, kMaxSide, info.height) ||
       !f.integer(j["target_spp"], "\"target_spp\"", 1, kMaxCheckpointSpp, info.target_spp) ||
       !f.rect(j["window"], "\"window\"", info.width, info.height, info.window) ||
-      !f.rect(j["crop"], "\"crop\"", info.width, info.height, info.crop))
+      !f.rect(j["crop"], "\"crop\"", info.width, info.height, info.crop) ||
+      !f.integer(j["cryptomatte_levels"], "\"cryptomatte_levels\"", 1, kCryptomatteMaxRanks, info.cryptomatte_levels))
     return false;
   if (!j["partial"].is_boolean()) return f.fail("\"partial\" must be true or false");
   info.partial = j["partial"].get<bool>();
@@ -227,7 +229,7 @@ bool samples_fit(const ShardInfo& info, const Film& film, std::string& error) {
 }  // namespace
 
 bool ShardInfo::film_aovs(std::vector<AovRequest>& out, ChannelType& beauty, std::string& error) const {
-  return parse_aov_list(aovs, out, beauty, error);
+  return parse_aov_list(aovs, out, beauty, error, cryptomatte_levels);
 }
 
 bool write_shard(std::ostream& out, const ShardInfo& info, const Film& film) {

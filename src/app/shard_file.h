@@ -1,7 +1,7 @@
 // Shard files (--shard-out; docs/distributed.md): a film's exact state and
 // where it came from, for `pathtracer merge`.
 //
-//   line 1   "pathtracer-shard 1"
+//   line 1   "pathtracer-shard 2" (1: film states before coverage and exact Cryptomatte)
 //   line 2   one JSON object (ShardInfo): the scene path and hashes, the
 //            version and build, the settings every shard must share, the
 //            target, the window, the pieces (which samples of which pixels
@@ -46,6 +46,7 @@ struct ShardInfo {
   PixelRect window;          // the region the tiles split
   PixelRect crop;            // the film state's pixels
   std::string aovs;          // --aov syntax, beauty type included: "albedo:half,beauty:float"
+  int cryptomatte_levels = kCryptomatteDefaultRanks;  // the ranks of its Cryptomatte AOVs (--cryptomatte-levels)
   std::vector<ShardPiece> pieces;
   DisplaySettings display;   // for the merge's display images
   ImageMetadata metadata;    // the render's image metadata (camera, settings, backend)

@@ -41,6 +41,7 @@ std::string shard_mismatch(const ShardInfo& a, const ShardInfo& b) {
   differ(d, "target spp", std::to_string(a.target_spp), std::to_string(b.target_spp));
   differ(d, "window (the crop the tiles split)", a.window.text(), b.window.text());
   differ(d, "AOVs", a.aovs, b.aovs);
+  differ(d, "Cryptomatte levels", std::to_string(a.cryptomatte_levels), std::to_string(b.cryptomatte_levels));
   differ(d, "display", display_text(a.display), display_text(b.display));
   return d;
 }

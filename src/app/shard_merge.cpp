@@ -4,6 +4,7 @@
 #include <istream>
 #include <set>
 
+#include "app/output_checks.h"
 #include "app/outputs.h"
 
 namespace pt {
@@ -141,6 +142,7 @@ bool ShardMerger::add(const std::string& name, const ShardInfo& info, std::istre
   const PixelRect& c = info.crop;
   const auto width = static_cast<std::size_t>(c.width());
   StateRules rules;
+  rules.crop = c;
   rules.other_first.assign(width * static_cast<std::size_t>(c.height()), 0);
   rules.max_samples.assign(rules.other_first.size(), 0);
   std::map<Key, uint64_t> done;  // the samples each crop's pixels may hold
@@ -251,14 +253,16 @@ ImageMetadata ShardMerger::metadata() const {
 }
 
 bool write_merged(const ShardMerger& merger, const std::vector<std::string>& outputs, const std::string& shard_out,
-                  const std::string& ocio_config, std::string& error) {
+                  const std::string& ocio_config, const ExrSettings& exr, OutputStamps& stamps, std::string& error) {
   const ShardInfo& info = merger.info();
   std::vector<AovRequest> aovs;
   ChannelType beauty;
   if (!info.film_aovs(aovs, beauty, error)) return false;
   DisplaySettings display = info.display;
   if (!ocio_config.empty()) display.ocio_config = ocio_config;
-  if (!outputs.empty() && !write_outputs(outputs, merger.film().layers(beauty), display, merger.metadata(), error))
+  display.alpha = info.settings.value("film_transparent", false);  // PNG: RGBA, as the render's
+  if (!outputs.empty() &&
+      !write_outputs(outputs, merger.film().layers(beauty), display, exr, merger.metadata(), stamps, error))
     return false;
   return shard_out.empty() || write_shard(shard_out, info, merger.film(), error);
 }

@@ -3,7 +3,8 @@
 // states added up exactly, the coverage checked, the result's provenance.
 //
 // The result does not depend on the order in which shards are added: the
-// sums are exact integers, maxima commute, and a first-sample AOV (P, Z, ids)
+// sums are exact integers, maxima commute, Cryptomatte keeps the smallest ids
+// (a set, whatever the order: render/film/film.cpp), and a first-sample AOV (P, Z, ids)
 // takes, per tile, the value of the shard whose samples there start lowest.
 // The file merge still adds in a fixed order (tile, then first sample).
 #pragma once
@@ -15,10 +16,13 @@
 #include <vector>
 
 #include "app/shard_file.h"
+#include "io/image_io.h"
 #include "io/image_metadata.h"
 #include "render/film/film.h"
 
 namespace pt {
+
+class OutputStamps;
 
 class ShardMerger {
  public:
@@ -84,7 +88,8 @@ class ShardMerger {
 // `ocio_config` replacing theirs when not empty) and, if `shard_out` is not
 // empty, the merged state (a shard file of all the pieces, to merge again).
 // False with the first error; files written before it stay.
+// `exr` and `stamps` as for a render's outputs (app/outputs.h).
 bool write_merged(const ShardMerger& merger, const std::vector<std::string>& outputs, const std::string& shard_out,
-                  const std::string& ocio_config, std::string& error);
+                  const std::string& ocio_config, const ExrSettings& exr, OutputStamps& stamps, std::string& error);
 
 }  // namespace pt

@@ -1,15 +1,24 @@
 // Whether a file can be opened for reading, and if not why, in the system's
-// words. The readers (PLY, OBJ, textures) ask first, so that an unreadable
-// file is reported as such ("Permission denied") rather than as a file their
-// libraries could not open.
+// words. The readers (scene, PLY, OBJ, textures, the environment map,
+// checkpoints) ask first, so that an unreadable file is reported as such
+// ("Permission denied") rather than as a file their libraries could not open,
+// and so that nothing opens a FIFO (which blocks until a writer comes) or
+// reads a device such as /dev/zero (which never ends).
 #pragma once
 
 #include <string>
 
 namespace pt {
 
-// Why `path` cannot be opened for reading ("Permission denied", "No such file
-// or directory", ...), or an empty string if it can.
+// Why `path` cannot be read as a file, or an empty string if it can: the
+// system's words ("Permission denied", "No such file or directory"), or what
+// it is when it is no regular file ("it is a FIFO (named pipe), not a regular
+// file", "it is a character device, not a regular file", "it is a directory, not a
+// file", "it is a symbolic link loop (too many levels of symbolic links)").
 std::string why_unreadable(const std::string& path);
+
+// What kind of entry `path` is when it exists but is no regular file (the
+// phrases above), or an empty string (a regular file, or nothing there).
+std::string special_file_kind(const std::string& path);
 
 }  // namespace pt

@@ -12,10 +12,6 @@ namespace pt {
 
 namespace {
 
-// The CGR course mapping: code = 255 * v^g with g = log(87/255) / log(1/4), the
-// power curve through the course's one fixed point (a linear 0.25 background
-// shows as 87/255 in its reference images), 0 -> 0 and 1 -> 255.
-const float kCgrPower = static_cast<float>(std::log(87.0 / 255.0) / std::log(0.25));
 
 // Linear Rec.709 (D65) to CIE XYZ (D65), as a 4x4 row-major matrix.
 const double kRec709ToXyz[16] = {0.4123907993, 0.3575843394, 0.1804807884, 0,  //
@@ -109,9 +105,42 @@ OCIO::ConstProcessorRcPtr config_processor(const DisplaySettings& s, std::string
   return config->getProcessor(g);
 }
 
-float course_curve(DisplayTransform t, float v) {
-  v = std::clamp(v, 0.0f, 1.0f);
-  return t == DisplayTransform::CgrCourse ? std::pow(v, kCgrPower) : v;
+// The CGR course's display mapping, inferred from its reference images
+// (docs/rendering.md, "The CGR mapping"): the colour x is compressed
+// by its Rec.709 luminance as in Reinhard's operator, u = s k x / (1 + k L(x)),
+// then each channel is shown as the sRGB encoding of u^2.4 (a gamma-2.4 image
+// re-encoded as sRGB: a dark toe, then nearly linear). k is fitted; s puts the
+// course's one fixed point, a 0.25 grey background, at 87/255.
+constexpr float kCgrExposure = 0.9f;  // k
+constexpr float kCgrGamma = 2.4f;
+
+float srgb_oetf(float v) { return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f; }
+
+float cgr_channel(float u) { return srgb_oetf(std::pow(std::clamp(u, 0.0f, 1.0f), kCgrGamma)); }
+
+// s: the scale that shows the 0.25 grey as 87/255 (the inverse of the curve at 87/255).
+float cgr_scale() {
+  const double code = 87.0 / 255.0;
+  const double linear = std::pow((code + 0.055) / 1.055, 2.4);  // the sRGB EOTF (code > 0.04045)
+  const double u = std::pow(linear, 1.0 / kCgrGamma);
+  return static_cast<float>(u * (1.0 + 0.25 * kCgrExposure) / (0.25 * kCgrExposure));
+}
+
+// Negative and NaN -> 0, infinity -> a finite stand-in (the curve saturates long before).
+float usable(float v) { return v > 0.0f ? std::min(v, 1e30f) : 0.0f; }
+
+RGB cgr_course(RGB x) {
+  static const float s = cgr_scale();
+  x = RGB(usable(x.r), usable(x.g), usable(x.b));
+  const float luminance = 0.2126f * x.r + 0.7152f * x.g + 0.0722f * x.b;
+  const float f = s * kCgrExposure / (1.0f + kCgrExposure * luminance);
+  return RGB(cgr_channel(f * x.r), cgr_channel(f * x.g), cgr_channel(f * x.b));
+}
+
+// The 8-bit-bound value of a linear colour under a course transform (not OCIO's).
+RGB course_pixel(DisplayTransform t, RGB v) {
+  if (t == DisplayTransform::CgrCourse) return cgr_course(v);
+  return RGB(std::clamp(v.r, 0.0f, 1.0f), std::clamp(v.g, 0.0f, 1.0f), std::clamp(v.b, 0.0f, 1.0f));
 }
 
 unsigned char to_code(float v) {
@@ -140,7 +169,9 @@ std::unique_ptr<DisplayEncoder> DisplayEncoder::create(const DisplaySettings& s,
   std::string description;
   switch (s.transform) {
     case DisplayTransform::Linear: description = "Path of Light course: value x 255, clipped"; break;
-    case DisplayTransform::CgrCourse: description = "CGR course: 255 * v^0.776, clipped"; break;
+    case DisplayTransform::CgrCourse:
+      description = "CGR course: Reinhard on luminance (k 0.9), sRGB of v^2.4, clipped";
+      break;
     case DisplayTransform::Srgb:
       try {
         OCIO::ConstProcessorRcPtr p;
@@ -170,8 +201,7 @@ std::unique_ptr<DisplayEncoder> DisplayEncoder::create(const DisplaySettings& s,
 RGB DisplayEncoder::apply(RGB linear) const {
   RGB v = linear * impl_->scale;
   if (!impl_->processor) {
-    return {course_curve(impl_->transform, v.r), course_curve(impl_->transform, v.g),
-            course_curve(impl_->transform, v.b)};
+    return course_pixel(impl_->transform, v);
   }
   float rgb[3] = {v.r, v.g, v.b};
   impl_->processor->applyRGB(rgb);
@@ -193,7 +223,12 @@ void DisplayEncoder::encode(const RGB* linear, std::size_t count, unsigned char*
       OCIO::PackedImageDesc desc(buf.data(), static_cast<long>(n), 1, 3);
       impl_->processor->apply(desc);
     } else {
-      for (std::size_t i = 0; i < 3 * n; ++i) buf[i] = course_curve(impl_->transform, buf[i]);
+      for (std::size_t i = 0; i < n; ++i) {
+        const RGB c = course_pixel(impl_->transform, RGB(buf[3 * i], buf[3 * i + 1], buf[3 * i + 2]));
+        buf[3 * i] = c.r;
+        buf[3 * i + 1] = c.g;
+        buf[3 * i + 2] = c.b;
+      }
     }
     for (std::size_t i = 0; i < 3 * n; ++i) out[3 * start + i] = to_code(buf[i]);
   }

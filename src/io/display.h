@@ -32,6 +32,9 @@ struct DisplaySettings {
   std::string ocio_config;  // a config file; "" = $OCIO if set, else the built-in views above
   std::string display;      // config display ("" = the config's default)
   std::string look;         // config look(s), e.g. "+grade"; "" = none
+  // PNG only: write the beauty's alpha too (RGBA, straight alpha). The
+  // command line sets it for a transparent film (docs/output.md).
+  bool alpha = false;
 };
 
 // The names accepted as DisplaySettings::view without a config.

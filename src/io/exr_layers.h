@@ -6,6 +6,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "io/image_io.h"
 #include "io/image_metadata.h"
 #include "io/layered_image.h"
 
@@ -16,10 +17,12 @@ namespace pt {
 // primaries and the D65 white point.
 void add_image_metadata(OIIO::ImageSpec& spec, const ImageMetadata& metadata, bool typed);
 
-// Writes `image` to `path` as one single-part EXR: channels R, G, B, A, then
-// each AOV's channels in the image's layer order, each stored as its layer's
-// type; data window = the image's window, display window = its frame.
+// Writes `image` to `path`: channels R, G, B, A, then each AOV's channels in
+// the image's layer order, each stored as its layer's type; data window = the
+// image's window, display window = its frame; compressed as `exr` says. One
+// part, or with exr.multipart one part per layer (named after it, the beauty
+// "rgba"), each with every metadata attribute.
 bool write_exr_layers(const std::string& path, const LayeredImage& image, const ImageMetadata& metadata,
-                      std::string& error);
+                      const ExrSettings& exr, std::string& error);
 
 }  // namespace pt

@@ -24,6 +24,24 @@ bool is_supported_image_path(const std::string& path);
 // layer, float or half); false for the 8-bit formats and unsupported names.
 bool is_exr_path(const std::string& path);
 
+// How EXR files are written (--exr-compression, --multipart; docs/output.md).
+struct ExrSettings {
+  // OpenImageIO's name of the OpenEXR compression (exr_compression_names());
+  // "dwaa" and "dwab" may carry a level, "dwaa:45" (the default, 45).
+  std::string compression = "zip";
+  bool multipart = false;  // one part per layer instead of one part for all
+};
+
+// none, rle, zips, zip, piz, pxr24, b44, b44a, dwaa, dwab.
+std::vector<std::string> exr_compression_names();
+// True if `compression` is one of exr_compression_names(), or dwaa/dwab with
+// ":LEVEL" (a number > 0); false with `error` listing the names.
+bool check_exr_compression(const std::string& compression, std::string& error);
+// True if `compression` loses bits of 32-bit float channels (pxr24 rounds
+// them to 24 bits); such files cannot hold Cryptomatte ids. (b44 and dwa are
+// lossy only on half channels and on channels named R, G, B, Y, RY or BY.)
+bool exr_compression_rounds_floats(const std::string& compression);
+
 // Returns false and fills `error` on failure (nothing is left at `path` then).
 // `metadata` goes into the header (all of it in EXR; strings only in PNG/JPEG;
 // nothing in PPM).
@@ -31,10 +49,12 @@ bool write_image(const std::string& path, const Image& image, const DisplaySetti
                  std::string& error, const ImageMetadata& metadata = {});
 
 // Writes a multi-layer image: EXR gets every layer (io/exr_layers.h) with the
-// image's data window inside its frame; PNG/JPEG/PPM get the beauty's RGB of
-// the data window only (a crop is written as a smaller image).
+// image's data window inside its frame, written as `exr` says; PNG/JPEG/PPM
+// get the beauty's RGB of the data window only (a crop is written as a
+// smaller image), and a PNG with settings.alpha also its alpha (the colour
+// un-premultiplied before the display transform, as PNG's alpha is straight).
 bool write_layered_image(const std::string& path, const LayeredImage& image, const DisplaySettings& settings,
-                         std::string& error, const ImageMetadata& metadata = {});
+                         std::string& error, const ImageMetadata& metadata = {}, const ExrSettings& exr = {});
 
 // Reads an image (any format OpenImageIO reads) as float RGB: float files (EXR)
 // as they are; integer files (PNG, PPM) as code / max code, i.e. the display

@@ -41,6 +41,7 @@ struct RenderStamp {
   std::string filter;   // pixel filter
   int max_depth = 0;
   float clamp = 0.0f;   // firefly clamp on each sample's radiance; 0: off
+  bool film_transparent = false;  // the background was left out of the image (alpha 0)
   std::string software_version;
   // A signal (SIGINT, SIGTERM) stopped the render: some pixels have fewer
   // samples than others. Not set when a time budget runs out: that is the
@@ -53,7 +54,7 @@ struct RenderStamp {
 
 // Adds `stamp` to `metadata`: pathtracer:renderTime, pathtracer:clamp
 // (float; clamp 0 means off), pathtracer:spp, pathtracer:maxDepth,
-// pathtracer:partial (int 0/1), pathtracer:seed, pathtracer:backend,
+// pathtracer:partial and pathtracer:filmTransparent (int 0/1), pathtracer:seed, pathtracer:backend,
 // pathtracer:integrator, pathtracer:sampler, pathtracer:filter,
 // pathtracer:version (strings), and worldToCamera / worldToNDC when has_camera
 // (worldToNDC only for a camera that has one: not the spherical camera).
@@ -68,6 +69,7 @@ inline void add_render_stamp(ImageMetadata& metadata, const RenderStamp& stamp) 
   metadata.set("pathtracer:filter", stamp.filter);
   metadata.set("pathtracer:maxDepth", stamp.max_depth);
   metadata.set("pathtracer:clamp", stamp.clamp);
+  metadata.set("pathtracer:filmTransparent", stamp.film_transparent ? 1 : 0);
   metadata.set("pathtracer:version", stamp.software_version);
   if (stamp.has_camera) {
     metadata.set("worldToCamera", stamp.world_to_camera);

@@ -28,7 +28,8 @@ std::string run_record_json(const RunRecord& r) {
       {"progress", {{"spp_reached", r.spp}, {"target_spp", r.target_spp}, {"time_budget", r.time_budget},
                     {"passes", r.passes},
                     {"pass_spp", r.pass_spp > 0 ? nlohmann::ordered_json(r.pass_spp) : nlohmann::ordered_json("adaptive")},
-                    {"resumed_spp", r.resumed_spp}, {"partial", r.partial}, {"signal", r.signal}}},
+                    {"resumed_spp", r.resumed_spp}, {"last_pass_seconds", r.last_pass_seconds},
+                    {"partial", r.partial}, {"signal", r.signal}}},
       {"threads", r.threads},
       {"accel", {{"backend", r.accel_backend}, {"memory_bytes", r.accel_memory_bytes},
                  {"primitive_count", r.primitive_count}, {"build_seconds", t.accel_build}}},
@@ -39,6 +40,9 @@ std::string run_record_json(const RunRecord& r) {
                        {"rays", r.rays}, {"rays_per_second", r.rays_per_second}}},
       {"memory", {{"estimate_bytes", r.memory_estimate_bytes}, {"peak_rss_bytes", r.peak_memory_bytes}}},
   };
+  nlohmann::ordered_json parts = nlohmann::ordered_json::object();
+  for (const auto& [name, bytes] : r.memory_estimate_parts) parts[name] = bytes;
+  j["memory"]["estimate_parts"] = parts;
   nlohmann::ordered_json aovs = nlohmann::ordered_json::array();
   for (const auto& [name, type] : r.aovs) aovs.push_back({{"name", name}, {"type", type}});
   j["output"] = {{"files", r.outputs},

@@ -50,6 +50,7 @@ struct RunRecord {
   int passes = 0;
   int pass_spp = 0;            // samples per pass when the passes have a fixed size; 0: adaptive (time budget)
   int resumed_spp = 0;         // samples per pixel read from --resume's checkpoint
+  double last_pass_seconds = 0;  // the last pass's render time (a pass, once started, completes)
   bool partial = false;        // stopped by a signal before the target/budget
   int signal = 0;              // the signal that stopped it, 0 if none
   uint64_t seed = 0;
@@ -92,6 +93,7 @@ struct RunRecord {
     std::string view, display, look, ocio_config, pipeline;
   } display;
   uint64_t memory_estimate_bytes = 0;  // the pre-flight estimate
+  std::vector<std::pair<std::string, uint64_t>> memory_estimate_parts;  // its parts (app/memory_estimate.h)
   uint64_t peak_memory_bytes = 0;      // getrusage ru_maxrss
   SoftwareVersions versions;
 };

@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <type_traits>
+#include <unordered_map>
 #include <utility>
 
 #include "core/stopwatch.h"
+#include "render/film/cryptomatte.h"
 #include "scene/validate.h"
 
 namespace pt {
@@ -173,35 +176,60 @@ int shape_material_index(const SceneDescription& desc, const ShapeDesc& s, bool 
   return s.material;
 }
 
+// Cryptomatte's names (SceneNames), each listed once.
+class NameList {
+ public:
+  explicit NameList(std::vector<std::string>& names) : names_(names) {}
+  uint32_t index(const std::string& name) {
+    const auto [it, added] = index_.emplace(name, static_cast<uint32_t>(names_.size()));
+    if (added) names_.push_back(name);
+    return it->second;
+  }
+
+ private:
+  std::vector<std::string>& names_;
+  std::unordered_map<std::string, uint32_t> index_;
+};
+
+// A shape's Cryptomatte name: its own, else its place in the file ("shapes[3]").
+std::string shape_name(const ShapeDesc& s, std::size_t index) {
+  return s.name.empty() ? "shapes[" + std::to_string(index) + "]" : s.name;
+}
+
 // The shapes (object id = index in desc.shapes, then the objects' shapes in
 // order); a transformed shape becomes the one instance of a one-shape
 // prototype, each object a prototype, each instance an Instance.
 bool add_geometry(const SceneDescription& desc, bool need_default, RenderScene& scene, Diagnostics& diag) {
   SceneGeometry& g = scene.geometry;
+  NameList names(scene.names.objects);
   bool ok = true;
-  auto add_shape = [&](const ShapeDesc& s) {
+  auto add_shape = [&](const ShapeDesc& s, const std::string& name) {
     const int material = shape_material_index(desc, s, need_default, diag);
     ok = ok && material >= 0;
     g.shapes.push_back(s.geometry);
     scene.shape_material.push_back(std::max(material, 0));
+    scene.names.shape_object.push_back(names.index(name));
     return static_cast<uint32_t>(g.shapes.size() - 1);
   };
-  auto add_instance = [&](uint32_t prototype, const std::optional<Sourced<Transform>>& t, int material) {
+  auto add_instance = [&](uint32_t prototype, const std::optional<Sourced<Transform>>& t, int material,
+                          const std::string& name) {
     g.instances.push_back(Instance{prototype, t ? t->value : Transform()});
     scene.instance_material.push_back(material);
+    scene.names.instance_object.push_back(names.index(name));
   };
   g.shapes.reserve(desc.shapes.size());
   scene.shape_material.reserve(desc.shapes.size());
-  for (const ShapeDesc& s : desc.shapes) {
-    const uint32_t id = add_shape(s);
+  for (std::size_t i = 0; i < desc.shapes.size(); ++i) {
+    const ShapeDesc& s = desc.shapes[i];
+    const uint32_t id = add_shape(s, shape_name(s, i));
     if (!s.transform) continue;
     g.prototypes.push_back({id});
-    add_instance(static_cast<uint32_t>(g.prototypes.size() - 1), s.transform, -1);
+    add_instance(static_cast<uint32_t>(g.prototypes.size() - 1), s.transform, -1, shape_name(s, i));
   }
   const auto first_object = static_cast<uint32_t>(g.prototypes.size());
   for (const ObjectDesc& o : desc.objects) {
     std::vector<uint32_t> ids;
-    for (const ShapeDesc& s : o.shapes) ids.push_back(add_shape(s));
+    for (const ShapeDesc& s : o.shapes) ids.push_back(add_shape(s, o.name));  // seen through instances only
     g.prototypes.push_back(std::move(ids));
   }
   for (const InstanceDesc& inst : desc.instances) {
@@ -220,9 +248,24 @@ bool add_geometry(const SceneDescription& desc, bool need_default, RenderScene& 
         material = -1;
       }
     }
-    add_instance(first_object + static_cast<uint32_t>(inst.object), inst.transform, material);
+    add_instance(first_object + static_cast<uint32_t>(inst.object), inst.transform, material,
+                 inst.name.empty() ? desc.objects[static_cast<std::size_t>(inst.object)].name : inst.name);
   }
+  for (const std::string& name : scene.names.objects) scene.names.object_ids.push_back(cryptomatte_id(name));
   return ok;
+}
+
+// Cryptomatte's material names: the materials' own ("default" for the one a
+// scene without materials gets).
+void add_material_names(const SceneDescription& desc, RenderScene& scene) {
+  SceneNames& n = scene.names;
+  for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+    const std::string& own = i < desc.materials.size() ? desc.materials[i].name : std::string();
+    n.materials.push_back(!own.empty()                  ? own
+                          : i < desc.materials.size() ? "materials[" + std::to_string(i) + "]"
+                                                      : std::string("default"));
+    n.material_ids.push_back(cryptomatte_id(n.materials.back()));
+  }
 }
 
 }  // namespace
@@ -274,16 +317,19 @@ std::unique_ptr<RenderScene> build_render_scene(const SceneDescription& desc, co
   // the accelerators and lights rely on.
   if (!check_shapes_usable(desc, diag)) ok = false;
   if (!add_geometry(desc, need_default, *scene, diag)) ok = false;
+  add_material_names(desc, *scene);
 
   if (desc.environment) {
     const auto environment_start = Clock::now();
-    std::string error;
-    scene->environment_map = EnvironmentMap::load(*desc.environment, error, options.textures);
+    std::string error, warning;
+    scene->environment_map = EnvironmentMap::load(*desc.environment, error, options.textures, &warning);
     scene->texture_load_seconds += seconds_since(environment_start);
     if (!scene->environment_map) {
       diag.error(desc.environment->file.where,
                  "cannot read environment map '" + desc.environment->file.value + "': " + error);
       ok = false;
+    } else if (!warning.empty()) {
+      diag.warning(desc.environment->file.where, "environment map '" + desc.environment->file.value + "': " + warning);
     }
   }
 

@@ -40,6 +40,24 @@ inline thread_local uint64_t t_rays_traced = 0;
 }  // namespace detail
 inline uint64_t rays_traced_by_this_thread() { return detail::t_rays_traced; }
 
+// The names Cryptomatte gives what a camera ray hits (render/film/cryptomatte.h;
+// docs/output.md): an object is a shape placed directly (its `name`), or an
+// instance (its `name`, else its object's); a material is a material. Each
+// name is listed once; the ids are cryptomatte_id(name).
+struct SceneNames {
+  std::vector<std::string> objects;        // each once
+  std::vector<float> object_ids;           // per entry of `objects`
+  std::vector<uint32_t> shape_object;      // per shape: its entry in `objects` when placed directly
+  std::vector<uint32_t> instance_object;   // per instance: its entry in `objects`
+  std::vector<std::string> materials;      // per material (RenderScene::materials), each once
+  std::vector<float> material_ids;         // per material
+
+  // The id of what a hit on `shape` through `instance` (kNoInstance: placed directly) belongs to.
+  float object_id(uint32_t shape, uint32_t instance) const {
+    return object_ids[instance != kNoInstance ? instance_object[instance] : shape_object[shape]];
+  }
+};
+
 struct RenderScene {
   int width = 0, height = 0;
   Camera camera;
@@ -49,6 +67,7 @@ struct RenderScene {
   std::vector<int> shape_material;   // per shape, index into materials
   std::vector<int> instance_material;  // per instance: index into materials, or -1 for its shapes' own
   std::vector<Material> materials;
+  SceneNames names;  // Cryptomatte's
   std::vector<std::unique_ptr<Texture>> textures;  // stable addresses (materials point in)
   std::unique_ptr<Texture> background_image;       // render.background_image, if any
   // Owns the environment map (its sampling distribution included) when the

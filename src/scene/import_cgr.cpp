@@ -132,8 +132,9 @@ void read_shape(ImportContext& ctx, const JsonValue& v, std::size_t index) {
 }
 
 // The course's Phong renderer lights every surface with an ambient term whose
-// light is the background colour: ka Cd backgroundcolor with ka = kd (fitted
-// to the course's reference images, docs/rendering.md "The CGR course's model").
+// light is the background colour: Cd backgroundcolor, without kd (ka = 1),
+// inferred from the course's reference images (docs/rendering.md, "The course
+// reference images").
 // Not for "rendermode": "pathtracer" (the path integrator has no such term; its
 // background already lights the scene); the binary mode ignores lights.
 void add_course_ambient(SceneDescription& scene) {
@@ -142,6 +143,7 @@ void add_course_ambient(SceneDescription& scene) {
   ambient.where = scene.render.background.where;
   ambient.intensity = scene.render.background;
   scene.lights.emplace_back(std::move(ambient));
+  for (MaterialDesc& m : scene.materials) m.ka = Sourced<float>(1.0f, scene.render.background.where);
 }
 
 }  // namespace

@@ -118,6 +118,7 @@ void read_render(ImportContext& ctx, const JsonValue& v) {
   const int filter = read_choice(r, "filter", {std::begin(kPixelFilterNames), std::end(kPixelFilterNames)}, &filter_at);
   if (filter >= 0) render.filter = Sourced<PixelFilterType>(static_cast<PixelFilterType>(filter), filter_at);
   r.read("clamp", render.clamp);
+  r.read("film_transparent", render.film_transparent);
   Sourced<std::string> image;
   if (r.read("background_image", image) && image.where.valid()) {
     if (const std::optional<std::string> resolved = find_scene_file(ctx, image, "background image"))

@@ -63,7 +63,9 @@ void read_native_instance(ImportContext& ctx, const JsonValue& v, std::vector<Na
   if (material == -2) r.fail();
   if (material >= 0) inst.material = material;
   if (const JsonValue* t = r.get("transform"); t && !read_transform(ctx.read, *t, inst.transform)) r.fail();
-  r.allow({"name"});
+  Sourced<std::string> label;
+  r.read("name", label);
+  inst.name = label.value;
   r.finish();
   if (!r.ok()) return;
   std::vector<std::string> names;

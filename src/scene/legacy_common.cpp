@@ -1,6 +1,7 @@
 #include "scene/legacy_common.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <vector>
 
@@ -66,11 +67,31 @@ int read_light_type(ObjectReader& r, std::initializer_list<std::string_view> sup
   return -1;
 }
 
+namespace {
+
+// A camera type without case and separators: "thinLens", "Thin_Lens" and
+// "finite aperture" are the names "thinlens" and "finiteaperture".
+std::string plain_name(const std::string& s) {
+  std::string out;
+  for (char c : s)
+    if (c != '-' && c != '_' && c != ' ') out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
+}  // namespace
+
 CameraType read_camera_type(ObjectReader& r) {
   Sourced<std::string> type;
   if (!r.get("type") || !r.read("type", type)) return CameraType::Pinhole;  // absent: a pinhole, as before
   if (type.value == "pinhole") return CameraType::Pinhole;
   if (type.value == "thinlens" || type.value == "finite-aperture") return CameraType::ThinLens;
+  const std::string plain = plain_name(type.value);
+  if (plain == "pinhole" || plain == "thinlens" || plain == "finiteaperture") {
+    const bool lens = plain != "pinhole";
+    r.context().diag.warning(type.where, "camera type '" + type.value + "' read as '" +
+                                             (lens ? "thinlens" : "pinhole") + "'");
+    return lens ? CameraType::ThinLens : CameraType::Pinhole;
+  }
   const std::vector<std::string> names = {"pinhole", "thinlens", "finite-aperture"};
   const std::string suggestion = closest_match(type.value, names);
   if (!suggestion.empty() && edit_distance(type.value, suggestion) <= 2) {

@@ -15,7 +15,13 @@ namespace {
 
 constexpr std::initializer_list<const char*> kFileKeys = {"mPath", "modelpath", "plyPath", "filename", "path"};
 
-std::string numbered(char prefix, std::size_t i) { return std::string(1, prefix) + std::to_string(i); }
+// Built by append: `std::string(1, c) + std::to_string(i)` trips a GCC 12
+// -Wrestrict false positive.
+std::string numbered(char prefix, std::size_t i) {
+  std::string name(1, prefix);
+  name += std::to_string(i);
+  return name;
+}
 
 bool names_mesh_file(const JsonValue& v) {
   if (!v.is_string() || v.as_string().size() < 4) return false;

@@ -5,6 +5,7 @@
 #include <memory>
 #include <system_error>
 
+#include "core/file_access.h"
 #include "scene/detect.h"
 #include "scene/importers.h"
 #include "scene/json.h"
@@ -33,26 +34,43 @@ std::string too_large_message(std::uintmax_t bytes) {
 
 }  // namespace
 
+namespace {
+
+// Something other than a directory is there: a file, or a FIFO, a device, a
+// symbolic link loop, which the reader then names as what it is (why_unreadable)
+// rather than as a missing file.
+bool names_a_file(const fs::path& p) {
+  std::error_code ec;
+  const fs::file_status link = fs::symlink_status(p, ec);
+  if (ec || !fs::exists(link)) return false;
+  return !fs::is_directory(p, ec);
+}
+
+}  // namespace
+
 std::optional<std::string> resolve_scene_path(const std::string& scene_path, const std::string& written) {
   if (written.empty()) return std::nullopt;
-  std::error_code ec;
   const fs::path w(written);
-  if (w.is_absolute()) return fs::is_regular_file(w, ec) ? std::optional<std::string>(written) : std::nullopt;
+  if (w.is_absolute()) return names_a_file(w) ? std::optional<std::string>(written) : std::nullopt;
   const fs::path in_scene_dir = fs::path(scene_path).parent_path() / w;
-  if (fs::is_regular_file(in_scene_dir, ec)) return in_scene_dir.string();
-  if (fs::is_regular_file(w, ec)) return written;
+  if (names_a_file(in_scene_dir)) return in_scene_dir.string();
+  if (names_a_file(w)) return written;
   return std::nullopt;
 }
 
 std::optional<SceneDescription> load_scene(const std::string& path, const LoadOptions& options,
                                            Diagnostics& diag) {
   std::error_code ec;
-  if (!fs::exists(path, ec)) {
+  if (!names_a_file(path) && !fs::is_directory(path, ec)) {
     diag.error(file_only(path), "scene file not found");
     return std::nullopt;
   }
   if (fs::is_directory(path, ec)) {
     diag.error(file_only(path), "is a directory, not a scene file");
+    return std::nullopt;
+  }
+  if (const std::string why = why_unreadable(path); !why.empty()) {
+    diag.error(file_only(path), "cannot read the scene file: " + why);
     return std::nullopt;
   }
   const std::uintmax_t size = fs::file_size(path, ec);

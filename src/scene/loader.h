@@ -37,7 +37,9 @@ std::optional<SceneDescription> load_scene_from_string(const std::string& path, 
 
 // Resolves a relative path written in a scene file: first against the scene
 // file's directory, then against the working directory. Returns the existing
-// file's path, or std::nullopt if neither exists. Absolute paths are returned
+// file's path, or std::nullopt if neither exists. Anything but a directory
+// counts (a FIFO, a device, a symbolic link loop): its reader then says what
+// it is (core/file_access.h) instead of "not found". Absolute paths are returned
 // as they are if they exist.
 std::optional<std::string> resolve_scene_path(const std::string& scene_path, const std::string& written);
 

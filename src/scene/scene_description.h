@@ -120,6 +120,9 @@ struct RenderDesc {
   // camera rays that leave the scene see instead of `background` or the
   // environment. Bounce rays do not see it and it lights nothing.
   std::optional<TextureDesc> background_image;
+  // Cycles' Film > Transparent: what camera rays see when they hit nothing is
+  // left out of the image (alpha 0); it still lights the scene.
+  Sourced<bool> film_transparent{false};
 };
 
 
@@ -220,7 +223,7 @@ struct FieldLocation {
 // one-triangle mesh, a sphere's pole is unit length) and where it was written.
 struct ShapeDesc {
   SourceLocation where;
-  std::string name;   // optional label ("id" in Path of Light files)
+  std::string name;   // optional label ("id" in Path of Light files); Cryptomatte's object name
   std::string type;   // the file's type name ("sphere", "triangle", ...); empty if built in code
   std::string file;   // the mesh file as written; empty for inline data and other shapes
   Shape geometry;
@@ -256,6 +259,7 @@ struct ObjectDesc {
 // One placement of an object (a shape of type "instance").
 struct InstanceDesc {
   SourceLocation where;
+  std::string name;                              // optional; Cryptomatte's object name (default: the object's)
   int object = 0;                                // index into SceneDescription::objects
   std::optional<Sourced<Transform>> transform;   // object to world; absent: identity
   std::optional<int> material;                   // replaces the object's materials

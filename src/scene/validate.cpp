@@ -1,5 +1,6 @@
 #include "scene/validate.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -12,6 +13,16 @@ namespace {
 
 std::string str(double d) { return format_number(d); }
 std::string str(RGB c) { return std::string(1, '[') + str(c.r) + ", " + str(c.g) + ", " + str(c.b) + "]"; }
+
+// The largest radiometric value (emission, a light's intensity or irradiance,
+// background, ambient) and the largest product of one with a reflectance
+// (kd * diffuse, ks * specular) a scene may hold. A path's radiance is a float
+// (largest 3.4e38): the bound leaves 8 orders of magnitude for the geometric
+// factors (1/r^2 down to r = 1e-4, cosine over pdf) and a few bounces. Above
+// it a light or a surface would overflow to infinity, which the film counts as
+// non-finite and adds as black: the light would silently add nothing
+// (docs/scene-format.md, "Value limits").
+constexpr float kMaxRadiometric = 1e30f;
 
 // What the shape's own rule (geometry/shapes/*.h) finds wrong with it.
 std::vector<ShapeProblem> shape_problems(const ShapeDesc& s) {
@@ -66,6 +77,7 @@ class Validator {
     if (render.max_depth.value < 0)
       diag_.error(render.max_depth.where, "max_depth must be >= 0, got " + str(render.max_depth.value));
     colour(render.background, "background colour");
+    radiometric(render.background, "background colour");
     if (!(render.clamp.value >= 0.0f))
       diag_.error(render.clamp.where, "clamp must be >= 0 (0 turns it off), got " + str(render.clamp.value));
   }
@@ -81,24 +93,53 @@ class Validator {
     colour(m.diffuse, "diffuse colour");
     colour(m.specular, "specular colour");
     colour(m.emission, "emission");
+    radiometric(m.emission, "emission of material '" + m.name + "'");
+  }
+
+  // After every radiometric value was seen: a reflectance that overflows
+  // against the brightest of them (or on its own).
+  void reflectance(const MaterialDesc& m) {
+    const auto check = [&](const Sourced<RGB>& c, float scale, const char* name) {
+      const double r = static_cast<double>(c.value.max_component()) * scale;
+      if (!(r > kMaxRadiometric / std::max(1.0, brightest_))) return;
+      std::string why = std::string(name) + " " + str(c.value) + (scale != 1.0f ? " times " + str(scale) : "");
+      why += brightest_ > 1.0 ? " times the scene's brightest value " + str(brightest_) + " (the " + brightest_name_ +
+                                    ")"
+                              : std::string();
+      diag_.error(c.where, why + " exceeds " + str(kMaxRadiometric) +
+                               ": a path's radiance would overflow the float range (docs/scene-format.md, \"Value "
+                               "limits\")");
+    };
+    check(m.diffuse, m.kd.value, "diffuse colour");
+    check(m.specular, m.ks.value, "specular colour");
   }
 
   void light(const PointLightDesc& l) {
     colour(l.intensity, "light intensity");
     colour(l.specular_intensity, "specular intensity");
+    radiometric(l.intensity, "point light's intensity");
+    if (!(l.specular_intensity.value == l.intensity.value))  // by default the same value, reported once
+      radiometric(l.specular_intensity, "point light's specular intensity");
   }
 
   void light(const DirectionalLightDesc& l) {
     if (!(length(l.direction.value) > 0.0f))
       diag_.error(l.direction.where, "a directional light's direction must not be zero");
     colour(l.irradiance, "irradiance");
+    radiometric(l.irradiance, "directional light's irradiance");
   }
 
-  void light(const AmbientLightDesc& l) { colour(l.intensity, "ambient intensity"); }
+  void light(const AmbientLightDesc& l) {
+    colour(l.intensity, "ambient intensity");
+    radiometric(l.intensity, "ambient light's intensity");
+  }
 
   void light(const SpotLightDesc& l) {
     colour(l.intensity, "light intensity");
     colour(l.specular_intensity, "specular intensity");
+    radiometric(l.intensity, "spot light's intensity");
+    if (!(l.specular_intensity.value == l.intensity.value))  // by default the same value, reported once
+      radiometric(l.specular_intensity, "spot light's specular intensity");
     if (!(length(l.direction.value) > 0.0f))
       diag_.error(l.direction.where, "a spot light's direction must not be zero (look_at must differ from position)");
     const float cone = l.cone_angle.value, band = l.cone_delta.value;
@@ -111,6 +152,10 @@ class Validator {
   void environment(const EnvironmentDesc& e) {
     if (!(e.intensity.value >= 0.0f))
       diag_.error(e.intensity.where, "environment intensity must be >= 0, got " + str(e.intensity.value));
+    else if (e.intensity.value > kMaxRadiometric)  // its texels are checked against the bound when loaded
+      diag_.error(e.intensity.where, "environment intensity " + str(e.intensity.value) + " exceeds " +
+                                         str(kMaxRadiometric) + ": a path's radiance would overflow the float range " +
+                                         "(docs/scene-format.md, \"Value limits\")");
     if (!(length(e.up.value) > 0.0f)) diag_.error(e.up.where, "environment up axis must not be zero");
   }
 
@@ -134,6 +179,22 @@ class Validator {
     if (v.value < 0.0f) diag_.error(v.where, std::string(name) + " must be >= 0, got " + str(v.value));
   }
 
+  // A radiometric value: within kMaxRadiometric; the brightest is remembered
+  // for the reflectance products.
+  void radiometric(const Sourced<RGB>& c, const std::string& name) {
+    const float m = c.value.max_component();
+    if (m > kMaxRadiometric) {
+      diag_.error(c.where, name + " " + str(c.value) + " exceeds " + str(kMaxRadiometric) +
+                               ": a path's radiance would overflow the float range (docs/scene-format.md, \"Value "
+                               "limits\")");
+      return;
+    }
+    if (m > brightest_) {
+      brightest_ = m;
+      brightest_name_ = name;
+    }
+  }
+
   void colour(const Sourced<RGB>& c, const char* name) {
     if (c.value.r < 0.0f || c.value.g < 0.0f || c.value.b < 0.0f)
       diag_.error(c.where, std::string(name) + " must not be negative, got " + str(c.value));
@@ -141,6 +202,8 @@ class Validator {
 
   const LoadOptions& options_;
   Diagnostics& diag_;
+  double brightest_ = 0.0;  // the largest radiometric value within the bound
+  std::string brightest_name_;
 };
 
 // An infinite plane has infinite area, so an emitting one would have infinite
@@ -174,6 +237,7 @@ void validate_scene(const SceneDescription& scene, const LoadOptions& options, D
   v.render(scene.render);
   for (const MaterialDesc& m : scene.materials) v.material(m);
   for (const LightDesc& l : scene.lights) std::visit([&](const auto& light) { v.light(light); }, l);
+  for (const MaterialDesc& m : scene.materials) v.reflectance(m);
   for (const ShapeDesc& s : scene.shapes) {
     v.shape(s);
     emitting_plane(scene, s, diag);

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "scratch_dir_test.h"
@@ -33,11 +35,37 @@ inline std::string path_scene(int width, int height, int spp) {
 })";
 }
 
+// A sphere in front of a backdrop image `backdrop` (write it with
+// AppTest::write_image): camera rays that miss the sphere see it. With a
+// backdrop of +Inf their samples are +Inf. (The values a scene writes are
+// bounded so that paths cannot overflow, docs/scene-format.md "Value limits",
+// and environment maps are checked texel by texel; a backdrop image is not,
+// and is the way left to make the renderer meet non-finite samples.)
+inline std::string backdrop_scene(const std::string& backdrop, int width, int height, int spp) {
+  return R"({"format": "pathtracer-scene", "version": 1,
+  "camera": {"position": [0, 1, 4], "look_at": [0, 0.5, 0], "fov": 40},
+  "film": {"width": )" + std::to_string(width) + R"(, "height": )" + std::to_string(height) + R"(},
+  "render": {"integrator": "path", "max_depth": 8, "spp": )" + std::to_string(spp) +
+         R"(, "background_image": ")" + backdrop + R"("},
+  "materials": {"white": {"type": "lambert", "diffuse": [0.9, 0.9, 0.9]}},
+  "shapes": [{"type": "sphere", "center": [0, 0.5, 0], "radius": 0.5, "material": "white"}]
+})";
+}
+
 class AppTest : public ScratchDirTest {
  protected:
   AppTest() : ScratchDirTest("pt_app_test_") {}
 
   void write(const std::string& name, const std::string& text) const { std::ofstream(path(name)) << text; }
+  // Writes a w x h RGB float image file of `value`.
+  void write_image(const std::string& name, int w, int h, float value) const {
+    auto out = OIIO::ImageOutput::create(path(name));
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open(path(name), OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::FLOAT)));
+    const std::vector<float> pixels(static_cast<std::size_t>(w) * h * 3, value);
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+    ASSERT_TRUE(out->close());
+  }
   nlohmann::json read_json(const std::string& name) const {
     return nlohmann::json::parse(slurp(path(name)), nullptr, false);
   }

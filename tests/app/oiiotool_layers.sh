@@ -27,8 +27,8 @@ expect() {
 }
 # Every channel with its type: R, G, B, A float; each AOV's default or asked type.
 for c in R G B A; do expect "$c (float)"; done
-for c in Z IndexOB IndexMA samples; do expect "$c (float)"; done
-expect "nonfinite (half)"
+for c in Z IndexOB.X IndexMA.X samples.X; do expect "$c (float)"; done
+expect "nonfinite.X (half)"
 for c in R G B; do
   expect "albedo.$c (half)"
   for layer in emission diffuse_direct diffuse_indirect specular_direct variance; do expect "$layer.$c (float)"; done

@@ -191,7 +191,7 @@ class RecordingIntegrator : public Integrator {
   void render(const RenderScene&, Film& film, WorkerPool&) const override {
     log_.emplace_back(s_.first_sample, s_.spp);
     PixelSum sum;
-    for (int i = 0; i < s_.spp; ++i) sum.add(RGB(1, 1, 1), 1.0f);
+    for (int i = 0; i < s_.spp; ++i) sum.add(RGB(1, 1, 1), 1.0f, true);
     film.add(0, 0, sum);
   }
 
@@ -276,6 +276,46 @@ TEST(MemoryEstimate, ParsesSizes) {
   EXPECT_FALSE(parse_byte_size("99999999999T").has_value());
 }
 
+// The estimate is of the process's peak (issue 20): what is resident when it
+// is made, plus what the render adds, less what malloc holds free to reuse;
+// or the peak so far if that was higher (the mesh import's buffers).
+TEST(MemoryEstimate, CountsTheProcessAsItIsAndReusesFreedHeap) {
+  MemoryEstimate e;
+  e.film = 100;
+  e.images = 20;
+  e.textures = 30;
+  e.geometry = 50;
+  EXPECT_EQ(e.added(), 200u);
+  e.baseline = 1000;
+  EXPECT_EQ(e.total(), 1200u);
+  e.reusable = 80;
+  EXPECT_EQ(e.total(), 1120u);
+  e.reusable = 500;  // more free than the render needs: it does not grow
+  EXPECT_EQ(e.total(), 1000u);
+  e.peak_so_far = 5000;
+  EXPECT_EQ(e.total(), 5000u);
+  const std::string why = check_memory(e, 4096, 0);
+  EXPECT_NE(why.find("the peak while the scene was read 4.88 KiB"), std::string::npos) << why;
+  // Measured for this process: it is resident, and at its peak at least as much.
+  EXPECT_GT(resident_bytes(), 1u << 20);
+  EXPECT_GE(peak_resident_bytes(), resident_bytes() / 2);
+  // And counted for every shape of the scene, instanced objects included.
+  SceneDescription scene;
+  ShapeDesc mesh;
+  TriangleMesh m;
+  m.positions.resize(30);
+  m.indices.resize(3 * 10);
+  mesh.geometry = m;
+  ObjectDesc object;
+  object.shapes.push_back(mesh);
+  scene.objects.push_back(object);
+  const uint64_t one = geometry_bytes(scene, AccelKind::Bvh);
+  EXPECT_GE(one, 30u * 12u + 30u * 4u);  // at least the render scene's copy of the mesh
+  scene.objects.push_back(object);
+  EXPECT_GT(geometry_bytes(scene, AccelKind::Bvh), one);
+  EXPECT_GT(geometry_bytes(scene, AccelKind::Embree), geometry_bytes(scene, AccelKind::Bvh));
+}
+
 TEST(MemoryEstimate, ScalesWithPixelsFilmBytesAndTriangles) {
   SceneDescription scene;
   const MemoryEstimate small = estimate_memory(scene, 100 * 100, {40, 32});
@@ -293,7 +333,7 @@ TEST(MemoryEstimate, ScalesWithPixelsFilmBytesAndTriangles) {
   scene.shapes.push_back(mesh);
   EXPECT_GT(estimate_memory(scene, 100 * 100, {40, 32}).geometry, 1000u * 100u);
   const MemoryEstimate e = estimate_memory(scene, 100 * 100, {40, 32});
-  EXPECT_EQ(e.total(), e.film + e.images + e.textures + e.geometry);
+  EXPECT_EQ(e.total(), e.film + e.images + e.textures + e.geometry + e.runtime);
   EXPECT_TRUE(check_memory(e, 0, 0).empty());
   EXPECT_TRUE(check_memory(e, e.total(), 0).empty());
   const std::string why = check_memory(e, e.total() - 1, 0);
@@ -311,17 +351,21 @@ TEST(MemoryEstimate, OutputBuffersCountEveryAovChannel) {
   std::vector<AovRequest> all;
   std::size_t channels = 4;
   for (const AovInfo& info : aov_catalogue()) {
-    all.push_back({info.type, info.default_type});
-    channels += static_cast<std::size_t>(info.channels);
+    const AovRequest r{info.type, info.default_type, info.accumulation == Accumulation::Ranked ? 6 : 0};
+    all.push_back(r);
+    channels += static_cast<std::size_t>(aov_channel_count(r));
   }
-  EXPECT_EQ(channels, 39u);
-  EXPECT_EQ(output_bytes_per_pixel(all, {"a.png", "a.exr"}), 2 * 39u * 4u);  // 312 bytes a pixel
-  // The film: PixelSum (four 16-byte exact sums and a count), then each
-  // AOV's exact sums and plain values.
-  EXPECT_EQ(sizeof(PixelSum), 72u);
+  EXPECT_EQ(channels, 39u + 2 * 12u);  // Cryptomatte: 6 ranks are 3 layers of r, g, b, a
+  EXPECT_EQ(output_bytes_per_pixel(all, {"a.png", "a.exr"}), 2 * 63u * 4u);  // 504 bytes a pixel
+  // The film: PixelSum (five 16-byte exact sums: r, g, b, weight, coverage;
+  // and a count), then each AOV's exact sums and plain values (Cryptomatte:
+  // two exact sums per rank, the id's bits and its weight).
+  EXPECT_EQ(sizeof(PixelSum), 88u);
   EXPECT_EQ(film_bytes_per_pixel({}), sizeof(PixelSum));
   EXPECT_EQ(film_bytes_per_pixel({{AovType::Position, ChannelType::Float}}), sizeof(PixelSum) + 4 * sizeof(double));
   EXPECT_EQ(film_bytes_per_pixel({{AovType::Variance, ChannelType::Float}}), sizeof(PixelSum) + 6 * sizeof(ExactSum));
+  EXPECT_EQ(film_bytes_per_pixel({{AovType::CryptoObject, ChannelType::Float, 6}}),
+            sizeof(PixelSum) + 12 * sizeof(ExactSum));  // 280 bytes
 }
 
 // Textures are estimated from their files' headers: only those a material

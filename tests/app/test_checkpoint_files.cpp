@@ -114,7 +114,7 @@ TEST_F(ResumeHostile, DamagedFilmStatesAreRefused) {
   // A sample count in the first pixel beyond the header's spp_done (the
   // sums are exact integers: any bits are some sum, none is non-finite).
   std::string body = good_.body;
-  const std::size_t first_count = body.size() - 8 * 6 * 72 + 64;  // 8x6 pixels of 72 bytes, no AOVs
+  const std::size_t first_count = body.size() - 8 * 6 * 88 + 80;  // 8x6 pixels of 88 bytes, no AOVs
   const uint64_t many = 1000;
   body.replace(first_count, sizeof many, reinterpret_cast<const char*>(&many), sizeof many);
   expect_refused(good_.magic + good_.header + body, "holds 1000 samples in pixel (0, 0)");

@@ -98,9 +98,11 @@ TEST_F(Distributed, SampleSharesMergeToTheSingleRenderBitForBit) {
   for (int n : {1, 2, 3, 5}) {
     std::vector<std::pair<std::string, std::string>> shards;
     for (int k = 0; k < n; ++k) {
-      std::string share = std::to_string(k);  // appended: GCC 12 warns falsely about "a" + b (-Wrestrict)
-      share.append("/").append(std::to_string(n));
-      shards.emplace_back("n" + std::to_string(n) + "_" + std::to_string(k), "--shard " + share);
+      // Appended: GCC 12 warns falsely about "a" + b (-Wrestrict).
+      std::string share = "--shard ", name = "n";
+      share.append(std::to_string(k)).append("/").append(std::to_string(n));
+      name.append(std::to_string(n)).append("_").append(std::to_string(k));
+      shards.emplace_back(name, share);
     }
     const std::string out = "merged" + std::to_string(n) + ".exr";
     const RunResult m = shards_and_merge(shards, out);
@@ -185,6 +187,53 @@ TEST_F(Distributed, WhatDoesNotBelongTogetherIsRefused) {
   EXPECT_EQ(run("merge -o m.exr").status, 2);
   r = run("merge nothing.ptshard -o m.exr");
   EXPECT_NE(r.err.find("cannot open shard file 'nothing.ptshard'"), std::string::npos) << r.err;
+}
+
+TEST_F(Distributed, CompositingLayersMergeExactly) {
+  // A transparent film (alpha is the coverage) and Cryptomatte with 2 levels,
+  // fewer than the ids some pixels see, so that slots overflow in the shards.
+  const std::string render = "s.json --seed 5 --quiet --film-transparent --cryptomatte-levels 2 "
+                             "--aov CryptoObject,CryptoMaterial,Z,beauty:half";
+  ASSERT_EQ(run(render + " -o single.exr").status, 0);
+  std::string list;
+  for (const char* s : {"0/3", "1/3", "2/3"}) {
+    const std::string name = std::string("c").append(1, s[0]).append(".ptshard");
+    const RunResult r = run(render + " --shard " + s + " --shard-out " + name);
+    ASSERT_EQ(r.status, 0) << r.err;
+    list.insert(0, " " + name);  // the last first
+  }
+  RunResult r = run("merge" + list + " -o merged.exr -o merged.png");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Exr single = read_exr(path("single.exr")), merged = read_exr(path("merged.exr"));
+  EXPECT_EQ(differs(single, merged), "");
+  EXPECT_NE(std::find(merged.channels.begin(), merged.channels.end(), "CryptoObject00.r"), merged.channels.end());
+  int manifests = 0;
+  for (const auto& [name, value] : single.attributes)
+    if (name.rfind("cryptomatte/", 0) == 0) {
+      ++manifests;
+      EXPECT_EQ(merged.attr(name), value) << name;
+    }
+  EXPECT_EQ(manifests, 8);  // name, hash, conversion, manifest of two types
+  auto png = OIIO::ImageInput::open(path("merged.png"));
+  ASSERT_TRUE(png);
+  EXPECT_EQ(png->spec().nchannels, 4);  // a transparent film's PNG has alpha, merged or not
+  // Shards of another level count do not merge; a compression that rounds
+  // floats is refused for Cryptomatte ids; no output may replace a shard.
+  ASSERT_EQ(run(std::string(render).replace(render.find("levels 2"), 8, "levels 3") +
+                " --shard 1/3 --shard-out l.ptshard").status,
+            0);
+  r = run("merge c0.ptshard l.ptshard c2.ptshard -o m.exr");
+  EXPECT_NE(r.err.find("they differ in Cryptomatte levels 2 vs 3"), std::string::npos) << r.err;
+  r = run("merge" + list + " -o m.exr --exr-compression pxr24");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("destroys CryptoObject's ids"), std::string::npos) << r.err;
+  r = run("merge" + list + " --shard-out c0.ptshard");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("cannot write --shard-out 'c0.ptshard': it is the shard 'c0.ptshard' being merged"), std::string::npos) << r.err;
+  // A shard's --shard-out is checked before the scene is read, as -o is.
+  r = run(render + " --shard 0/3 --shard-out no/such/folder/x.ptshard");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("cannot write --shard-out 'no/such/folder/x.ptshard': the folder"), std::string::npos) << r.err;
 }
 
 // The header (second line) of a shard file, and its film state (the rest).

@@ -18,6 +18,11 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// How long a test waits for a child before giving up on it: a guard against a
+// hung suite, never a bound on speed (no test may bound process wall-clock
+// time; the assertions are on what the program reports).
+constexpr double kHangGuard = 300.0;
+
 // The "pathtracer:*" header attributes of an EXR; false if it cannot be read.
 bool read_render_metadata(const std::string& file, int& spp, int& partial) {
   auto in = OIIO::ImageInput::open(file);
@@ -70,20 +75,20 @@ TEST_F(LongRender, ProgressLinesWhenStderrIsNotATerminal) {
 
 TEST_F(LongRender, TimeBudgetIsHonoured) {
   write("s.json", path_scene(64, 48, 1));
-  const auto t0 = Clock::now();
   const RunResult r = run("s.json -o a.exr --time-budget 2 --report run.json --quiet");
-  const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
   ASSERT_EQ(r.status, 0) << r.err;
   const nlohmann::json rec = read_json("run.json");
   ASSERT_TRUE(rec.is_object());
-  const double setup = rec["timings"]["total"].get<double>() - rec["timings"]["render"].get<double>();
-  // Loose bounds (not a performance test): the render takes the budget, give
-  // or take 1 s; the process the budget plus the other phases plus slack for
-  // start-up and exit on a loaded machine (the whole suite on 2 cores).
+  // Bounds on what the driver controls, on the render's own clock (not on the
+  // process's wall-clock time, which a loaded machine stretches: start-up,
+  // parsing and writing are not the budget's business): no pass starts once
+  // the budget is spent (a started pass completes, and on a loaded machine
+  // may take longer than planned, so the render's end is not bounded).
   const double render = rec["timings"]["render"].get<double>();
-  EXPECT_LE(render, 2.0 + 1.0) << rec.dump();
+  const double last_pass = rec["progress"]["last_pass_seconds"].get<double>();
+  EXPECT_GT(last_pass, 0.0) << rec.dump();
+  EXPECT_LE(render - last_pass, 2.0 + 0.5) << rec.dump();  // + stopping the progress thread, setting up a pass
   EXPECT_GE(render, 1.0) << rec.dump();  // the budget is used (the scene's 1 spp is not the limit)
-  EXPECT_LE(wall, 2.0 + setup + 3.0) << rec.dump();
   EXPECT_GT(rec["progress"]["spp_reached"].get<int>(), 1);
   EXPECT_EQ(rec["progress"]["time_budget"].get<double>(), 2.0);
   EXPECT_FALSE(rec["progress"]["partial"].get<bool>());
@@ -109,9 +114,9 @@ TEST_F(LongRender, SppAndTimeBudgetStopAtWhicheverComesFirst) {
 
 // Sends `signal_number` once the child has printed progress; expects exit status 128 + it.
 void interrupt_after_progress(ChildProcess& child, int signal_number) {
-  ASSERT_TRUE(child.wait_for_output("progress: ", 30.0)) << child.err();
+  ASSERT_TRUE(child.wait_for_output("progress: ", kHangGuard)) << child.err();
   child.send(signal_number);
-  EXPECT_EQ(child.wait(30.0), 128 + signal_number) << child.err();
+  EXPECT_EQ(child.wait(kHangGuard), 128 + signal_number) << child.err();
   EXPECT_NE(child.err().find("wrote partial"), std::string::npos) << child.err();
 }
 
@@ -134,6 +139,74 @@ TEST_F(LongRender, SigintWritesPartialOutputsAndExitsWith130) {
   EXPECT_TRUE(rec["progress"]["partial"].get<bool>());
   EXPECT_EQ(rec["progress"]["signal"], SIGINT);
   EXPECT_EQ(rec["progress"]["spp_reached"], spp);
+  EXPECT_FALSE(has_temporary_files());
+}
+
+// One pass of 2^20 samples in each pixel of one 16x16 tile, on one thread:
+// minutes of work. Before issue 20 the signal was seen only between tiles, so
+// the render went on to the tile's end; now it stops inside the pixel. The
+// test asserts what the program reports, not how long it took: the samples it
+// rendered are fewer than the tile's, the outputs are marked partial, and the
+// record agrees with the image's sample counts.
+TEST_F(LongRender, SigintStopsInsideALongPass) {
+  write("s.json", path_scene(16, 16, 1));
+  ChildProcess child = spawn({"s.json", "-o", "p.exr", "-o", "p.png", "--spp", "1048576", "--threads", "1",
+                              "--aov", "samples", "--progress-interval", "0.05", "--report", "run.json"});
+  ASSERT_TRUE(child.started());
+  interrupt_after_progress(child, SIGINT);
+  const nlohmann::json rec = read_json("run.json");
+  ASSERT_TRUE(rec.is_object());
+  EXPECT_TRUE(rec["progress"]["partial"].get<bool>());
+  EXPECT_EQ(rec["progress"]["spp_reached"], 0);  // the one pass did not complete
+  EXPECT_EQ(rec["progress"]["passes"], 0);
+  const int64_t rendered = rec["performance"]["pixel_samples"].get<int64_t>();
+  EXPECT_GT(rendered, 0);
+  EXPECT_LT(rendered, int64_t{16} * 16 * 1048576) << "the whole tile was rendered after the signal";
+  // The samples layer holds each pixel's own count: they add up to the record's.
+  auto in = OIIO::ImageInput::open(path("p.exr"));
+  ASSERT_TRUE(in);
+  EXPECT_EQ(in->spec().get_int_attribute("pathtracer:partial", -1), 1);
+  int c = -1;  // "samples", or a name with a component suffix ("samples.X")
+  std::string names;
+  for (int i = 0; i < in->spec().nchannels; ++i) {
+    const std::string name(in->spec().channel_name(i));
+    names += name + " ";
+    if (name.rfind("samples", 0) == 0) c = i;
+  }
+  ASSERT_GE(c, 0) << names;
+  std::vector<float> counts(16 * 16);
+  ASSERT_TRUE(in->read_image(0, 0, c, c + 1, OIIO::TypeFloat, counts.data())) << in->geterror();
+  double sum = 0;
+  for (float n : counts) sum += n;
+  EXPECT_EQ(sum, static_cast<double>(rendered));
+  auto png = OIIO::ImageInput::open(path("p.png"));
+  ASSERT_TRUE(png);
+  EXPECT_EQ(png->spec().get_string_attribute("pathtracer:partial"), "1");
+}
+
+// Two runs writing one name: another program writes out.exr (and the record)
+// while this render runs; neither is replaced, and this run's files are kept
+// beside them under names of their own.
+TEST_F(LongRender, AnOutputChangedDuringTheRenderIsNotReplaced) {
+  write("s.json", path_scene(16, 16, 1));
+  ChildProcess child = spawn({"s.json", "-o", "out.exr", "--spp", "1048576", "--threads", "1", "--progress-interval",
+                              "0.05", "--report", "run.json"});
+  ASSERT_TRUE(child.started());
+  const std::string pid = std::to_string(child.pid());  // wait() forgets it
+  ASSERT_TRUE(child.wait_for_output("progress: ", kHangGuard)) << child.err();
+  write("out.exr", "written by another render");
+  write("run.json", "{}");
+  child.send(SIGINT);
+  EXPECT_EQ(child.wait(kHangGuard), 1) << child.err();
+  EXPECT_NE(child.err().find("'out.exr' was changed by another program while this run went on"), std::string::npos)
+      << child.err();
+  EXPECT_NE(child.err().find("this run's file is 'out.conflict-" + pid + ".exr'"), std::string::npos) << child.err();
+  EXPECT_EQ(slurp(path("out.exr")), "written by another render");
+  EXPECT_EQ(slurp(path("run.json")), "{}");
+  int spp = 0, partial = 0;
+  ASSERT_TRUE(read_render_metadata(path("out.conflict-" + pid + ".exr"), spp, partial));
+  EXPECT_EQ(partial, 1);
+  EXPECT_TRUE(read_json("run.conflict-" + pid + ".json").is_object());
   EXPECT_FALSE(has_temporary_files());
 }
 
@@ -170,10 +243,10 @@ TEST_F(LongRender, RenderInterruptedBySigintResumesFromItsLastCheckpoint) {
   ChildProcess child = spawn({"s.json", "-o", "cut.exr", "--spp", "256", "--pass-spp", "1", "--checkpoint", "cut.ckpt",
                               "--checkpoint-every", "0", "--progress-interval", "0.1"});
   ASSERT_TRUE(child.started());
-  ASSERT_TRUE(child.wait_for_output("progress: ", 30.0)) << child.err();
+  ASSERT_TRUE(child.wait_for_output("progress: ", kHangGuard)) << child.err();
   for (int i = 0; i < 200 && !std::filesystem::exists(path("cut.ckpt")); ++i) child.wait_for_output("\x01", 0.05);
   child.send(SIGINT);
-  ASSERT_EQ(child.wait(30.0), 130) << child.err();
+  ASSERT_EQ(child.wait(kHangGuard), 130) << child.err();
   ASSERT_TRUE(std::filesystem::exists(path("cut.ckpt")));
   const std::string header = slurp(path("cut.ckpt")).substr(0, 400);
   const std::size_t at = header.find("\"spp_done\":");
@@ -215,9 +288,9 @@ TEST_F(LongRender, ResumeRefusesADifferentSceneOrSettings) {
 TEST_F(LongRender, FailedWriteLeavesTheOldFileAndNoTemporary) {
   write("s.json", path_scene(32, 24, 1));
   write("old.exr", "the old content");
-  // The first output's folder does not exist: the run fails before old.exr is replaced.
+  // The first output's folder does not exist: the run is refused before it renders.
   const RunResult r = run("s.json -o missing/a.exr -o old.exr --spp 1");
-  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("missing/a.exr"), std::string::npos) << r.err;
   EXPECT_EQ(slurp(path("old.exr")), "the old content");
   EXPECT_FALSE(has_temporary_files());
@@ -236,7 +309,7 @@ TEST_F(LongRender, KillDuringAWriteLeavesTheOldImageWhole) {
     ChildProcess child = spawn({"s.json", "-o", "out.exr", "--spp", "1", "--max-depth", "0", "--seed", "2", "--quiet"});
     ASSERT_TRUE(child.started());
     const std::string tmp = path("out.exr.tmp-" + std::to_string(child.pid()));
-    const auto end = Clock::now() + std::chrono::seconds(30);
+    const auto end = Clock::now() + std::chrono::duration<double>(kHangGuard);
     while (!std::filesystem::exists(tmp) && Clock::now() < end && child.wait(0.001) < 0) {
     }
     if (std::filesystem::exists(tmp)) {

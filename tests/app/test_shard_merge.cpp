@@ -96,9 +96,13 @@ void render(Film& film, const PixelRect& crop, Range samples) {
         a.object = static_cast<uint32_t>(s % 5);
         a.emission = RGB(u(rng));
         a.diffuse_direct = RGB(u(rng));
+        // Cryptomatte: up to 9 ids in a pixel, more than its 6 ranks, and misses.
+        a.hit = (s + x) % 4 != 0;
+        a.crypto_object = a.hit ? 1.0f + static_cast<float>((s * 3 + y) % 9) : 0.0f;
+        a.crypto_material = a.hit ? 0.5f + static_cast<float>(s % 3) : 0.0f;
         const bool finite = c.is_finite();
         if (!finite) bad.record(x, y, s, c);
-        sum.add(finite ? c : RGB(), w);
+        sum.add(finite ? c : RGB(), w, a.hit);
         film.accumulate(scratch, a, c, w, !finite);
       }
       film.add(x, y, sum);
@@ -261,7 +265,7 @@ TEST(ShardFile, DamagedHeadersAndStatesAreRefused) {
   const auto with = [&](const std::function<void(nlohmann::ordered_json&)>& edit) {
     nlohmann::ordered_json h = header;
     edit(h);
-    return "pathtracer-shard 1\n" + h.dump() + "\n" + bytes.substr(body);
+    return "pathtracer-shard 2\n" + h.dump() + "\n" + bytes.substr(body);
   };
   refused("pathtracer-checkpoint 1\n{}\n", "'bad.ptshard' is not a pathtracer shard file");
   refused(with([](auto& h) { h.erase("pieces"); }), "damaged shard header: no \"pieces\"");
@@ -335,6 +339,14 @@ TEST(ShardMerger, StreamedStatesAreCheckedAsTheyAreRead) {
   std::stringstream truncated(state(b.film).substr(0, 500));
   EXPECT_FALSE(merger.add("b", b.info, truncated, error));
   EXPECT_EQ(error, "'b': truncated film state");
+  // The state of tile 0/5 under the header of tile 1/5 (the same size, another
+  // place) is refused, not added in the wrong place.
+  const Shard t0 = shard({0, kSpp}, Fraction{0, 5}), t1 = shard({0, kSpp}, Fraction{1, 5});
+  ShardMerger tiles(true);
+  ASSERT_TRUE(tiles.check("t1", t1.info, error)) << error;
+  std::stringstream other_tile(state(t0.film));
+  EXPECT_FALSE(tiles.add("t1", t1.info, other_tile, error));
+  EXPECT_EQ(error, "'t1': film state covers pixels [0,6)x[0,1), not [0,6)x[1,2) inside [0,6)x[0,5)");
 }
 
 TEST(ShardMerger, MergesOfMergesGiveTheSameBits) {

@@ -53,11 +53,21 @@ int shard_one_input(const uint8_t* data, std::size_t size) {
   check_header(info);
   // Film states as large as a header may claim are not read here (memory).
   if (static_cast<int64_t>(info.crop.width()) * info.crop.height() > (1 << 16)) return 0;
+  const std::streampos state_start = in.tellg();
   const std::optional<Film> film = read_shard_film(in, kName, info, error);
+  // The streamed add (what `pathtracer merge` does) takes what the reader takes.
+  ShardMerger streamed(true);
+  std::istringstream state(bytes);
+  state.seekg(state_start);
+  std::string why;
+  const bool checked = streamed.check(kName, info, why);
+  const bool added = checked && streamed.add(kName, info, state, why);
   if (!film) {
     require(names_the_file(error), "a refused shard film state names its file");
+    require(!added, "a film state the reader refuses is refused when streamed");
     return 0;
   }
+  require(!checked || added, "a film state the reader accepts is accepted when streamed");
   // Written back and read again: the same header and film state.
   std::ostringstream out;
   require(write_shard(out, info, *film), "an accepted shard can be written");

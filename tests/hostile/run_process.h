@@ -1,7 +1,14 @@
-// Test-only: runs a program as a child process with a wall-clock limit and a
+// Test-only: runs a program as a child process with a CPU-time limit and a
 // memory limit, capturing its standard output and error. Used by the hostile-
 // input corpus and the scaled-scene renders, which run the pathtracer
 // executable the way a user would.
+//
+// Time: the limit is on the CPU time the child uses (RLIMIT_CPU; the kernel
+// kills it with SIGXCPU, then SIGKILL), which a loaded machine does not
+// stretch, unlike wall-clock time (no test may bound process wall-clock time:
+// docs/testing.md). A child that blocks without using CPU (a FIFO opened for
+// reading) is caught by `hang_guard_seconds` of wall-clock time, far beyond
+// any run's need: a guard against hanging the suite, not a speed bound.
 //
 // Memory: an address-space limit (setrlimit RLIMIT_AS) in the child, so a
 // file that makes the program try to allocate far too much ends in bad_alloc
@@ -40,8 +47,9 @@ inline constexpr bool kUnderAddressSanitizer = false;
 #endif
 
 struct ProcessLimits {
-  double seconds = 60;                   // wall clock; the child is killed after this
+  double cpu_seconds = 60;               // CPU time (user + system, all threads); SIGXCPU after this
   std::size_t memory_mib = 2048;         // address space (or ASan's largest allocation); 0: none
+  double hang_guard_seconds = 600;       // wall clock: the child is killed after this (a hang, not a slow run)
 };
 
 struct ProcessResult {
@@ -49,7 +57,8 @@ struct ProcessResult {
   bool exited = false;     // ended by exit() (not by a signal)
   int exit_code = -1;      // when exited
   int signal = 0;          // when killed by a signal
-  bool timed_out = false;  // killed by us at the time limit
+  bool timed_out = false;  // killed by us at the hang guard (blocked, e.g. on a FIFO)
+  bool cpu_limit = false;  // killed by the kernel at the CPU-time limit
   double seconds = 0;
   std::string out, err;
 };
@@ -86,6 +95,11 @@ inline ProcessResult run_process(const std::vector<std::string>& argv, const std
     if (out < 0 || err < 0 || ::dup2(out, 1) < 0 || ::dup2(err, 2) < 0 || ::chdir(cwd.c_str()) != 0) ::_exit(126);
     const rlimit no_core{0, 0};
     ::setrlimit(RLIMIT_CORE, &no_core);
+    if (limits.cpu_seconds > 0) {
+      const rlim_t soft = static_cast<rlim_t>(limits.cpu_seconds + 0.999);
+      const rlimit cpu{soft, soft + 5};  // SIGXCPU at the soft limit, SIGKILL 5 s later
+      ::setrlimit(RLIMIT_CPU, &cpu);
+    }
     if (limits.memory_mib > 0) {
       if (kUnderAddressSanitizer) {
         ::setenv("ASAN_OPTIONS", asan_options.c_str(), 1);
@@ -104,7 +118,7 @@ inline ProcessResult run_process(const std::vector<std::string>& argv, const std
     const pid_t done = ::waitpid(pid, &status, WNOHANG);
     if (done == pid) break;
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (done < 0 || elapsed > limits.seconds) {
+    if (done < 0 || elapsed > limits.hang_guard_seconds) {
       ::kill(pid, SIGKILL);
       ::waitpid(pid, &status, 0);
       result.timed_out = done >= 0;
@@ -118,6 +132,7 @@ inline ProcessResult run_process(const std::vector<std::string>& argv, const std
     result.exit_code = WEXITSTATUS(status);
   } else if (WIFSIGNALED(status)) {
     result.signal = WTERMSIG(status);
+    result.cpu_limit = !result.timed_out && (result.signal == SIGXCPU || result.signal == SIGKILL);
   }
   result.out = read_whole_file(out_path);
   result.err = read_whole_file(err_path);

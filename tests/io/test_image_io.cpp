@@ -50,25 +50,47 @@ TEST(Display, LinearIsValueTimes255) {
   EXPECT_EQ(display_encode(1.0f, display(DisplayTransform::Linear, -1.0f)), 128);
 }
 
-// The CGR course's reference images show a linear 0.25 background as 87.
+// The CGR course's mapping (docs/rendering.md, "The CGR mapping"):
+// its one fixed point (a 0.25 grey background shows as 87), monotonic in grey,
+// and a colour is compressed by its luminance: the same red channel is
+// darker beside a bright green than beside nothing.
 TEST(Display, CgrCourseMapping) {
   const DisplaySettings s = display(DisplayTransform::CgrCourse);
   EXPECT_EQ(display_encode(0.25f, s), 87);
   EXPECT_EQ(display_encode(0.0f, s), 0);
-  EXPECT_EQ(display_encode(1.0f, s), 255);
+  EXPECT_EQ(display_encode(1.0f, s), 247);  // white reaches 255 from about 1.06
+  EXPECT_EQ(display_encode(1.1f, s), 255);
   int previous = 0;
   for (int i = 0; i <= 1000; ++i) {
     const int code = display_encode(static_cast<float>(i) / 1000.0f, s);
     EXPECT_GE(code, previous) << i;
     previous = code;
   }
+  std::string error;
+  const auto encoder = DisplayEncoder::create(s, error);
+  ASSERT_TRUE(encoder) << error;
+  const RGB colours[3] = {RGB(0.1125f, 0.1125f, 0.1125f), RGB(0.1125f, 0.18f, 0.1125f), RGB(0.1125f, 0.25f, 0.1125f)};
+  unsigned char codes[9];
+  encoder->encode(colours, 3, codes);
+  EXPECT_GT(codes[0], codes[3]);
+  EXPECT_GT(codes[3], codes[6]);
+  EXPECT_EQ(codes[0], codes[2]);  // grey stays grey
 }
 
-// Binary-mode renders (exactly 0 and 1) stay pure under every transform.
+// Binary-mode renders (exactly 0 and pure red 1, 0, 0) stay pure under every
+// transform; 0 and 1 are 0 and 255 wherever the curve is per channel.
 TEST(Display, ZeroAndOneArePureUnderEveryTransform) {
   for (DisplayTransform t : {DisplayTransform::Srgb, DisplayTransform::Linear, DisplayTransform::CgrCourse}) {
-    EXPECT_EQ(display_encode(0.0f, display(t)), 0);
-    EXPECT_EQ(display_encode(1.0f, display(t)), 255);
+    std::string error;
+    const auto encoder = DisplayEncoder::create(display(t), error);
+    ASSERT_TRUE(encoder) << error;
+    const RGB pixels[2] = {RGB(0, 0, 0), RGB(1, 0, 0)};
+    unsigned char codes[6];
+    encoder->encode(pixels, 2, codes);
+    for (int i = 0; i < 6; ++i) EXPECT_EQ(codes[i], i == 3 ? 255 : 0) << i;
+    if (t != DisplayTransform::CgrCourse) {
+      EXPECT_EQ(display_encode(1.0f, display(t)), 255);
+    }
   }
 }
 

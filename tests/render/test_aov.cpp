@@ -64,7 +64,7 @@ TEST(AovList, BeautyNamesOnlyTheBeautysType) {
   EXPECT_EQ(beauty, ChannelType::Float);  // the default
   // Film::layers writes the beauty's R, G, B, A with that type; the values stay the same floats.
   Film film(4, 2);
-  film.add(1, 1, PixelSum{0.5, 0.25, 2.0, 1.0, 1});
+  film.add(1, 1, PixelSum{0.5, 0.25, 2.0, 1.0, 1.0, 1});
   const LayeredImage as_float = film.layers(), as_half = film.layers(ChannelType::Half);
   EXPECT_EQ(as_float.layers[0].type, ChannelType::Float);
   EXPECT_EQ(as_half.layers[0].type, ChannelType::Half);
@@ -150,7 +150,7 @@ TEST(Aov, MissesAndAbsentLayers) {
   IntegratorSettings settings;
   std::string error;
   make_integrator("path", settings, error)->render(*scene, film, pool);
-  EXPECT_EQ(film.aov_value(AovType::Depth, 3, 3)[0], kInfinity);
+  EXPECT_EQ(film.aov_value(AovType::Depth, 3, 3)[0], kBackgroundDepth);
   EXPECT_EQ(film.aov_value(AovType::ObjectId, 3, 3)[0], 0.0f);
   EXPECT_EQ(film.aov_value(AovType::Normal, 3, 3)[2], 0.0f);
   EXPECT_TRUE(film.aov_value(AovType::Albedo, 3, 3).empty());  // not requested: not stored

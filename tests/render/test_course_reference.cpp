@@ -117,25 +117,27 @@ bool load_pair(const std::string& scene, const std::string& reference, Pair& out
   Pair pair;                 \
   if (!load_pair(__VA_ARGS__)) GTEST_SKIP() << "course files or reference images not available"
 
-// The target of issue 14: at most 3/255 per channel over the frame.
+// The target of issue 14 is at most 3/255 per channel over the frame; the
+// bounds keep what the inferred model reaches (docs/rendering.md, "The course
+// reference images"), with about half a level of margin.
+// simple_phong: 0.24, 0.28, 0.44 (1.8, 2.6, 2.4 with the power curve and kd Cd ambient).
 TEST(CourseReference, CgrSimplePhongWithin3Levels) {
   PT_LOAD_OR_SKIP("cgr/simple_phong.json", "cgr/simple_phong.png", pair);
   const std::array<double, 3> mad = mean_abs_difference(pair.ours, pair.reference);
-  for (int c = 0; c < 3; ++c) EXPECT_LE(mad[c], 3.0) << "channel " << c;
+  for (int c = 0; c < 3; ++c) EXPECT_LE(mad[c], 1.0) << "channel " << c;
 }
 
-// Not yet at the 3/255 target (docs/rendering.md: the course's display curve of
-// lit colours is not known); the bound keeps what is reached (9.6 at most per
-// channel, 41 before the ambient term).
-TEST(CourseReference, CgrScenePhongBounded) {
+// scene.json in phong mode: 1.27, 1.06, 1.43 (9.6, 9.5, 9.1 with the power curve).
+TEST(CourseReference, CgrScenePhongWithin3Levels) {
   PT_LOAD_OR_SKIP("cgr/scene.json", "cgr/scene_phong.png", pair, {"rendermode=phong"});
   const std::array<double, 3> mad = mean_abs_difference(pair.ours, pair.reference);
-  for (int c = 0; c < 3; ++c) EXPECT_LE(mad[c], 10.0) << "channel " << c;
+  for (int c = 0; c < 3; ++c) EXPECT_LE(mad[c], 2.0) << "channel " << c;
 }
 
-// Not yet at the 6/255 target (docs/rendering.md: the light's scale and the
-// reflection weight are not known); the bound keeps what is reached (12.5 at most
-// per channel, 17.9 before the texture rules).
+// Not at the 6/255 target (docs/rendering.md: the figure's reflection weight
+// differs between its floor and its back wall, and its textured floor clamps
+// the light's factor at 1; together 10.4 of the remaining levels); the bound
+// keeps what is reached (11.5, 11.5, 12.5; 17.9 before the texture rules).
 TEST(CourseReference, PathOfLightExampleBounded) {
   PT_LOAD_OR_SKIP("path-of-light/examples/example.json", "path-of-light/example.png", pair);
   const std::array<double, 3> mad = mean_abs_difference(pair.ours, pair.reference);

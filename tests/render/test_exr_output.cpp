@@ -110,10 +110,10 @@ TEST_F(ExrOutput, LayersTypesWindowsValuesAndMetadata) {
       {"albedo.R", OIIO::TypeHalf}, {"albedo.G", OIIO::TypeHalf}, {"albedo.B", OIIO::TypeHalf},
       {"N.X", OIIO::TypeHalf}, {"N.Y", OIIO::TypeHalf}, {"N.Z", OIIO::TypeHalf},
       {"P.X", OIIO::TypeFloat}, {"P.Y", OIIO::TypeFloat}, {"P.Z", OIIO::TypeFloat},
-      {"Z", OIIO::TypeFloat}, {"IndexOB", OIIO::TypeFloat}, {"IndexMA", OIIO::TypeFloat},
+      {"Z", OIIO::TypeFloat}, {"IndexOB.X", OIIO::TypeFloat}, {"IndexMA.X", OIIO::TypeFloat},
       {"diffuse_direct.R", OIIO::TypeHalf}, {"diffuse_direct.G", OIIO::TypeHalf},
       {"diffuse_direct.B", OIIO::TypeHalf}, {"variance.R", OIIO::TypeFloat}, {"variance.G", OIIO::TypeFloat},
-      {"variance.B", OIIO::TypeFloat}, {"samples", OIIO::TypeFloat}, {"nonfinite", OIIO::TypeHalf}};
+      {"variance.B", OIIO::TypeFloat}, {"samples.X", OIIO::TypeFloat}, {"nonfinite.X", OIIO::TypeHalf}};
   ASSERT_EQ(spec.nchannels, static_cast<int>(expected.size()));
   std::map<std::string, int> index;
   for (int c = 0; c < spec.nchannels; ++c) {

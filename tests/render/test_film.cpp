@@ -19,8 +19,8 @@ Film filled_film(int w, int h) {
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       PixelSum s;
-      s.add(RGB(0.1f * x, 1.0f / 3.0f + y, 1e-30f * (x + 1)), 0.75f);
-      s.add(RGB(7.0f, 0.0f, 2.5f), 0.25f);
+      s.add(RGB(0.1f * x, 1.0f / 3.0f + y, 1e-30f * (x + 1)), 0.75f, true);
+      s.add(RGB(7.0f, 0.0f, 2.5f), 0.25f, x % 2 == 0);
       film.add(x, y, s);
     }
   return film;
@@ -40,6 +40,7 @@ TEST(FilmState, RoundTripIsBitExact) {
       EXPECT_EQ(a.g, b.g);
       EXPECT_EQ(a.b, b.b);
       EXPECT_EQ(a.weight, b.weight);
+      EXPECT_EQ(a.coverage, b.coverage);
       EXPECT_EQ(a.samples, b.samples);
     }
 }
@@ -92,7 +93,8 @@ Film rendered_film(WorkerPool& pool, const std::vector<AovRequest>& aovs) {
 TEST(FilmState, AovsCropAndNonFiniteReportRoundTripBitExactly) {
   WorkerPool pool(2);
   std::vector<AovRequest> aovs;
-  for (const AovInfo& info : aov_catalogue()) aovs.push_back({info.type, info.default_type});
+  for (const AovInfo& info : aov_catalogue())
+    aovs.push_back({info.type, info.default_type, info.accumulation == Accumulation::Ranked ? 3 : 0});
   const Film film = rendered_film(pool, aovs);
   std::stringstream buffer;
   ASSERT_TRUE(film.write_state(buffer));
@@ -100,7 +102,7 @@ TEST(FilmState, AovsCropAndNonFiniteReportRoundTripBitExactly) {
   std::string error;
   ASSERT_TRUE(back.read_state(buffer, error)) << error;
   const LayeredImage a = film.layers(), b = back.layers();
-  ASSERT_EQ(a.layers.size(), aovs.size() + 1);
+  ASSERT_EQ(a.layers.size(), aovs.size() + 1 + 2);  // CryptoObject and CryptoMaterial have 2 layers each
   for (std::size_t i = 0; i < a.layers.size(); ++i) {
     ASSERT_EQ(a.layers[i].values.size(), b.layers[i].values.size());
     EXPECT_EQ(0, std::memcmp(a.layers[i].values.data(), b.layers[i].values.data(),

@@ -49,7 +49,7 @@ struct Faulty {
     const PixelFilter box(PixelFilterType::Box);
     render_samples(*scene, film, pool, settings, make_sampler(SamplerType::Random, kSpp, 7), box,
                    [&](const Ray& ray, Sampler& sampler, AovSample*) {
-                     return faulty_radiance(scene->camera, ray, sampler);
+                     return CameraEstimate{faulty_radiance(scene->camera, ray, sampler), false};
                    });
     return film;
   }

@@ -1,5 +1,7 @@
 #include <cmath>
 #include <filesystem>
+#include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -8,6 +10,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "render/lights/environment.h"
 #include "render/textures/texture.h"
 
 namespace pt {
@@ -166,6 +169,64 @@ TEST_F(TextureFiles, AnUnreadableFileSaysWhy) {
   std::string error;
   EXPECT_FALSE(Texture::load(path, t, error));
   EXPECT_NE(error.find("cannot open the file: Permission denied"), std::string::npos) << error;
+}
+
+}  // namespace
+}  // namespace pt
+
+// ---------------------------------------------------------------- environment texels (issue 20)
+
+namespace pt {
+namespace {
+
+class EnvironmentTexels : public TextureFiles {
+ protected:
+  // A 4x2 float map of 0.5 with texel (x, y) set to `v`; loads it as an environment.
+  std::unique_ptr<EnvironmentMap> load(int x, int y, RGB v, float intensity, std::string& error,
+                                       std::string& warning) {
+    std::vector<float> px(4 * 2 * 3, 0.5f);
+    px[static_cast<std::size_t>(y * 4 + x) * 3] = v.r;
+    px[static_cast<std::size_t>(y * 4 + x) * 3 + 1] = v.g;
+    px[static_cast<std::size_t>(y * 4 + x) * 3 + 2] = v.b;
+    EnvironmentDesc desc;
+    desc.resolved = write("sky.exr", 4, 2, 3, OIIO::TypeDesc::FLOAT, px.data());
+    desc.intensity.value = intensity;
+    return EnvironmentMap::load(desc, error, {}, &warning);
+  }
+};
+
+TEST_F(EnvironmentTexels, NegativeTexelsAreClampedWithAWarningNamingTheFirst) {
+  std::string error, warning;
+  const auto env = load(2, 1, RGB(-50, 0.25f, 0.5f), 1.0f, error, warning);
+  ASSERT_TRUE(env) << error;
+  EXPECT_NE(warning.find("1 texel has negative values, clamped to 0 (the first: texel (2, 1) = (-50, 0.25, 0.5)"),
+            std::string::npos)
+      << warning;
+  // No direction sees negative radiance: the texel is (0, 0.25, 0.5) now.
+  for (int i = 0; i < 64; ++i) {
+    const float a = 2.0f * kPi * static_cast<float>(i) / 64.0f;
+    for (float yv : {-0.7f, 0.0f, 0.7f}) {
+      const RGB L = env->radiance(normalize(Vec3f(std::cos(a), yv, std::sin(a))));
+      EXPECT_GE(L.r, 0.0f);
+      EXPECT_GE(L.g, 0.0f);
+      EXPECT_GE(L.b, 0.0f);
+    }
+  }
+  std::string clean;
+  ASSERT_TRUE(load(0, 0, RGB(0.5f), 1.0f, error, clean));
+  EXPECT_EQ(clean, "");
+}
+
+TEST_F(EnvironmentTexels, NonFiniteOrOverflowingTexelsAreRefusedByName) {
+  std::string error, warning;
+  EXPECT_FALSE(load(3, 0, RGB(std::numeric_limits<float>::infinity(), 1, 1), 1.0f, error, warning));
+  EXPECT_NE(error.find("texel (3, 0) = (inf, 1, 1) is not finite"), std::string::npos) << error;
+  EXPECT_FALSE(load(1, 1, RGB(1, std::nanf(""), 1), 1.0f, error, warning));
+  EXPECT_NE(error.find("texel (1, 1) = (1, nan, 1) is not finite"), std::string::npos) << error;
+  // Finite, but 1e20 times an intensity of 1e20 overflows a path's float radiance.
+  EXPECT_FALSE(load(0, 1, RGB(1e20f, 1, 1), 1e20f, error, warning));
+  EXPECT_NE(error.find("texel (0, 1) = (1e+20, 1, 1) times the intensity"), std::string::npos) << error;
+  EXPECT_TRUE(load(0, 1, RGB(1e20f, 1, 1), 1.0f, error, warning)) << error;
 }
 
 }  // namespace

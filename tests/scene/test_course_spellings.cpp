@@ -335,6 +335,18 @@ TEST(CourseCamera, CgrFiniteApertureAndUnknownTypes) {
   const Loaded typo = load(std::string(text).replace(text.find("\"pinhole\""), 9, "\"pinhloe\""));
   EXPECT_FALSE(typo.scene);
   EXPECT_TRUE(typo.has(Severity::Error, "did you mean 'pinhole'?")) << typo.diag.format();
+  // The known types with other case or separators ("thinLens", "Pinhole", "thin_lens"): read, with a warning.
+  for (const char* spelt : {"thinLens", "Thin_Lens", "finiteAperture"}) {
+    std::string lens = std::string(text).replace(text.find("\"pinhole\""), 9, std::string("\"") + spelt + "\"");
+    const Loaded l = load(lens.replace(lens.find(R"("up": [0, 0, 1])"), 15, R"("up": [0, 0, 1], "lensRadius": 0.1, "focalDistance": 5)"));
+    ASSERT_TRUE(l.scene) << spelt << l.diag.format();
+    EXPECT_EQ(l.scene->camera.type, CameraType::ThinLens) << spelt;
+    EXPECT_TRUE(l.has(Severity::Warning, std::string("camera type '") + spelt + "' read as 'thinlens'")) << l.diag.format();
+  }
+  const Loaded upper = load(std::string(text).replace(text.find("\"pinhole\""), 9, "\"Pinhole\""));
+  ASSERT_TRUE(upper.scene) << upper.diag.format();
+  EXPECT_EQ(upper.scene->camera.type, CameraType::Pinhole);
+  EXPECT_TRUE(upper.has(Severity::Warning, "camera type 'Pinhole' read as 'pinhole'")) << upper.diag.format();
   // A thin lens without its lens keys names what is missing.
   const Loaded bare = load(std::string(text).replace(text.find("\"pinhole\""), 9, "\"thinlens\""));
   EXPECT_FALSE(bare.scene);

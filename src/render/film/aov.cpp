@@ -16,17 +16,20 @@ const std::vector<AovInfo> kCatalogue = {
     {AovType::Normal, "N", 3, {"X", "Y", "Z"}, kHalf, A::FilteredAverage, 3, 0, false},
     {AovType::Position, "P", 3, {"X", "Y", "Z"}, kFloat, A::FirstSample, 0, 4, false},
     {AovType::Depth, "Z", 1, {"", "", ""}, kFloat, A::FirstSample, 0, 2, false},
-    {AovType::ObjectId, "IndexOB", 1, {"", "", ""}, kFloat, A::FirstSample, 0, 2, false},
-    {AovType::MaterialId, "IndexMA", 1, {"", "", ""}, kFloat, A::FirstSample, 0, 2, false},
+    {AovType::ObjectId, "IndexOB", 1, {"X", "", ""}, kFloat, A::FirstSample, 0, 2, false},
+    {AovType::MaterialId, "IndexMA", 1, {"X", "", ""}, kFloat, A::FirstSample, 0, 2, false},
     {AovType::Emission, "emission", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, 0, true},
     {AovType::DiffuseDirect, "diffuse_direct", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, 0, true},
     {AovType::DiffuseIndirect, "diffuse_indirect", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, 0, true},
     {AovType::SpecularDirect, "specular_direct", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, 0, true},
     {AovType::SpecularIndirect, "specular_indirect", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, 0, true},
     {AovType::Variance, "variance", 3, {"R", "G", "B"}, kFloat, A::Sum, 6, 0, false},
-    {AovType::Samples, "samples", 1, {"", "", ""}, kFloat, A::Sum, 0, 0, false},
-    {AovType::NonFinite, "nonfinite", 1, {"", "", ""}, kHalf, A::Max, 0, 1, false},
+    {AovType::Samples, "samples", 1, {"X", "", ""}, kFloat, A::Sum, 0, 0, false},
+    {AovType::NonFinite, "nonfinite", 1, {"X", "", ""}, kHalf, A::Max, 0, 1, false},
     {AovType::Ambient, "ambient", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, 0, true},
+    // Ids are 32-bit patterns: float only. Per rank two sums: the id's bits and its weight.
+    {AovType::CryptoObject, "CryptoObject", 2, {"", "", ""}, kFloat, A::Ranked, 2, 0, false},
+    {AovType::CryptoMaterial, "CryptoMaterial", 2, {"", "", ""}, kFloat, A::Ranked, 2, 0, false},
 };
 
 std::string trim(const std::string& s) {
@@ -41,13 +44,40 @@ const std::vector<AovInfo>& aov_catalogue() { return kCatalogue; }
 
 const AovInfo& aov_info(AovType type) { return kCatalogue[static_cast<std::size_t>(type)]; }
 
+int aov_state_sums(const AovRequest& r) {
+  const AovInfo& info = aov_info(r.type);
+  return info.accumulation == Accumulation::Ranked ? info.sums * r.ranks : info.sums;
+}
+
+int aov_state_values(const AovRequest& r) { return aov_info(r.type).values; }
+
+int aov_channel_count(const AovRequest& r) {
+  const AovInfo& info = aov_info(r.type);
+  return info.accumulation == Accumulation::Ranked ? 4 * ((r.ranks + 1) / 2) : info.channels;
+}
+
+std::vector<std::string> aov_channel_names(const AovRequest& r) {
+  const AovInfo& info = aov_info(r.type);
+  std::vector<std::string> names;
+  if (info.accumulation == Accumulation::Ranked) {
+    for (const std::string& layer : cryptomatte_layer_names(info.name, r.ranks))
+      for (const char* c : {".r", ".g", ".b", ".a"}) names.push_back(layer + c);
+  } else if (info.channels == 1 && info.suffix[0][0] == '\0') {
+    names.emplace_back(info.name);
+  } else {
+    for (int c = 0; c < info.channels; ++c) names.push_back(std::string(info.name) + "." + info.suffix[c]);
+  }
+  return names;
+}
+
 std::vector<std::string> aov_names() {
   std::vector<std::string> names;
   for (const AovInfo& info : kCatalogue) names.emplace_back(info.name);
   return names;
 }
 
-bool parse_aov_list(const std::string& list, std::vector<AovRequest>& out, ChannelType& beauty, std::string& error) {
+bool parse_aov_list(const std::string& list, std::vector<AovRequest>& out, ChannelType& beauty, std::string& error,
+                    int ranks) {
   std::vector<AovRequest> result;
   ChannelType beauty_type = ChannelType::Float;
   bool beauty_named = false;
@@ -93,7 +123,12 @@ bool parse_aov_list(const std::string& list, std::vector<AovRequest>& out, Chann
       beauty_type = type;
       continue;
     }
-    const AovRequest request{info->type, type};
+    const bool ranked = info->accumulation == Accumulation::Ranked;
+    if (ranked && type != ChannelType::Float) {
+      error = "AOV '" + name + "' is float only (its ids are 32-bit patterns)";
+      return false;
+    }
+    const AovRequest request{info->type, type, ranked ? ranks : 0};
     for (const AovRequest& r : result)
       if (r.type == request.type) {
         error = "AOV '" + name + "' is requested more than once";

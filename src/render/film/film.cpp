@@ -1,7 +1,10 @@
 #include "render/film/film.h"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
+#include <utility>
 #include <sstream>
 #include <tuple>
 
@@ -31,6 +34,68 @@ void set_first(double* s, int n, const float* v) {
   if (s[n] != 0.0) return;
   for (int c = 0; c < n; ++c) s[c] = v[c];
   s[n] = 1.0;
+}
+
+// Ranked (Cryptomatte) layers: `ranks` slots of (id, weight sum), the id's
+// 32 bits held as the integer of an ExactSum (0 marks a free slot: no name
+// hashes to 0), in increasing order of those bits, free slots last. The slots
+// keep the `ranks` smallest ids seen: a weight goes to its id's slot; a new id
+// smaller than one kept takes its place in the order and the largest kept id
+// falls out, for good (it can never again be among the smallest), and a new
+// id larger than every one of full slots is dropped. Which ids are kept is
+// thus a function of the set of ids the pixel's samples hit, not of their
+// order or of how they are grouped into passes, shards and merges, and every
+// id kept has the weight of every sample that hit it: sums and merges are
+// exact (docs/output.md). (Cycles keeps the first ids met, which depends on
+// the grouping.)
+uint32_t slot_id(const ExactSum& s) { return static_cast<uint32_t>(s.raw()); }
+
+void add_ranked(ExactSum* slots, int ranks, uint32_t id, const ExactSum& w) {
+  if (id == 0) return;  // the camera ray hit nothing
+  int k = 0;
+  while (k < ranks && !slots[2 * k].is_zero() && slot_id(slots[2 * k]) < id) ++k;
+  if (k == ranks) return;
+  if (!slots[2 * k].is_zero() && slot_id(slots[2 * k]) == id) {
+    slots[2 * k + 1].add(w);
+    return;
+  }
+  for (int j = ranks - 1; j > k; --j) {
+    slots[2 * j] = slots[2 * j - 2];
+    slots[2 * j + 1] = slots[2 * j - 1];
+  }
+  slots[2 * k].set_raw(id);
+  slots[2 * k + 1] = w;
+}
+
+void add_ranked(ExactSum* slots, int ranks, float id, float w) {
+  add_ranked(slots, ranks, std::bit_cast<uint32_t>(id), ExactSum(static_cast<double>(w)));
+}
+
+// The ranked ids and coverages (weight / the pixel's total weight, clamped
+// to [0, 1]) into out[0 .. 2 * ranks), highest coverage first (ties: the
+// smaller id first); free slots give (0, 0).
+void ranked_values(const ExactSum* slots, int ranks, const ExactSum& weight, float* out) {
+  std::array<int, kCryptomatteMaxRanks> order{};
+  std::array<double, kCryptomatteMaxRanks> w{};
+  std::array<float, kCryptomatteMaxRanks> id{};
+  for (int k = 0; k < ranks; ++k) {
+    const auto i = static_cast<std::size_t>(k);
+    order[i] = k;
+    w[i] = slots[2 * k + 1].value();
+    id[i] = std::bit_cast<float>(slot_id(slots[2 * k]));
+  }
+  const auto key = [&](int k) {
+    const auto i = static_cast<std::size_t>(k);
+    return std::make_tuple(slots[2 * k].is_zero(), -w[i], id[i]);
+  };
+  std::sort(order.begin(), order.begin() + ranks, [&](int a, int b) { return key(a) < key(b); });
+  const double total = weight.value();
+  for (int k = 0; k < ranks; ++k) {
+    const int o = order[static_cast<std::size_t>(k)];
+    const bool used = !slots[2 * o].is_zero() && !weight.is_zero();
+    out[2 * k] = used ? id[static_cast<std::size_t>(o)] : 0.0f;
+    out[2 * k + 1] = used ? static_cast<float>(std::clamp(w[static_cast<std::size_t>(o)] / total, 0.0, 1.0)) : 0.0f;
+  }
 }
 
 }  // namespace
@@ -87,13 +152,16 @@ Film::Film(int width, int height, PixelRect crop, std::vector<AovRequest> aovs)
     : width_(std::max(width, 0)), height_(std::max(height, 0)), crop_(clip(crop, width_, height_)),
       pixels_(static_cast<std::size_t>(crop_.width()) * static_cast<std::size_t>(crop_.height())),
       aovs_(std::move(aovs)) {
-  for (const AovRequest& r : aovs_) {
+  for (AovRequest& r : aovs_) {
+    const AovInfo& info = aov_info(r.type);
+    r.ranks = info.accumulation != Accumulation::Ranked ? 0
+              : r.ranks <= 0                             ? kCryptomatteDefaultRanks
+                                                         : std::min(r.ranks, kCryptomatteMaxRanks);
     sum_offset_.push_back(sum_stride_);
     value_offset_.push_back(value_stride_);
-    const AovInfo& info = aov_info(r.type);
-    sum_stride_ += info.sums;
-    value_stride_ += info.values;
-    if (r.type <= AovType::MaterialId) wants_geometry_ = true;
+    sum_stride_ += aov_state_sums(r);
+    value_stride_ += aov_state_values(r);
+    if (aov_bit(r.type) & kGeometryAovs) wants_geometry_ = true;
     if (info.lighting) wants_lighting_ = true;
   }
   aov_sums_.assign(pixels_.size() * static_cast<std::size_t>(sum_stride_), ExactSum{});
@@ -160,15 +228,16 @@ void Film::accumulate(AovScratch& scratch, const AovSample& a, RGB radiance, flo
         break;
       case AovType::Samples: break;  // the beauty's count
       case AovType::NonFinite: if (non_finite) v[0] = 1.0; break;
+      case AovType::CryptoObject: add_ranked(s, aovs_[i].ranks, a.crypto_object, w); break;
+      case AovType::CryptoMaterial: add_ranked(s, aovs_[i].ranks, a.crypto_material, w); break;
     }
   }
 }
 
 void Film::add_aovs(int x, int y, const AovScratch& scratch) {
   const std::size_t pixel = index(x, y);
-  ExactSum* sums = aov_sums_.data() + pixel * static_cast<std::size_t>(sum_stride_);
+  add_sums(pixel, scratch.sums.data());
   double* values = aov_values_.data() + pixel * static_cast<std::size_t>(value_stride_);
-  for (int i = 0; i < sum_stride_; ++i) sums[i].add(scratch.sums[static_cast<std::size_t>(i)]);
   for (std::size_t i = 0; i < aovs_.size(); ++i) {
     const AovInfo& info = aov_info(aovs_[i].type);
     double* d = values + value_offset_[i];
@@ -181,19 +250,63 @@ void Film::add_aovs(int x, int y, const AovScratch& scratch) {
   }
 }
 
+bool Film::valid_ranked(const ExactSum* s) const {
+  for (std::size_t i = 0; i < aovs_.size(); ++i) {
+    const AovRequest& r = aovs_[i];
+    if (aov_info(r.type).accumulation != Accumulation::Ranked) continue;
+    const ExactSum* slots = s + sum_offset_[i];
+    uint32_t previous = 0;
+    for (int k = 0; k < r.ranks; ++k) {
+      const ExactSum& id = slots[2 * k];
+      const uint32_t bits = slot_id(id), exponent = (bits >> 23) & 0xffu;
+      if (id.raw() >> 32 != 0) return false;
+      if (bits == 0) {  // free: so are the rest, without weight
+        if (!slots[2 * k + 1].is_zero()) return false;
+        previous = ~0u;
+      } else if (bits <= previous || exponent == 0 || exponent == 255) {
+        return false;  // out of order, after a free slot, or not an id
+      } else {
+        previous = bits;
+      }
+    }
+  }
+  return true;
+}
+
+void Film::add_sums(std::size_t pixel, const ExactSum* s) {
+  ExactSum* d = aov_sums_.data() + pixel * static_cast<std::size_t>(sum_stride_);
+  for (std::size_t i = 0; i < aovs_.size(); ++i) {
+    const AovRequest& r = aovs_[i];
+    ExactSum* dl = d + sum_offset_[i];
+    const ExactSum* sl = s + sum_offset_[i];
+    if (aov_info(r.type).accumulation == Accumulation::Ranked) {
+      for (int k = 0; k < r.ranks && !sl[2 * k].is_zero(); ++k)
+        add_ranked(dl, r.ranks, slot_id(sl[2 * k]), sl[2 * k + 1]);
+    } else {
+      for (int k = 0; k < aov_state_sums(r); ++k) dl[k].add(sl[k]);
+    }
+  }
+}
+
 void Film::aov_values(std::size_t layer, std::size_t pixel, float* out) const {
   const AovType type = aovs_[layer].type;
   const AovInfo& info = aov_info(type);
   const ExactSum* s = aov_sums_.data() + pixel * static_cast<std::size_t>(sum_stride_) + sum_offset_[layer];
   const double* d = aov_values_.data() + pixel * static_cast<std::size_t>(value_stride_) + value_offset_[layer];
   const PixelSum& p = pixels_[pixel];
-  std::fill(out, out + info.channels, 0.0f);
+  std::fill(out, out + aov_channel_count(aovs_[layer]), 0.0f);
   switch (info.accumulation) {
     case Accumulation::FilteredAverage:
       if (!p.weight.is_zero()) {
         const double weight = p.weight.value();
         for (int c = 0; c < info.channels; ++c) out[c] = static_cast<float>(s[c].value() / weight);
       }
+      // A reflectance: a filter's negative lobes must not make it negative.
+      if (type == AovType::Albedo)
+        for (int c = 0; c < 3; ++c) out[c] = std::max(out[c], 0.0f);
+      break;
+    case Accumulation::Ranked:
+      ranked_values(s, aovs_[layer].ranks, p.weight, out);
       break;
     case Accumulation::FirstSample:
       for (int c = 0; c < info.channels; ++c) out[c] = static_cast<float>(d[c]);
@@ -219,7 +332,7 @@ void Film::aov_values(std::size_t layer, std::size_t pixel, float* out) const {
 std::vector<float> Film::aov_value(AovType type, int x, int y) const {
   for (std::size_t i = 0; i < aovs_.size(); ++i) {
     if (aovs_[i].type != type) continue;
-    std::vector<float> out(static_cast<std::size_t>(aov_info(type).channels));
+    std::vector<float> out(static_cast<std::size_t>(aov_channel_count(aovs_[i])));
     aov_values(i, index(x, y), out.data());
     return out;
   }
@@ -242,21 +355,28 @@ LayeredImage Film::layers(ChannelType beauty_type) const {
     p[0] = v.r;
     p[1] = v.g;
     p[2] = v.b;
-    p[3] = pixels_[i].samples > 0 ? 1.0f : 0.0f;
+    p[3] = pixels_[i].alpha();
   }
   out.layers.push_back(std::move(beauty));
   for (std::size_t l = 0; l < aovs_.size(); ++l) {
     const AovRequest& r = aovs_[l];
-    const AovInfo& info = aov_info(r.type);
-    ImageLayer layer;
-    layer.name = info.name;
-    layer.type = r.channel_type;
-    for (int c = 0; c < info.channels; ++c)
-      layer.channels.push_back(info.channels == 1 ? std::string(info.name)
-                                                  : std::string(info.name) + "." + info.suffix[c]);
-    layer.values.resize(n * static_cast<std::size_t>(info.channels));
-    for (std::size_t i = 0; i < n; ++i) aov_values(l, i, &layer.values[i * static_cast<std::size_t>(info.channels)]);
-    out.layers.push_back(std::move(layer));
+    const std::vector<std::string> names = aov_channel_names(r);
+    const std::size_t nc = names.size();
+    std::vector<float> values(n * nc);
+    for (std::size_t i = 0; i < n; ++i) aov_values(l, i, &values[i * nc]);
+    // A Ranked AOV is a layer per two ranks ("CryptoObject00": r, g, b, a); any other one layer.
+    const std::size_t per_layer = aov_info(r.type).accumulation == Accumulation::Ranked ? 4 : nc;
+    for (std::size_t first = 0; first < nc; first += per_layer) {
+      ImageLayer layer;
+      layer.name = names[first].substr(0, names[first].find('.'));
+      layer.type = r.channel_type;
+      layer.channels.assign(names.begin() + static_cast<std::ptrdiff_t>(first),
+                            names.begin() + static_cast<std::ptrdiff_t>(first + per_layer));
+      layer.values.resize(n * per_layer);
+      for (std::size_t i = 0; i < n; ++i)
+        std::copy_n(&values[i * nc + first], per_layer, &layer.values[i * per_layer]);
+      out.layers.push_back(std::move(layer));
+    }
   }
   return out;
 }

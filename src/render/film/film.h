@@ -1,14 +1,15 @@
 // Film: the image being rendered, row 0 at the top. Each pixel holds sums, not
-// a final value: the filter-weighted sum of its samples' radiance and the sum of
-// their weights (both in double, so that 10^5 samples and more add up without
-// losing precision), and the number of samples. The pixel value is
+// a final value: the filter-weighted sum of its samples' radiance, the sum of
+// their weights and of the weights of those that hit a surface (coverage, the
+// alpha), all exact (ExactSum), and the number of samples. The pixel value is
 // sum / weight_sum. Because sums add, passes over sample ranges rendered one
 // after another (or elsewhere) merge into the same image.
 //
 // A film covers a frame of width x height pixels but stores only its crop
 // window (the whole frame by default); pixel coordinates are always the
 // frame's. Requested AOV layers (render/film/aov.h) are stored beside the
-// beauty, per pixel, in double; a film without AOVs stores nothing for them.
+// beauty, per pixel, as exact sums and plain doubles; a film without AOVs
+// stores nothing for them.
 //
 // Each pixel is written by exactly one task at a time (the render loop gives
 // every pixel to one task), so adding needs no synchronisation and the result
@@ -35,13 +36,16 @@ namespace pt {
 struct PixelSum {
   ExactSum r, g, b;     // sum of weight * radiance
   ExactSum weight;      // sum of filter weights
+  ExactSum coverage;    // sum of the weights of the samples whose camera ray hit a surface
   uint64_t samples = 0; // number of samples (non-finite ones included, as black)
 
-  void add(RGB value, float w) {
+  // One sample: its radiance, filter weight and whether its camera ray hit a surface.
+  void add(RGB value, float w, bool hit) {
     r.add(static_cast<double>(w) * value.r);  // a product of two floats: exact in double
     g.add(static_cast<double>(w) * value.g);
     b.add(static_cast<double>(w) * value.b);
     weight.add(w);
+    if (hit) coverage.add(w);
     ++samples;
   }
   void add(const PixelSum& o) {
@@ -49,6 +53,7 @@ struct PixelSum {
     g.add(o.g);
     b.add(o.b);
     weight.add(o.weight);
+    coverage.add(o.coverage);
     samples += o.samples;
   }
   // sum / weight; black for a pixel without weight.
@@ -58,9 +63,16 @@ struct PixelSum {
     return {static_cast<float>(r.value() * inv), static_cast<float>(g.value() * inv),
             static_cast<float>(b.value() * inv)};
   }
+  // The beauty's alpha: coverage / weight, the filter-weighted fraction of
+  // the samples whose camera ray hit a surface, clamped to [0, 1] (a filter
+  // with negative lobes can take the ratio out of it); 0 without weight.
+  float alpha() const {
+    if (weight.is_zero()) return 0.0f;
+    return static_cast<float>(std::clamp(coverage.value() / weight.value(), 0.0, 1.0));
+  }
 };
 // No padding: the film state writes the pixel sums as they are in memory.
-static_assert(sizeof(PixelSum) == 4 * sizeof(ExactSum) + sizeof(uint64_t));
+static_assert(sizeof(PixelSum) == 5 * sizeof(ExactSum) + sizeof(uint64_t));
 
 // One pixel's AOV samples of one pass, gathered before they are added to the
 // film (Film::make_scratch, accumulate, add_aovs): the AOVs' exact sums and
@@ -105,10 +117,11 @@ struct NonFiniteReport {
   std::string describe() const;
 };
 
-// What Film::add_state may take from a film state, per pixel of the state's
-// crop (row-major): whether its first-sample values come before the film's,
-// and the most samples it may hold there.
+// What Film::add_state may take from a film state: the crop it must cover,
+// and per pixel of that crop (row-major) whether its first-sample values come
+// before the film's, and the most samples it may hold there.
 struct StateRules {
+  PixelRect crop;  // the state's crop, as its shard's header says
   std::vector<uint8_t> other_first;
   std::vector<uint64_t> max_samples;
 };
@@ -142,7 +155,8 @@ class Film {
   AovScratch make_scratch() const;
   void accumulate(AovScratch& scratch, const AovSample& sample, RGB radiance, float weight, bool non_finite) const;
   void add_aovs(int x, int y, const AovScratch& scratch);
-  // The final values of AOV `type` at (x, y) (channels().size() floats); empty if not requested.
+  // The final values of AOV `type` at (x, y) (aov_channel_names().size()
+  // floats); empty if not requested.
   std::vector<float> aov_value(AovType type, int x, int y) const;
 
   // Adds the state of `other` (a shard: docs/distributed.md) over `region`,
@@ -157,9 +171,10 @@ class Film {
   const NonFiniteReport& non_finite() const { return non_finite_; }
   void add_non_finite(const NonFiniteReport& r) { non_finite_.merge(r); }
 
-  // The beauty (R, G, B, A; A = 1 where the pixel has samples), stored as
-  // `beauty` (float by default, half with "--aov beauty:half"), and every
-  // requested AOV over the crop window, for the image writers.
+  // The beauty (R, G, B, A; RGB premultiplied, A = PixelSum::alpha()), stored
+  // as `beauty` (float by default, half with "--aov beauty:half"), and every
+  // requested AOV over the crop window, for the image writers (a Ranked AOV
+  // becomes one layer per two ranks).
   LayeredImage layers(ChannelType beauty = ChannelType::Float) const;
 
   // The film's complete state (every pixel's sums and counts, the AOV sums,
@@ -180,6 +195,13 @@ class Film {
   bool add_state(std::istream& in, const StateRules& rules, std::string& error);
 
  private:
+  // Adds another film's (or a scratch's) AOV sums `s` to pixel number `pixel`:
+  // exact sums add, Cryptomatte slots merge (add_ranked).
+  void add_sums(std::size_t pixel, const ExactSum* s);
+  // Whether the Cryptomatte slots among a pixel's AOV sums `s` are as
+  // add_ranked leaves them (ids in increasing order, free slots last and
+  // empty); a film state read from a file may hold anything.
+  bool valid_ranked(const ExactSum* s) const;
   // Adds another film's plain AOV values `s` (first-sample layers, maxima) to pixel number `pixel`.
   void add_values(std::size_t pixel, const double* s, bool other_first);
   // The final values of AOV number `layer` of pixel number `pixel` (in the crop, row-major) into `out`.

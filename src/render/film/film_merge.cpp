@@ -11,7 +11,7 @@ namespace {
 bool same_aovs(const std::vector<AovRequest>& a, const std::vector<AovRequest>& b) {
   if (a.size() != b.size()) return false;
   for (std::size_t i = 0; i < a.size(); ++i)
-    if (a[i].type != b[i].type || a[i].channel_type != b[i].channel_type) return false;
+    if (a[i].type != b[i].type || a[i].channel_type != b[i].channel_type || a[i].ranks != b[i].ranks) return false;
   return true;
 }
 
@@ -37,9 +37,7 @@ bool Film::add_film(const Film& other, const PixelRect& c, bool other_first, std
     const std::size_t to = index(c.x0, y);
     for (std::size_t i = 0; i < static_cast<std::size_t>(c.width()); ++i) {
       pixels_[to + i].add(other.pixels_[from + i]);
-      ExactSum* d = aov_sums_.data() + (to + i) * sums;
-      const ExactSum* s = other.aov_sums_.data() + (from + i) * sums;
-      for (std::size_t k = 0; k < sums; ++k) d[k].add(s[k]);
+      add_sums(to + i, other.aov_sums_.data() + (from + i) * sums);
     }
     if (values == 0) continue;
     for (std::size_t i = 0; i < static_cast<std::size_t>(c.width()); ++i)

@@ -14,20 +14,22 @@ namespace pt {
 
 namespace {
 
-// State layout (version 3), all little-endian:
+// State layout (version 4), all little-endian:
 //   the 8-byte magic; uint32 version, width, height; int32 crop x0, y0, x1, y1;
-//   uint32 AOV count, then per AOV uint8 type and uint8 channel type;
+//   uint32 AOV count, then per AOV uint8 type, uint8 channel type and uint8
+//   ranks (Cryptomatte; 0 for the others);
 //   the non-finite report: uint64 nan, pos_inf, neg_inf; uint8 has_first;
 //   int32 x, y, sample; float r, g, b;
-//   per pixel of the crop (row-major, top row first): r, g, b, weight as exact
-//   sums (render/film/exact_sum.h: 128-bit two's-complement integers, the low
-//   64 bits first, in units of 2^-44) and samples as uint64;
-//   then the AOVs' exact sums: per pixel, their sums in request order;
+//   per pixel of the crop (row-major, top row first): r, g, b, weight,
+//   coverage as exact sums (render/film/exact_sum.h: 128-bit two's-complement
+//   integers, the low 64 bits first, in units of 2^-44) and samples as uint64;
+//   then the AOVs' exact sums: per pixel, their sums in request order (a
+//   Cryptomatte layer: per rank, its id's 32 bits as the integer and its weight);
 //   then the AOVs' plain values: per pixel, their values as IEEE doubles.
-// Versions 1 (beauty only, no crop) and 2 (sums in double) are no longer read:
-// their checkpoints predate exact sums.
+// Versions 1 (beauty only, no crop), 2 (sums in double) and 3 (either sums in
+// double with coverage, or exact sums without it) are no longer read.
 constexpr char kMagic[8] = {'P', 'T', 'F', 'I', 'L', 'M', '\r', '\n'};
-constexpr uint32_t kStateVersion = 3;
+constexpr uint32_t kStateVersion = 4;
 static_assert(std::endian::native == std::endian::little, "film states are written in the host's byte order");
 
 template <typename T>
@@ -58,6 +60,7 @@ std::string describe_aovs(const std::vector<AovRequest>& aovs) {
     if (!s.empty()) s += ',';
     s += aov_info(r.type).name;
     s += r.channel_type == ChannelType::Half ? ":half" : ":float";
+    if (r.ranks > 0) s += " (" + std::to_string(r.ranks) + " ranks)";
   }
   return s;
 }
@@ -70,19 +73,19 @@ bool read_aov_list(std::istream& in, uint32_t count, const std::vector<AovReques
   }
   std::vector<AovRequest> aovs;
   for (uint32_t i = 0; i < count; ++i) {
-    uint8_t type = 0, channel_type = 0;
-    if (!get(in, type) || !get(in, channel_type)) {
+    uint8_t type = 0, channel_type = 0, ranks = 0;
+    if (!get(in, type) || !get(in, channel_type) || !get(in, ranks)) {
       error = "truncated film state header";
       return false;
     }
-    if (type >= aov_catalogue().size() || channel_type > 1) {
+    if (type >= aov_catalogue().size() || channel_type > 1 || ranks > kCryptomatteMaxRanks) {
       error = "film state lists an unknown AOV (corrupt)";
       return false;
     }
-    aovs.push_back({static_cast<AovType>(type), static_cast<ChannelType>(channel_type)});
+    aovs.push_back({static_cast<AovType>(type), static_cast<ChannelType>(channel_type), ranks});
   }
   const auto same = [](const AovRequest& a, const AovRequest& b) {
-    return a.type == b.type && a.channel_type == b.channel_type;
+    return a.type == b.type && a.channel_type == b.channel_type && a.ranks == b.ranks;
   };
   if (!std::equal(aovs.begin(), aovs.end(), expected.begin(), expected.end(), same)) {
     error = "film state has AOVs " + describe_aovs(aovs) + ", the render asks for " + describe_aovs(expected);
@@ -170,6 +173,7 @@ bool Film::write_state(std::ostream& out) const {
   for (const AovRequest& r : aovs_) {
     put(out, static_cast<uint8_t>(r.type));
     put(out, static_cast<uint8_t>(r.channel_type));
+    put(out, static_cast<uint8_t>(r.ranks));
   }
   const NonFiniteReport& nf = non_finite_;
   put(out, nf.nan);
@@ -206,6 +210,12 @@ bool Film::read_state(std::istream& in, std::string& error) {
     error = "film state has trailing data";
     return false;
   }
+  const auto stride = static_cast<std::size_t>(sum_stride_);
+  for (std::size_t i = 0; i < pixels.size(); ++i)
+    if (!valid_ranked(sums.data() + i * stride)) {
+      error = "corrupt film state (Cryptomatte slots of pixel " + std::to_string(i) + " of the crop)";
+      return false;
+    }
   pixels_ = std::move(pixels);
   aov_sums_ = std::move(sums);
   aov_values_ = std::move(values);
@@ -216,8 +226,8 @@ bool Film::read_state(std::istream& in, std::string& error) {
 bool Film::add_state(std::istream& in, const StateRules& rules, std::string& error) {
   PixelRect c;
   if (!read_layout(in, width_, height_, c, aovs_, error)) return false;
-  if (!crop_.contains(c)) {
-    error = "film state covers pixels " + c.text() + ", outside " + crop_.text();
+  if (c != rules.crop || !crop_.contains(c)) {
+    error = "film state covers pixels " + c.text() + ", not " + rules.crop.text() + " inside " + crop_.text();
     return false;
   }
   NonFiniteReport nf;
@@ -252,11 +262,17 @@ bool Film::add_state(std::istream& in, const StateRules& rules, std::string& err
     return false;
   }
   const auto sums = static_cast<std::size_t>(sum_stride_), values = static_cast<std::size_t>(value_stride_);
+  bool corrupt = false;
   const bool ok =
       pixels_ok &&
       read_blocks<ExactSum>(in, n, sums, [&](const ExactSum* s, std::size_t first, std::size_t count) {
-        for (std::size_t i = 0; i < count; ++i)
-          for (std::size_t k = 0; k < sums; ++k) aov_sums_[to(first + i) * sums + k].add(s[i * sums + k]);
+        for (std::size_t i = 0; i < count; ++i) {
+          if (!valid_ranked(s + i * sums)) {
+            corrupt = true;
+            return false;
+          }
+          add_sums(to(first + i), s + i * sums);
+        }
         return true;
       }) &&
       read_blocks<double>(in, n, values, [&](const double* v, std::size_t first, std::size_t count) {
@@ -265,7 +281,7 @@ bool Film::add_state(std::istream& in, const StateRules& rules, std::string& err
         return true;
       });
   if (!ok) {
-    error = "truncated film state";
+    error = corrupt ? "corrupt film state (Cryptomatte slots)" : "truncated film state";
     return false;
   }
   if (in.peek() != std::char_traits<char>::eof()) {

@@ -16,8 +16,10 @@ class BinaryIntegrator final : public Integrator {
   explicit BinaryIntegrator(const IntegratorSettings& settings) : settings_(settings) { settings_.spp = 1; }
 
   void render(const RenderScene& scene, Film& film, WorkerPool& pool) const override {
-    render_pixels(scene, film, pool, settings_,
-                  [&](const Ray& ray) { return scene.occluded(ray) ? RGB(1, 0, 0) : RGB(0, 0, 0); });
+    render_pixels(scene, film, pool, settings_, [&](const Ray& ray) {
+      const bool hit = scene.occluded(ray);
+      return CameraEstimate{hit ? RGB(1, 0, 0) : RGB(0, 0, 0), hit};
+    });
   }
 
  private:

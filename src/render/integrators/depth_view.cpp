@@ -21,8 +21,8 @@ class DepthIntegrator final : public Integrator {
     const float inv_range = 1.0f / depth_view_range(scene.accel->bounds(), scene.camera.position());
     render_pixels(scene, film, pool, settings_, [&](const Ray& ray) {
       Intersection isect;
-      if (!scene.intersect(ray, isect)) return RGB();
-      return RGB(std::clamp(1.0f - isect.hit.t * inv_range, 0.0f, 1.0f));
+      if (!scene.intersect(ray, isect)) return CameraEstimate{};
+      return CameraEstimate{RGB(std::clamp(1.0f - isect.hit.t * inv_range, 0.0f, 1.0f)), true};
     });
   }
 

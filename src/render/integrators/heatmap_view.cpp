@@ -86,7 +86,10 @@ void draw_legend(Image& image, float top, bool saturated) {
 
 class BvhCostIntegrator final : public Integrator {
  public:
-  explicit BvhCostIntegrator(const IntegratorSettings& settings) : settings_(settings) {}
+  // A chart of every ray's cost: a miss costs too, whatever the film's transparency.
+  explicit BvhCostIntegrator(const IntegratorSettings& settings) : settings_(settings) {
+    settings_.film_transparent = false;
+  }
 
   bool can_render(const RenderScene& scene, std::string& why) const override {
     if (scene.accel != nullptr && scene.accel->counts_traversal()) return true;
@@ -101,8 +104,8 @@ class BvhCostIntegrator final : public Integrator {
     render_pixels(scene, costs, pool, settings_, [&](const Ray& ray) {
       Hit hit;
       TraversalCounters counters;
-      scene.accel->intersect_counted(ray, hit, counters);
-      return RGB(static_cast<float>(counters.nodes + counters.primitives));
+      const bool found = scene.accel->intersect_counted(ray, hit, counters);
+      return CameraEstimate{RGB(static_cast<float>(counters.nodes + counters.primitives)), found};
     });
     // Pass 2: colours on the scale 0 .. 99th percentile, and the legend.
     std::vector<float> sorted;
@@ -123,7 +126,7 @@ class BvhCostIntegrator final : public Integrator {
     for (int y = crop.y0; y < crop.y1; ++y) {
       for (int x = crop.x0; x < crop.x1; ++x) {
         PixelSum s;
-        s.add(image.at(x, y), 1.0f);
+        s.add(image.at(x, y), 1.0f, true);  // a chart: opaque everywhere
         film.add(x, y, s);
       }
     }

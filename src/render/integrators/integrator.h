@@ -30,11 +30,14 @@ enum class LightStrategy {
 class RenderMonitor {
  public:
   virtual ~RenderMonitor() = default;
-  // Polled before each tile: true skips the tiles not yet started. The film
-  // then holds fewer samples in some pixels; each pixel's value is still the
-  // mean of its own samples (PixelSum counts them).
+  // Polled before each tile, each pixel and every 16 samples of a pixel (the
+  // render loop's kCancelPollSamples): true stops the pass there, so a render
+  // stops within a fraction of a second whatever its pass size. The film then
+  // holds fewer samples in some pixels (a pixel stopped inside the pass keeps
+  // the samples it got); each pixel's value is still the mean of its own
+  // samples (PixelSum counts them).
   virtual bool cancelled() const { return false; }
-  // After each finished tile, with the number of pixel samples it rendered and
+  // After each finished (or cancelled) tile, with the number of pixel samples it rendered and
   // the rays it traced (RenderScene::intersect and occluded calls).
   virtual void tile_done(int64_t pixel_samples, int64_t rays) {
     (void)pixel_samples;
@@ -61,6 +64,10 @@ struct IntegratorSettings {
   int roulette_depth = 3;
   float roulette_threshold = 1.0f / 3.0f;
   SamplerType sampler = SamplerType::Sobol;  // path: where its random numbers come from (docs/samplers.md)
+  // Cycles' Film > Transparent: what camera rays see when they hit nothing
+  // (background, environment, background image) is left out of the image
+  // (black, alpha 0); it still lights the scene and shows in reflections.
+  bool film_transparent = false;
   // Replay: >= 0 renders only this sample index of every pixel of the film's
   // crop (the sampler still sees spp, so the sample is the one a full render draws).
   int only_sample = -1;

@@ -16,9 +16,9 @@ class NormalIntegrator final : public Integrator {
   void render(const RenderScene& scene, Film& film, WorkerPool& pool) const override {
     render_pixels(scene, film, pool, settings_, [&](const Ray& ray) {
       Intersection isect;
-      if (!scene.intersect(ray, isect)) return RGB();
+      if (!scene.intersect(ray, isect)) return CameraEstimate{};
       const Vec3f c = isect.geo.ns * 0.5f + Vec3f(0.5f);
-      return RGB(c.x, c.y, c.z);
+      return CameraEstimate{RGB(c.x, c.y, c.z), true};
     });
   }
 

@@ -36,8 +36,9 @@ class PathTracer {
         inv_roulette_threshold_(settings.roulette_threshold > 0.0f ? 1.0f / settings.roulette_threshold : 1.0f) {}
 
   // `aov`, when not null, receives the lighting split (path_aov.h).
-  RGB radiance(Ray ray, Sampler& sampler, AovSample* aov = nullptr) const {
+  CameraEstimate radiance(Ray ray, Sampler& sampler, AovSample* aov = nullptr) const {
     PathAovRecorder rec(aov);
+    bool camera_hit = false;
     RGB L, beta(1.0f);
     bool specular = true;  // the camera ray, or a delta lobe: no light sampling could have found this
     float prev_pdf = 0.0f;
@@ -54,6 +55,7 @@ class PathTracer {
         }
         break;
       }
+      camera_hit = camera_hit || depth == 0;
       const Material& m = *isect.material;
       const Vec3f wo = -ray.dir;
       if (m.emits()) {
@@ -104,7 +106,7 @@ class PathTracer {
         if (rec.active()) rec.scale(clamp_ / peak);
       }
     }
-    return L;
+    return {L, camera_hit};
   }
 
  private:

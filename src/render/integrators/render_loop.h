@@ -30,12 +30,20 @@ struct RenderScene;
 // The jitter comes from Rng(hash(seed, pixel_index, index)).
 Vec2f sample_position(int x, int y, int index, int spp, uint64_t seed, uint64_t pixel_index);
 
+// What an integrator returns for one camera ray: its radiance estimate and
+// whether the ray hit a surface (the pixel's coverage: the beauty's alpha;
+// with IntegratorSettings::film_transparent a miss adds no radiance).
+struct CameraEstimate {
+  RGB radiance;
+  bool hit = false;
+};
+
 // Computes one radiance estimate for a camera ray.
-using RadianceFn = FunctionRef<RGB(const Ray&)>;
+using RadianceFn = FunctionRef<CameraEstimate(const Ray&)>;
 // Computes one radiance estimate for a camera ray, drawing further dimensions
 // from `sampler`. `aov` is null unless the film asks for the lighting split
 // (Film::wants_lighting()); then the estimate's parts go there.
-using SampleRadianceFn = FunctionRef<RGB(const Ray&, Sampler&, AovSample* aov)>;
+using SampleRadianceFn = FunctionRef<CameraEstimate(const Ray&, Sampler&, AovSample* aov)>;
 
 // The general loop: for samples [settings.first_sample, + settings.spp) of every
 // pixel, starts `sampler` (a prototype copied into each task) at the sample,
@@ -44,12 +52,15 @@ using SampleRadianceFn = FunctionRef<RGB(const Ray&, Sampler&, AovSample* aov)>;
 // rendered (in frame coordinates, so its pixels equal a full render's). With
 // settings.only_sample >= 0 only that sample index is rendered (replay).
 // Non-finite estimates count as black and are reported in film.non_finite().
+// With settings.film_transparent, a camera ray that hits nothing adds black
+// (and no lighting AOV): the background is seen as transparent, not lit.
 // Geometric AOVs (Film::wants_geometry) come from intersecting the camera ray
 // once more. Runs tiles of settings.tile_size pixels in parallel inside `pool`.
 void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, const IntegratorSettings& settings,
                     const Sampler& sampler, const PixelFilter& filter, SampleRadianceFn radiance);
 
-// Fills the geometric part of `aov` (albedo, normal, position, depth, ids) for a camera ray.
+// Fills the geometric part of `aov` (albedo, normal, position, depth, ids,
+// Cryptomatte ids) for a camera ray.
 void first_hit_aovs(const RenderScene& scene, const Ray& ray, AovSample& aov);
 
 // The classic integrators' loop: render_samples with the StratifiedPixelSampler

@@ -16,7 +16,8 @@ class SignatureIntegrator final : public Integrator {
   void render(const RenderScene& scene, Film& film, WorkerPool& pool) const override {
     render_pixels(scene, film, pool, settings_, [&](const Ray& ray) {
       Hit hit;
-      return scene.accel->intersect(ray, hit) ? signature_colour(hit.shape) : RGB();
+      const bool found = scene.accel->intersect(ray, hit);
+      return CameraEstimate{found ? signature_colour(hit.shape) : RGB(), found};
     });
   }
 

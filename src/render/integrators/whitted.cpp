@@ -174,9 +174,12 @@ class Whitted {
   // result: emission (the surface's own, or what the ray sees leaving the
   // scene), ambient, diffuse and specular direct light at the first hit, and
   // specular_indirect (what its mirror reflection or refraction brings).
-  RGB trace(const Ray& ray, int depth, AovSample* aov = nullptr) const {
+  // `hit` (the camera ray's only) is set when the ray hits a surface.
+  RGB trace(const Ray& ray, int depth, AovSample* aov = nullptr, bool* hit = nullptr) const {
     Intersection isect;
-    if (!scene_.intersect(ray, isect)) {
+    const bool found = scene_.intersect(ray, isect);
+    if (hit != nullptr) *hit = found;
+    if (!found) {
       const RGB seen = depth == 0 ? scene_.camera_ray_escaped(ray) : scene_.escaped_radiance(ray.dir);
       if (aov != nullptr) aov->emission += seen;
       return seen;
@@ -259,7 +262,9 @@ class WhittedIntegrator final : public Integrator {
 
   void render(const RenderScene& scene, Film& film, WorkerPool& pool) const override {
     render_pixels_with_split(scene, film, pool, settings_, [&](const Ray& ray, Sampler& sampler, AovSample* aov) {
-      return Whitted(scene, settings_.max_depth, sampler).trace(ray, 0, aov);
+      CameraEstimate e;
+      e.radiance = Whitted(scene, settings_.max_depth, sampler).trace(ray, 0, aov, &e.hit);
+      return e;
     });
   }
 

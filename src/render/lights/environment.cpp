@@ -1,6 +1,8 @@
 #include "render/lights/environment.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <utility>
 #include <vector>
 
@@ -37,10 +39,61 @@ EnvironmentMap::EnvironmentMap(Texture image, Vec3f up, float rotation_deg, floa
   mean_luminance_ = solid_angle > 0.0 ? static_cast<float>(weighted / solid_angle) * intensity_ : 0.0f;
 }
 
+namespace {
+
+std::string texel_text(int x, int y, const RGB& c) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "texel (%d, %d) = (%g, %g, %g)", x, y, static_cast<double>(c.r),
+                static_cast<double>(c.g), static_cast<double>(c.b));
+  return buf;
+}
+
+// A map's texels are radiance: a non-finite one, or one that overflows once
+// scaled by the intensity, is refused (false with `error`); negative channels
+// are clamped to 0 with `warning` (resampled HDR images often hold small
+// negative lobes; as radiance they would subtract light).
+bool check_texels(Texture& image, float intensity, std::string& error, std::string& warning) {
+  const int w = image.width(), h = image.height();
+  int64_t negative = 0;
+  std::string first_negative;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const RGB& c = image.texel(x, y);
+      if (!c.is_finite()) {
+        error = texel_text(x, y, c) + " is not finite (x from the left, y from the top)";
+        return false;
+      }
+      if (static_cast<double>(c.max_component()) * intensity > 1e30) {
+        error = texel_text(x, y, c) + " times the intensity " + std::to_string(intensity) +
+                " exceeds 1e30: a path's radiance would overflow the float range (docs/scene-format.md, \"Value limits\")";
+        return false;
+      }
+      if (c.r < 0.0f || c.g < 0.0f || c.b < 0.0f) {
+        if (negative++ == 0) first_negative = texel_text(x, y, c);
+      }
+    }
+  if (negative == 0) return true;
+  std::vector<RGB> pixels(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const RGB& c = image.texel(x, y);
+      pixels[static_cast<std::size_t>(y) * w + x] = RGB(std::max(c.r, 0.0f), std::max(c.g, 0.0f), std::max(c.b, 0.0f));
+    }
+  image = Texture(w, h, std::move(pixels));
+  warning = std::to_string(negative) + " texel" + (negative == 1 ? " has" : "s have") +
+            " negative values, clamped to 0 (the first: " + first_negative + ", x from the left, y from the top)";
+  return true;
+}
+
+}  // namespace
+
 std::unique_ptr<EnvironmentMap> EnvironmentMap::load(const EnvironmentDesc& desc, std::string& error,
-                                                     const TextureLimits& limits) {
+                                                     const TextureLimits& limits, std::string* warning) {
   Texture image;
   if (!Texture::load(desc.resolved, image, error, limits)) return nullptr;
+  std::string clamped;
+  if (!check_texels(image, desc.intensity.value, error, clamped)) return nullptr;
+  if (warning != nullptr) *warning = clamped;
   return std::make_unique<EnvironmentMap>(std::move(image), desc.up.value, desc.rotation_deg.value,
                                           desc.intensity.value);
 }

@@ -29,8 +29,12 @@ class EnvironmentMap {
   EnvironmentMap(Texture image, Vec3f up, float rotation_deg, float intensity);
 
   // Reads the image (any format OpenImageIO reads; float images are linear).
+  // A texel that is not finite, or that overflows once scaled by the
+  // intensity (beyond 1e30), is refused with `error` naming it; negative
+  // channels are clamped to 0, and `warning` (if given) then names the first
+  // such texel and their count (docs/scene-format.md, "Environment").
   static std::unique_ptr<EnvironmentMap> load(const EnvironmentDesc& desc, std::string& error,
-                                              const TextureLimits& limits = {});
+                                              const TextureLimits& limits = {}, std::string* warning = nullptr);
 
   // Radiance arriving from direction `dir` (unit; pointing away from the scene).
   RGB radiance(Vec3f dir) const;
