@@ -1,23 +1,34 @@
 #!/usr/bin/env bash
 # Installs whatever Debian 12 packages are missing (toolchain included) and builds
 # the renderer in <repo>/build. Safe to re-run; works from any directory.
-# Used by tools/showcase.sh and tools/test.sh (the README's two commands).
+# Used by tools/showcase.sh and tools/test.sh (the README's two commands):
+#
+#   setup.sh render   what rendering needs: the libraries, and the `pathtracer` target only
+#   setup.sh test     also the test and benchmark dependencies (GoogleTest, Google Benchmark,
+#                     Python checks, Blender for the EXR round trip), and every target
 set -euo pipefail
 
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${PT_BUILD_DIR:-$repo/build}"
+mode="${1:-test}"
+case "$mode" in render|test) ;; *) echo "setup: unknown mode '$mode' (render or test)" >&2; exit 2;; esac
 
 packages=(
-  g++ cmake ninja-build pkg-config git
+  g++ cmake ninja-build pkg-config
   libembree-dev libtbb-dev
-  libopenimageio-dev openimageio-tools libopenexr-dev libopencolorio-dev
+  libopenimageio-dev libopenexr-dev libopencolorio-dev
   nlohmann-json3-dev libcli11-dev libassimp-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
-  python3 python3-jsonschema
-  python3-matplotlib  # the study_quick test (tools/study/samplers/run_study.py --quick) plots; it skips without
-  openmpi-bin libopenmpi-dev  # pathtracer --mpi and its test (mpirun -np 3); the build works without (docs/distributed.md)
-  blender  # Blender 3.4 reading our EXRs (tests/app/test_blender_exr.cpp); it skips without
 )
+if [ "$mode" = test ]; then
+  packages+=(
+    git openimageio-tools
+    libgtest-dev libgmock-dev libbenchmark-dev
+    python3 python3-jsonschema
+    python3-matplotlib  # the study_quick test (tools/study/samplers/run_study.py --quick) plots; it skips without
+    blender  # Blender 3.4 reading our EXRs (tests/app/test_blender_exr.cpp); it skips without
+    openmpi-bin libopenmpi-dev  # pathtracer --mpi and its test (mpirun -np 3); the build works without (docs/distributed.md)
+  )
+fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -40,5 +51,16 @@ if ((${#missing[@]})); then
 fi
 
 jobs="$(nproc 2>/dev/null || echo 2)"
-cmake -S "$repo" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE="${PT_BUILD_TYPE:-Release}" ${PT_CMAKE_ARGS:-} >/dev/null
-cmake --build "$build" -j "$jobs"
+if [ "$mode" = test ]; then
+  cmake -S "$repo" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE="${PT_BUILD_TYPE:-Release}" \
+    -DPT_BUILD_TESTS=ON -DPT_BUILD_TOOLS=ON ${PT_CMAKE_ARGS:-} >/dev/null
+  cmake --build "$build" -j "$jobs"
+else
+  # A first configure leaves the tests and tools out (their packages may be missing); a build
+  # tree that tools/test.sh configured keeps them, and only the renderer is brought up to date.
+  options=()
+  [ -f "$build/CMakeCache.txt" ] || options=(-DPT_BUILD_TESTS=OFF -DPT_BUILD_TOOLS=OFF)
+  cmake -S "$repo" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE="${PT_BUILD_TYPE:-Release}" \
+    "${options[@]}" ${PT_CMAKE_ARGS:-} >/dev/null
+  cmake --build "$build" -j "$jobs" --target pathtracer
+fi

@@ -375,9 +375,9 @@ TEST(ShippedScenes, AllLoadWithoutProblems) {
   EXPECT_GE(count, 3);
 }
 
-TEST(ShippedScenes, ShowcaseExercisesEveryShapeAndItsAssets) {
+TEST(ShippedScenes, ClassicSceneExercisesEveryClassicShapeAndItsAssets) {
   Diagnostics diag;
-  const auto s = load_scene(std::string(PT_SCENES_DIR) + "/showcase.json", LoadOptions{}, diag);
+  const auto s = load_scene(std::string(PT_SCENES_DIR) + "/classic.json", LoadOptions{}, diag);
   ASSERT_TRUE(s) << diag.format();
   EXPECT_GE(s->film.width.value, 1024);
   EXPECT_GE(s->lights.size(), 2u);
@@ -406,6 +406,35 @@ TEST(ShippedScenes, ShowcaseExercisesEveryShapeAndItsAssets) {
   EXPECT_EQ(meshes, 1);
   EXPECT_GE(refractive, 1);
   EXPECT_GE(mirrors, 1);
+}
+
+// The README's first command renders scenes/showcase.json: it must show what a
+// path tracer is for (issue 21): the path integrator, an area light, glass, a
+// metal, a textured mesh, an HDR environment map and depth of field.
+TEST(ShippedScenes, ShowcaseShowsWhatThePathTracerIsFor) {
+  Diagnostics diag;
+  const auto s = load_scene(std::string(PT_SCENES_DIR) + "/showcase.json", LoadOptions{}, diag);
+  ASSERT_TRUE(s) << diag.format();
+  EXPECT_EQ(s->render.integrator.value, "path");
+  EXPECT_EQ(s->camera.type, CameraType::ThinLens);
+  ASSERT_TRUE(s->environment.has_value());
+  EXPECT_NE(s->environment->resolved.find("scenes/assets/"), std::string::npos) << "the map ships with the repository";
+  int glass = 0, metals = 0, emitters = 0;
+  for (const MaterialDesc& m : s->materials) {
+    glass += m.type.value == MaterialType::Glass;
+    metals += m.type.value == MaterialType::Mirror;
+    emitters += m.emission.value.max_component() > 0.0f;
+  }
+  EXPECT_GE(glass, 1);
+  EXPECT_GE(metals, 1);
+  EXPECT_GE(emitters, 1);
+  int textured_meshes = 0;
+  for (const ShapeDesc& shape : s->shapes) {
+    const auto* mesh = std::get_if<TriangleMesh>(&shape.geometry);
+    const MaterialDesc& m = s->materials[static_cast<std::size_t>(shape.material)];
+    textured_meshes += mesh != nullptr && !mesh->uvs.empty() && m.texture.has_value();
+  }
+  EXPECT_GE(textured_meshes, 1);
 }
 
 }  // namespace

@@ -12,7 +12,7 @@ repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 build="${PT_ASAN_BUILD_DIR:-$repo/build-asan}"
 
 # Installs what is missing and builds, as the README's commands do, into build-asan/.
-PT_BUILD_DIR="$build" PT_BUILD_TYPE=RelWithDebInfo PT_CMAKE_ARGS="-DPT_SANITIZE=ON" "$repo/tools/setup.sh"
+PT_BUILD_DIR="$build" PT_BUILD_TYPE=RelWithDebInfo PT_CMAKE_ARGS="-DPT_SANITIZE=ON" "$repo/tools/setup.sh" test
 
 export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1:check_initialization_order=1:strict_init_order=1:detect_stack_use_after_return=1"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
