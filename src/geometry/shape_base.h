@@ -105,9 +105,12 @@ struct TriangleAreaSampler {
   Distribution1D parts;  // the triangles by area
   float area = 0.0f;
 
-  void sample(Vec2f u, Vec3f& q, Vec3f& n) const {
+  void sample(Vec2f u, Vec3f& q, Vec3f& n) const { sample(parts, u, q, n); }
+  // The same with the triangles picked by another distribution over them (an
+  // instance's, by their areas under its transform).
+  void sample(const Distribution1D& by, Vec2f u, Vec3f& q, Vec3f& n) const {
     std::size_t part = 0;
-    const Vec2f v = pick_part(parts, u, part);
+    const Vec2f v = pick_part(by, u, part);
     const Triangle& t = triangles[part];
     const Vec3f b = sample_uniform_triangle(v);
     q = t.p0 + t.e1 * b.y + t.e2 * b.z;

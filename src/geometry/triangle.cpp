@@ -17,6 +17,26 @@ struct Sheared {
   Vec3f a, b, c;
 };
 
+// The bound on the error of t (pbrt-v4's, "Triangle Intersection" in
+// "Floating-Point Error") from the sheared vertices' largest |x|, |y|, |z|
+// before the scaling by sz and |z sz|, the largest edge function and |det|.
+// pbrt bounds the error of the sheared x and y by gamma(5) (|x| + |z sz|);
+// the shear adds sx z with |sx| <= 1, so |z| before the scaling bounds it.
+// The scaled |z sz| is |z| / |d.z|: for a short direction (a ray in the space
+// of an instance scaled up 1e4 is 1e-4 long) pbrt's bound grows as 1 / |d|^2
+// while t grows as 1 / |d|, and hits of triangles reaching behind the origin
+// (a ray leaving a closed mesh from inside) were rejected as not certainly
+// positive: rays escaped instanced boxes scaled ~1e4 (docs/numerical-
+// stability.md, section 11). kernel_avx2.cpp replicates this operation for
+// operation.
+inline float t_error_bound(float max_xt, float max_yt, float max_z, float max_zt, float max_e, float abs_det) {
+  const float delta_z = fp::gamma(3) * max_zt;
+  const float delta_x = fp::gamma(5) * (max_xt + max_z);
+  const float delta_y = fp::gamma(5) * (max_yt + max_z);
+  const float delta_e = 2.0f * (fp::gamma(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
+  return 3.0f * (fp::gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) / abs_det;
+}
+
 }  // namespace
 
 // Two clones chosen at load time: on x86-64-v3 (AVX2, FMA) the three fmaf of
@@ -62,6 +82,9 @@ bool intersect_triangle(Vec3f p0, Vec3f p1, Vec3f p2, const Ray& ray, PrimHit& h
   const float det = e0 + e1 + e2;
   if (det == 0.0f) return false;
 
+  // The largest |z| before the scaling by sz: the shear's error term in x and y
+  // (sx z, |sx| <= 1 since z is the dominant axis) is bounded by it.
+  const float max_z = std::max({std::fabs(s.a.z), std::fabs(s.b.z), std::fabs(s.c.z)});
   s.a.z *= sz;
   s.b.z *= sz;
   s.c.z *= sz;
@@ -81,14 +104,8 @@ bool intersect_triangle(Vec3f p0, Vec3f p1, Vec3f p2, const Ray& ray, PrimHit& h
   const float max_zt = std::max({std::fabs(s.a.z), std::fabs(s.b.z), std::fabs(s.c.z)});
   const float max_xt = std::max({std::fabs(s.a.x), std::fabs(s.b.x), std::fabs(s.c.x)});
   const float max_yt = std::max({std::fabs(s.a.y), std::fabs(s.b.y), std::fabs(s.c.y)});
-  const float delta_z = fp::gamma(3) * max_zt;
-  const float delta_x = fp::gamma(5) * (max_xt + max_zt);
-  const float delta_y = fp::gamma(5) * (max_yt + max_zt);
-  const float delta_e = 2.0f * (fp::gamma(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
   const float max_e = std::max({std::fabs(e0), std::fabs(e1), std::fabs(e2)});
-  const float delta_t =
-      3.0f * (fp::gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) / std::fabs(det);
-  if (t <= delta_t && !certainly_ahead) return false;
+  if (t <= t_error_bound(max_xt, max_yt, max_z, max_zt, max_e, std::fabs(det)) && !certainly_ahead) return false;
 
   // Exactly degenerate triangles (repeated or collinear vertices) can pass the
   // edge tests with a rounding-noise determinant; they never hit. Checked only

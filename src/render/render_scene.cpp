@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <type_traits>
 #include <unordered_map>
@@ -145,12 +146,16 @@ LightSet build_light_set(const SceneDescription& desc, const RenderScene& scene)
     const Material& m = scene.materials[static_cast<std::size_t>(scene.shape_material[i])];
     if (direct[i] && m.emits()) lights.emplace_back(ShapeLight(g.shapes[i], static_cast<uint32_t>(i), m));
   }
-  // Each emissive shape of each instance: a light of its own.
+  // Each emissive shape of each instance: a light of its own, sampling the
+  // shape through the one sampler its placements share (built at first use).
+  std::vector<std::shared_ptr<const ShapeAreaSampler>> samplers(g.shapes.size());
   for (std::size_t i = 0; i < g.instances.size(); ++i) {
     const Instance& inst = g.instances[i];
     for (uint32_t s : g.prototypes[inst.prototype]) {
       const Material& m = scene.materials[static_cast<std::size_t>(scene.material_of(s, static_cast<uint32_t>(i)))];
-      if (m.emits()) lights.emplace_back(ShapeLight(g.shapes[s], s, m, inst.transform, static_cast<uint32_t>(i)));
+      if (!m.emits()) continue;
+      if (!samplers[s]) samplers[s] = std::make_shared<const ShapeAreaSampler>(make_area_sampler(g.shapes[s]));
+      lights.emplace_back(ShapeLight(g.shapes[s], s, m, inst.transform, static_cast<uint32_t>(i), samplers[s]));
     }
   }
   if (scene.environment_map) {

@@ -51,6 +51,31 @@ void refuse_camera_keys(ImportContext& ctx, ObjectReader& r, CameraType type, co
   }
 }
 
+// The camera's transform, applied at import as pbrt-v4's camera transform and
+// Mitsuba 3's to_world act: it moves the position, target and up; its uniform
+// scale scales the camera's lengths (lens radius, focus distance, orthographic
+// view), so a scene scaled with its camera looks the same; a mirror flips the
+// image's handedness (a reflection of the whole scene and its camera renders
+// the same image). A non-uniform scale or shear would stretch the view, which
+// no camera here models: refused.
+void apply_camera_transform(ImportContext& ctx, ObjectReader& r, const JsonValue& v, CameraDesc& cam) {
+  std::optional<Sourced<Transform>> transform;
+  if (!read_transform(ctx.read, v, transform) || !transform) return;
+  const Transform& t = transform->value;
+  if (!t.similarity) {
+    ctx.diag().error(transform->where, "a camera's transform must keep angles (translate, rotate, a uniform scale "
+                                       "or a mirror): a non-uniform scale or a shear would stretch the view");
+    r.fail();
+    return;
+  }
+  cam.position.value = t.point(cam.position.value);
+  cam.look_at.value = t.point(cam.look_at.value);
+  cam.up.value = t.vector(cam.up.value);
+  for (Sourced<float>* length : {&cam.lens_radius, &cam.focus_distance, &cam.view_height, &cam.view_width})
+    length->value *= t.scale;
+  if (t.det < 0.0f) cam.left_handed.value = !cam.left_handed.value;
+}
+
 void read_camera(ImportContext& ctx, const JsonValue& v) {
   if (!expect_object(ctx.read, v, "camera")) return;
   ObjectReader r(ctx.read, v, "camera");
@@ -82,13 +107,7 @@ void read_camera(ImportContext& ctx, const JsonValue& v) {
       r.fail();
     }
   }
-  // The camera's transform moves its position, target and up at import.
-  std::optional<Sourced<Transform>> transform;
-  if (const JsonValue* t = r.get("transform"); t && read_transform(ctx.read, *t, transform) && transform) {
-    cam.position.value = transform->value.point(cam.position.value);
-    cam.look_at.value = transform->value.point(cam.look_at.value);
-    cam.up.value = transform->value.vector(cam.up.value);
-  }
+  if (const JsonValue* t = r.get("transform")) apply_camera_transform(ctx, r, *t, cam);
   r.finish();
 }
 
@@ -368,6 +387,7 @@ void import_native(ImportContext& ctx) {
     for (std::size_t i = 0; i < shapes.size(); ++i) read_native_shape(ctx, shapes[i], i, materials, shape_material);
   }
   top.finish();
+  warn_unplaced_objects(ctx);
   assemble_materials(ctx, materials, shape_material, object_material);
 }
 

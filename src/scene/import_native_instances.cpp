@@ -2,6 +2,7 @@
 // of type "instance" (docs/scene-format.md, "Instancing").
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "scene/import_transform.h"
 #include "scene/native_shapes.h"
@@ -82,6 +83,18 @@ void read_native_instance(ImportContext& ctx, const JsonValue& v, std::vector<Na
                           names.empty() ? "; the scene defines no objects (top-level \"objects\")"
                                         : "; the scene defines " + quoted_list(names, "and"));
   ctx.diag().error(name.where, std::move(message));
+}
+
+void warn_unplaced_objects(ImportContext& ctx) {
+  std::vector<bool> placed(ctx.scene.objects.size(), false);
+  for (const InstanceDesc& inst : ctx.scene.instances)
+    if (inst.object >= 0) placed[static_cast<std::size_t>(inst.object)] = true;
+  for (std::size_t i = 0; i < placed.size(); ++i) {
+    const ObjectDesc& o = ctx.scene.objects[i];
+    if (!placed[i])
+      ctx.diag().warning(o.where, "object '" + o.name + "' is not placed by any instance (a shape of type " +
+                                      "\"instance\" with \"object\": \"" + o.name + "\"); it will not be visible");
+  }
 }
 
 }  // namespace pt

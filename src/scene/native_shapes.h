@@ -39,5 +39,7 @@ void read_native_objects(ImportContext& ctx, const JsonValue& v, std::vector<Nat
 // Reads an instance into ctx.scene.instances; its material, if any, is an
 // index into `materials` until assemble_materials renumbers it.
 void read_native_instance(ImportContext& ctx, const JsonValue& v, std::vector<NativeMaterial>& materials);
+// A warning for each object no instance places (it is never drawn), at the object.
+void warn_unplaced_objects(ImportContext& ctx);
 
 }  // namespace pt

@@ -35,14 +35,17 @@ std::vector<std::string> scene_files() {
   for (const char* name : {"binary_primitives", "mirror_image", "scene", "simple_phong"})
     out.push_back((seeds / "cgr" / (std::string(name) + ".json")).string());
   out.push_back((seeds / "path-of-light" / "examples" / "example.json").string());
-  std::error_code ec;
-  std::vector<std::string> native;
-  for (const auto& e : fs::directory_iterator(PT_SCENES_DIR, ec))
-    if (e.path().extension() == ".json") native.push_back(e.path().string());
-  std::sort(native.begin(), native.end());
-  out.insert(out.end(), native.begin(), native.end());
-  // Transforms and instancing (not under scenes/: builds before them cannot read it).
-  out.push_back((fs::path(PT_TEST_DATA_DIR) / "data" / "scenes" / "instances.json").string());
+  // scenes/, then the test scenes of tests/data/scenes (transforms and
+  // instancing, the classic lights, the orthographic and spherical cameras:
+  // not under scenes/, since builds before them cannot read them).
+  for (const fs::path& dir : {fs::path(PT_SCENES_DIR), fs::path(PT_TEST_DATA_DIR) / "data" / "scenes"}) {
+    std::error_code ec;
+    std::vector<std::string> native;
+    for (const auto& e : fs::directory_iterator(dir, ec))
+      if (e.path().extension() == ".json") native.push_back(e.path().string());
+    std::sort(native.begin(), native.end());
+    out.insert(out.end(), native.begin(), native.end());
+  }
   return out;
 }
 

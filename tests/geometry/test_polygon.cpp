@@ -52,6 +52,30 @@ TEST(Polygon, RectangleHasTheQuadsTextureCoordinates) {
   }
 }
 
+TEST(Polygon, HexagonMapsItsBoundingRectangleInTheFirstEdgesFrame) {
+  // docs/geometry.md: eu = the first edge v0 -> v1, ev = normal x eu, the
+  // bounding rectangle in that frame onto [0, 1]^2. For the regular hexagon
+  // of radius 1 (normal +z) the rectangle is 2 long along eu (corners 5 and 2)
+  // and sqrt(3) across (edges 0-1 and 3-4), centred on the centre.
+  const std::vector<Vec3f> v = regular(6, 1.0f, 2.0f);
+  const ConvexPolygon hex = make_polygon(v);
+  const Vec3f eu = normalize(v[1] - v[0]);
+  const Vec3f ev = cross(Vec3f(0, 0, 1), eu);
+  const float across = std::sqrt(3.0f);
+  for (const float a : {-0.9f, -0.3f, 0.0f, 0.4f, 0.8f}) {
+    for (const float b : {-0.7f, 0.0f, 0.2f, 0.6f}) {
+      const Vec3f p = a * eu + b * ev;
+      if (std::abs(b) > across / 2 * 0.99f || std::abs(a) + std::abs(b) / across > 0.99f) continue;  // outside
+      const Ray ray{{p.x, p.y, 5}, {0, 0, -1}};
+      PrimHit hit;
+      ASSERT_TRUE(intersect(hex, ray, hit)) << a << " " << b;
+      const SurfaceGeometry sg = surface(hex, ray, hit);
+      EXPECT_NEAR(sg.uv.x, 0.5f + a / 2, 1e-5f) << a << " " << b;
+      EXPECT_NEAR(sg.uv.y, 0.5f + b / across, 1e-5f) << a << " " << b;
+    }
+  }
+}
+
 TEST(Polygon, AreaSamplesLieOnThePolygon) {
   std::vector<Vec3f> v = regular(7, 1.3f, 0.0f);
   for (Vec3f& p : v) p = Vec3f(p.x + 0.4f * p.z, p.y, p.x * 0.5f + 2.0f);  // tilted, still planar

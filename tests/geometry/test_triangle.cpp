@@ -145,6 +145,35 @@ TEST(Triangle, SharedEdgesAndVerticesOfAFanHaveNoCracks) {
   EXPECT_EQ(misses, 0);
 }
 
+// The conservative bound on t is as scale-free as t itself: a ray from just
+// inside a closed box, towards the far side, hits it however long its
+// direction vector is. The short directions are the object-space rays of a
+// placement scaled up ~1e4 (a unit world direction times M^-1); with
+// pbrt-v4's bound, which grows as 1 / |d|^2 there against t's 1 / |d|, the
+// exit through the face at t = 2979 |d0| / |d| was rejected as not certainly
+// positive and the ray left the box (found by the transformed-instances
+// stability test, docs/numerical-stability.md section 11).
+TEST(Triangle, ExitFromInsideAClosedBoxWithShortAndLongDirections) {
+  const TriangleMesh box = test::make_box_mesh({-1, -1, -1}, {1, 1, 1});
+  Ray ray;
+  ray.origin = Vec3f(0.443309784f, -0.927370429f, -0.999958038f);  // 4e-5 inside the face z = -1
+  const Vec3f d0(3.27747694e-05f, -2.43790673e-05f, 1.62940341e-05f);
+  for (float k : {1e-3f, 1.0f, 1e2f, 3e4f, 1e7f}) {
+    ray.dir = d0 * k;
+    int hits = 0;
+    float t = 0.0f;
+    for (uint32_t i = 0; i < box.triangle_count(); ++i) {
+      PrimHit h;
+      if (intersect(box, i, ray, h)) {
+        ++hits;
+        t = h.t;
+      }
+    }
+    EXPECT_EQ(hits, 1) << "direction scaled by " << k;
+    EXPECT_NEAR(t * k, 2979.18f, 0.01f) << "direction scaled by " << k;  // the face y = -1
+  }
+}
+
 TEST(TriangleMesh, SurfaceInterpolatesNormalsAndUvsAndFlipsShadingNormal) {
   TriangleMesh m;
   m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};

@@ -2,7 +2,7 @@
 """Checks docs/scene.schema.json against the scenes that use it.
 
   - the schema itself is a valid JSON Schema (draft 2020-12);
-  - every scenes/*.json validates against it;
+  - every *.json of the --scenes folders (scenes/, tests/data/scenes/) validates against it;
   - every file in the --bad folder is rejected by it (so the schema is not
     vacuous: it catches misspelt keys, wrong types, bad enums, ...).
 
@@ -31,7 +31,7 @@ def load(path):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--schema", required=True)
-    parser.add_argument("--scenes", required=True, help="folder whose *.json must validate")
+    parser.add_argument("--scenes", required=True, nargs="+", help="folders whose *.json must validate")
     parser.add_argument("--bad", required=True, help="folder whose *.json must NOT validate")
     args = parser.parse_args()
 
@@ -41,10 +41,13 @@ def main():
     validator = validator_class(schema)
     failures = 0
 
-    scenes = sorted(glob.glob(os.path.join(args.scenes, "*.json")))
-    if not scenes:
-        print("no scenes found in %s" % args.scenes)
-        failures += 1
+    scenes = []
+    for folder in args.scenes:
+        found = sorted(glob.glob(os.path.join(folder, "*.json")))
+        if not found:
+            print("no scenes found in %s" % folder)
+            failures += 1
+        scenes += found
     for path in scenes:
         errors = sorted(validator.iter_errors(load(path)), key=lambda e: list(e.absolute_path))
         for e in errors:

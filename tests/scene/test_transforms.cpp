@@ -54,6 +54,41 @@ TEST(Transforms, TheCameraMovesAtImport) {
   EXPECT_TRUE(near(s->camera.position, {6, 0, 0}));
   EXPECT_TRUE(near(s->camera.look_at, {1, 0, 0}));
   EXPECT_TRUE(near(s->camera.up, {0, 1, 0}));
+  EXPECT_FALSE(s->camera.left_handed.value);
+}
+
+// As pbrt-v4's camera transform and Mitsuba 3's to_world: a uniform scale
+// scales the camera's lengths (so a scene scaled with its camera looks the
+// same; Mitsuba's orthographic camera scaled by s is 2s high), a mirror flips
+// the image's handedness, and a non-uniform scale is refused at the transform.
+TEST(Transforms, TheCameraKeepsItsPictureUnderScalesAndMirrors) {
+  auto camera = [](const std::string& keys) {
+    return R"({ "format": "pathtracer-scene", "version": 1,
+  "camera": { "position": [0, 0, 5], "look_at": [0, 0, 0], )" +
+           keys + " } }";
+  };
+  Diagnostics diag;
+  const auto lens = load(camera(R"("type": "thin_lens", "lens_radius": 0.1, "focus_distance": 5,
+      "transform": [ { "scale": 3 }, { "translate": [1, 0, 0] } ])"),
+                         diag);
+  ASSERT_TRUE(lens) << diag.format();
+  EXPECT_TRUE(near(lens->camera.position, {1, 0, 15}));
+  EXPECT_NEAR(lens->camera.lens_radius.value, 0.3f, 1e-6f);
+  EXPECT_NEAR(lens->camera.focus_distance.value, 15.0f, 1e-5f);
+  const auto ortho = load(camera(R"("type": "orthographic", "transform": [ { "scale": 0.5 } ])"), diag);
+  ASSERT_TRUE(ortho) << diag.format();
+  EXPECT_NEAR(ortho->camera.view_height.value, 1.0f, 1e-6f);
+  const auto mirrored = load(camera(R"("transform": [ { "scale": [-1, 1, 1] } ])"), diag);
+  ASSERT_TRUE(mirrored) << diag.format();
+  EXPECT_TRUE(mirrored->camera.left_handed.value);
+  const auto twice = load(camera(R"("handedness": "left", "transform": [ { "scale": [-2, 2, 2] } ])"), diag);
+  ASSERT_TRUE(twice) << diag.format();
+  EXPECT_FALSE(twice->camera.left_handed.value);
+
+  Diagnostics bad;
+  EXPECT_FALSE(load(camera(R"("transform": [ { "scale": [1, 2, 1] } ])"), bad));
+  EXPECT_NE(bad.format().find("t.json:2:73: error: a camera's transform must keep angles"), std::string::npos)
+      << bad.format();
 }
 
 // An infinite plane is no primitive of either backend, so its transform is
@@ -87,6 +122,9 @@ TEST(Transforms, BadStepsAreRefusedAtTheirLocation) {
   };
   const Case cases[] = {
       {R"({ "scale": [1, 0, 1] })", "singular"},
+      {R"({ "matrix": [1,0,0,0, 2,0,0,0, 0,0,1,0, 0,0,0,1] })", "singular"},  // rank 2
+      {R"({ "matrix": [1,0,0,0, 0,1e400,0,0, 0,0,1,0, 0,0,0,1] })", "overflows to infinity"},
+      {R"({ "scale": 1e-100 }, { "scale": 1e-100 })", "singular or not finite"},
       {R"({ "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,1,1] })", "affine"},
       {R"({ "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0] })", "16 numbers"},
       {R"({ "rotate": { "axis": [0, 0, 0], "angle": 3 } })", "axis"},
@@ -140,6 +178,22 @@ TEST(Instancing, UnknownObjectsAndNestingAreRefused) {
   Diagnostics twice;
   EXPECT_FALSE(load(scene(R"("objects": [ { "name": "a", "shapes": [] }, { "name": "a", "shapes": [] } ])"), twice));
   EXPECT_NE(twice.format().find("already defined"), std::string::npos) << twice.format();
+}
+
+// An object no instance places is never drawn: a warning at the object (as
+// for a material no shape uses), and the scene still loads.
+TEST(Instancing, AnObjectNoInstancePlacesGetsAWarning) {
+  Diagnostics diag;
+  const auto s = load(scene(R"("objects": [ { "name": "used", "shapes": [
+      { "type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white" } ] },
+    { "name": "forgotten", "shapes": [ { "type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "red" } ] } ],
+  "shapes": [ { "type": "instance", "object": "used" } ])"),
+                      diag);
+  ASSERT_TRUE(s) << diag.format();
+  EXPECT_EQ(diag.warning_count(), 1) << diag.format();
+  EXPECT_NE(diag.format().find("t.json:6:5: warning: object 'forgotten' is not placed by any instance"),
+            std::string::npos)
+      << diag.format();
 }
 
 TEST(Instancing, ObjectShapesAreValidatedLikeOthers) {

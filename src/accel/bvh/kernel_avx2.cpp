@@ -37,13 +37,14 @@ inline __m128 abs4(__m128 x) { return _mm_and_ps(x, _mm_castsi128_ps(_mm_set1_ep
 inline __m128 max_abs3(__m128 a, __m128 b, __m128 c) { return _mm_max_ps(_mm_max_ps(abs4(a), abs4(b)), abs4(c)); }
 
 // The reference's bound on the error of t (geometry/triangle.cpp: delta_t),
-// from the lanes' largest |x|, |y|, |z| of the sheared vertices, largest |e|
-// and |det|.
-inline __m128 t_error_bound(__m128 max_xt, __m128 max_yt, __m128 max_zt, __m128 max_e, __m128 abs_det) {
+// from the lanes' largest |x|, |y|, |z| (before the scaling by sz) and |z sz|
+// of the sheared vertices, largest |e| and |det|.
+inline __m128 t_error_bound(__m128 max_xt, __m128 max_yt, __m128 max_z, __m128 max_zt, __m128 max_e,
+                            __m128 abs_det) {
   const __m128 g2 = _mm_set1_ps(kGamma2), g3 = _mm_set1_ps(kGamma3), g5 = _mm_set1_ps(kGamma5);
   const __m128 delta_z = _mm_mul_ps(g3, max_zt);
-  const __m128 delta_x = _mm_mul_ps(g5, _mm_add_ps(max_xt, max_zt));
-  const __m128 delta_y = _mm_mul_ps(g5, _mm_add_ps(max_yt, max_zt));
+  const __m128 delta_x = _mm_mul_ps(g5, _mm_add_ps(max_xt, max_z));
+  const __m128 delta_y = _mm_mul_ps(g5, _mm_add_ps(max_yt, max_z));
   const __m128 delta_e = _mm_mul_ps(
       _mm_set1_ps(2.0f), _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(g2, max_xt), max_yt), _mm_mul_ps(delta_y, max_xt)),
                                     _mm_mul_ps(delta_x, max_yt)));
@@ -144,8 +145,8 @@ class Avx2Ops {
     const __m128 azs = _mm_mul_ps(az, shear_[2]), bzs = _mm_mul_ps(bz, shear_[2]), czs = _mm_mul_ps(cz, shear_[2]);
     const __m128 certainly_ahead =
         _mm_and_ps(_mm_and_ps(_mm_cmpgt_ps(azs, zero), _mm_cmpgt_ps(bzs, zero)), _mm_cmpgt_ps(czs, zero));
-    const __m128 delta_t = t_error_bound(max_abs3(ax, bx, cx), max_abs3(ay, by, cy), max_abs3(azs, bzs, czs),
-                                         max_abs3(e0, e1, e2), abs4(det));
+    const __m128 delta_t = t_error_bound(max_abs3(ax, bx, cx), max_abs3(ay, by, cy), max_abs3(az, bz, cz),
+                                         max_abs3(azs, bzs, czs), max_abs3(e0, e1, e2), abs4(det));
     const uint32_t zero_lanes = static_cast<uint32_t>(_mm_movemask_ps(any_zero));
     const uint32_t hits = static_cast<uint32_t>(
         _mm_movemask_ps(_mm_and_ps(inside, _mm_or_ps(_mm_cmpgt_ps(t, delta_t), certainly_ahead))));

@@ -14,18 +14,24 @@ constexpr float kSmallSin2 = 0.00068523f;
 
 }  // namespace
 
-ShapeLight::ShapeLight(const Shape& shape, uint32_t shape_id, const Material& material, bool solid_angle_rectangles)
-    : shape_(&shape), shape_id_(shape_id), material_(&material), sampler_(make_area_sampler(shape)) {
-  area_ = std::visit([](const auto& sampler) { return sampler.area; }, sampler_);
+ShapeLight::ShapeLight(const Shape& shape, uint32_t shape_id, const Material& material,
+                       std::shared_ptr<const ShapeAreaSampler> sampler)
+    : shape_(&shape), shape_id_(shape_id), material_(&material), sampler_(std::move(sampler)) {
+  area_ = std::visit([](const auto& s) { return s.area; }, *sampler_);
   if (!(area_ > 0.0f) || !std::isfinite(area_)) area_ = 0.0f;
   if (area_ > 0.0f) detect_parallelogram();
+}
+
+ShapeLight::ShapeLight(const Shape& shape, uint32_t shape_id, const Material& material, bool solid_angle_rectangles)
+    : ShapeLight(shape, shape_id, material, std::make_shared<const ShapeAreaSampler>(make_area_sampler(shape))) {
   rectangle_ = solid_angle_rectangles && parallelogram_ &&
                std::fabs(dot(para_.e1, para_.e2)) <= 1e-4f * length(para_.e1) * length(para_.e2);
 }
 
 ShapeLight::ShapeLight(const Shape& shape, uint32_t shape_id, const Material& material, const Transform& transform,
-                       uint32_t instance)
-    : ShapeLight(shape, shape_id, material) {
+                       uint32_t instance, std::shared_ptr<const ShapeAreaSampler> sampler)
+    : ShapeLight(shape, shape_id, material,
+                 sampler ? std::move(sampler) : std::make_shared<const ShapeAreaSampler>(make_area_sampler(shape))) {
   instance_ = instance;
   transform_ = &transform;
   if (const auto* sphere = std::get_if<Sphere>(&shape); sphere && transform.similarity) {
@@ -41,7 +47,37 @@ ShapeLight::ShapeLight(const Shape& shape, uint32_t shape_id, const Material& ma
     para_.n = normalize(transform.normal(para_.n));
     area_ = length(cross(para_.e1, para_.e2));
     if (!(area_ > 0.0f) || !std::isfinite(area_)) area_ = 0.0f;
+  } else if (area_ > 0.0f && !transform.similarity) {
+    weigh_triangles_by_world_area(transform);
   }
+}
+
+const TriangleAreaSampler* ShapeLight::triangle_sampler() const {
+  return std::visit(
+      [](const auto& s) -> const TriangleAreaSampler* {
+        if constexpr (std::is_same_v<std::decay_t<decltype(s)>, TriangleAreaSampler>) {
+          return &s;
+        } else {
+          return nullptr;
+        }
+      },
+      *sampler_);
+}
+
+void ShapeLight::weigh_triangles_by_world_area(const Transform& transform) {
+  const TriangleAreaSampler* sampler = triangle_sampler();
+  if (sampler == nullptr) return;
+  std::vector<float> areas(sampler->triangles.size());
+  double total = 0.0;
+  for (std::size_t i = 0; i < areas.size(); ++i) {
+    const Triangle& t = sampler->triangles[i];
+    areas[i] = 0.5f * length(cross(transform.vector(t.e1), transform.vector(t.e2)));
+    total += areas[i];
+  }
+  world_parts_ = Distribution1D(areas);
+  area_ = static_cast<float>(total);
+  if (!(area_ > 0.0f) || !std::isfinite(area_)) area_ = 0.0f;
+  world_triangles_ = true;
 }
 
 const Sphere* ShapeLight::cone_sphere() const {
@@ -50,7 +86,7 @@ const Sphere* ShapeLight::cone_sphere() const {
 }
 
 float ShapeLight::area_at(Vec3f n) const {
-  if (transform_ == nullptr || parallelogram_) return area_;
+  if (transform_ == nullptr || parallelogram_ || world_triangles_) return area_;
   return area_ * std::fabs(transform_->det) / length(transform_->transpose_vector(n));
 }
 
@@ -72,17 +108,9 @@ bool ShapeLight::make_parallelogram(Vec3f a, Vec3f b, Vec3f c, Vec3f d, Vec3f n,
 }
 
 void ShapeLight::detect_parallelogram() {
-  const auto* triangles = std::visit(
-      [](const auto& sampler) -> const std::vector<Triangle>* {
-        if constexpr (std::is_same_v<std::decay_t<decltype(sampler)>, TriangleAreaSampler>) {
-          return &sampler.triangles;
-        } else {
-          return nullptr;
-        }
-      },
-      sampler_);
-  if (triangles == nullptr) return;
-  const std::vector<Triangle>& tris = *triangles;
+  const TriangleAreaSampler* sampler = triangle_sampler();
+  if (sampler == nullptr) return;
+  const std::vector<Triangle>& tris = sampler->triangles;
   if (const auto* q = std::get_if<Quad>(shape_)) {
     parallelogram_ = make_parallelogram(q->v[0], q->v[1], q->v[2], q->v[3], tris[0].n, para_);
     return;
@@ -113,9 +141,10 @@ void ShapeLight::detect_parallelogram() {
 
 float ShapeLight::power() const {
   const RGB& L = material_->emission;
-  // A transformed shape's world area is estimated (exact for similarities):
-  // the power only sets how often the light is chosen.
-  const float area = transform_ == nullptr || parallelogram_
+  // A transformed curved shape's world area is estimated (exact for
+  // similarities; triangles are measured in world space): the power only sets
+  // how often the light is chosen.
+  const float area = transform_ == nullptr || parallelogram_ || world_triangles_
                          ? area_
                          : area_ * std::cbrt(transform_->det * transform_->det);
   return kPi * area * (L.r + L.g + L.b) / 3.0f * (material_->two_sided ? 2.0f : 1.0f);
@@ -127,7 +156,11 @@ void ShapeLight::sample_area(Vec2f u, Vec3f& q, Vec3f& n) const {
     n = para_.n;
     return;
   }
-  std::visit([&](const auto& sampler) { sampler.sample(u, q, n); }, sampler_);
+  if (world_triangles_) {
+    triangle_sampler()->sample(world_parts_, u, q, n);
+  } else {
+    std::visit([&](const auto& sampler) { sampler.sample(u, q, n); }, *sampler_);
+  }
   if (transform_ != nullptr) {
     q = transform_->point(q);
     n = normalize(transform_->normal(n));

@@ -13,18 +13,25 @@
 //    `solid_angle_rectangles` is on and it subtends at least
 //    kMinSphericalRectangle sr (below that, float precision fails; by area).
 // A shape placed by an instance (SceneGeometry::instances) is a light of its
-// own for each instance: a sphere under a similarity transform is still a
-// sphere (sampled by solid angle, its world centre and radius); a quad or
-// two-triangle parallelogram stays a parallelogram (its corners and edges
-// transformed); any other shape, or a sphere under a non-uniform scale, is
-// sampled by area in object space and mapped to world space, its density
-// divided by the area scale at the point, |det M| / |M^T n| (n the unit world
-// normal; constant for flat shapes).
+// own for each instance, and the placements of one shape share its sampler
+// (built once, in object space: an emissive mesh placed 10,000 times is not
+// 10,000 copies of its triangles). A sphere under a similarity transform is
+// still a sphere (sampled by solid angle, its world centre and radius); a quad
+// or two-triangle parallelogram stays a parallelogram (its corners and edges
+// transformed); every other shape is sampled by area in object space and
+// mapped to world space, its density divided by the area scale at the point,
+// |det M| / |M^T n| (n the unit world normal). A similarity scales every
+// area alike, so a mesh's triangles are still picked in proportion to their
+// world areas, i.e. their emitted power; under any other map an instance of a
+// shape made of triangles (mesh, polygon, quad) picks them by their world
+// areas from a distribution of its own (8 bytes per triangle), so the density
+// is the uniform 1 / A_world again.
 // Emission is one-sided (the side of the shape's geometric normal) unless the
 // material is two-sided; see Material::emitted.
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/sampling.h"
@@ -44,14 +51,17 @@ class ShapeLight {
 
   ShapeLight(const Shape& shape, uint32_t shape_id, const Material& material, bool solid_angle_rectangles = false);
   // The shape placed by `instance` with object-to-world `transform` (which
-  // must outlive the light).
+  // must outlive the light). `sampler`, if given, is make_area_sampler(shape),
+  // shared with the shape's other placements.
   ShapeLight(const Shape& shape, uint32_t shape_id, const Material& material, const Transform& transform,
-             uint32_t instance);
+             uint32_t instance, std::shared_ptr<const ShapeAreaSampler> sampler = nullptr);
 
   uint32_t shape_id() const { return shape_id_; }
   uint32_t instance() const { return instance_; }
   const Material& material() const { return *material_; }
-  float area() const { return area_; }  // in object space for a light sampled there (see above)
+  // In object space for a light sampled there (see above); in world space for a
+  // parallelogram or triangles picked by world area.
+  float area() const { return area_; }
   // Samples a point of the light as seen from p; false if nothing can be sampled.
   bool sample(Vec3f p, Vec2f u, LightSample& s) const;
   // The solid-angle density with which sample(p, ...) produces direction wi
@@ -79,6 +89,12 @@ class ShapeLight {
   // it) form one and both halves face the same way as `n`.
   static bool make_parallelogram(Vec3f a, Vec3f b, Vec3f c, Vec3f d, Vec3f n, Triangle& out);
   void detect_parallelogram();
+  ShapeLight(const Shape& shape, uint32_t shape_id, const Material& material,
+             std::shared_ptr<const ShapeAreaSampler> sampler);
+  // The by-area sampler's triangles, if the shape is sampled as triangles.
+  const TriangleAreaSampler* triangle_sampler() const;
+  // Picks the triangles by their areas under `transform` (see above).
+  void weigh_triangles_by_world_area(const Transform& transform);
 
   // The parallelogram (p0, e1, e2, n) if the shape is one (see above).
   bool parallelogram_ = false;
@@ -91,11 +107,14 @@ class ShapeLight {
   uint32_t shape_id_;
   uint32_t instance_ = kNoInstance;
   const Transform* transform_ = nullptr;  // object to world, for an instance's light
+  Distribution1D world_parts_;            // the sampler's triangles by world area, if
+  bool world_triangles_ = false;          // weigh_triangles_by_world_area() made it
   Sphere world_sphere_{};                 // a sphere under a similarity transform, in world space
   bool has_world_sphere_ = false;
   const Material* material_;
   float area_ = 0.0f;
-  ShapeAreaSampler sampler_;  // the shape's own sampling by area (geometry/shapes/*.h)
+  // The shape's own sampling by area (geometry/shapes/*.h), in object space.
+  std::shared_ptr<const ShapeAreaSampler> sampler_;
 };
 
 }  // namespace pt

@@ -7,6 +7,9 @@
 // from above through the N placements to show that they are all there.
 //
 //   bench_instances [--placements 10000] [--backends bvh,embree] [--mesh PATH]
+//   bench_instances --placements 10000 --write-scene FILE   (the same placements
+//       as a native scene of `instance` entries, one in seven with a material
+//       of its own, for rendering with pathtracer; docs/bench/instancing.md)
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -32,18 +35,53 @@ std::size_t resident_bytes() {
   return resident * 4096;
 }
 
+// Placement i of n: uniform scale s, then a turn about +y, then a position on the grid.
+struct Placement {
+  double scale, degrees, x, z;
+};
+
+Placement placement(int i, int n) {
+  const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
+  return {0.8 + 0.4 * ((i * 37) % 100) / 100.0, static_cast<double>((i * 73) % 360), (i % side) * 0.25,
+          (i / side) * 0.25};
+}
+
 SceneGeometry placements(const TriangleMesh& mesh, int n) {
   SceneGeometry g;
   g.shapes.push_back(mesh);
   g.prototypes.push_back({0});
-  const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
   for (int i = 0; i < n; ++i) {
-    const double x = (i % side) * 0.25, z = (i / side) * 0.25;
-    const double s = 0.8 + 0.4 * ((i * 37) % 100) / 100.0;
-    g.instances.push_back(Instance{0, Transform(Affine::translate(x, 0, z) * Affine::rotate(0, 1, 0, (i * 73) % 360) *
-                                                Affine::scale(s, s, s))});
+    const Placement p = placement(i, n);
+    g.instances.push_back(Instance{0, Transform(Affine::translate(p.x, 0, p.z) * Affine::rotate(0, 1, 0, p.degrees) *
+                                                Affine::scale(p.scale, p.scale, p.scale))});
   }
   return g;
+}
+
+// The same placements as a native scene: the mesh defined once as an object,
+// n instances (one in seven red), seen from above and lit by the sun and the sky.
+bool write_scene(const std::string& path, const std::string& mesh_path, int n) {
+  std::ofstream f(path);
+  const double side = std::ceil(std::sqrt(static_cast<double>(n))) * 0.25;  // the grid's width (x)
+  const double extent = placement(n - 1, n).z + 0.25;                         // and depth (z)
+  f << "{\n  \"format\": \"pathtracer-scene\", \"version\": 1,\n"
+    << "  \"camera\": { \"position\": [" << side / 2 << ", " << side * 0.6 << ", " << extent + side * 0.5
+    << "], \"look_at\": [" << side / 2 << ", 0, " << extent / 2 << "], \"fov\": 45 },\n"
+    << "  \"film\": { \"width\": 320, \"height\": 240 },\n"
+    << "  \"render\": { \"integrator\": \"path\", \"max_depth\": 3, \"spp\": 4, \"background\": [0.3, 0.35, 0.4] },\n"
+    << "  \"materials\": { \"white\": { \"type\": \"lambert\", \"diffuse\": [0.75, 0.75, 0.75] },\n"
+    << "                 \"red\": { \"type\": \"lambert\", \"diffuse\": [0.7, 0.15, 0.1] } },\n"
+    << "  \"lights\": [ { \"type\": \"directional\", \"direction\": [-0.3, -1, -0.4], \"irradiance\": [2, 2, 2] } ],\n"
+    << "  \"objects\": [ { \"name\": \"bunny\", \"shapes\": [ { \"type\": \"mesh\", \"file\": \"" << mesh_path
+    << "\", \"material\": \"white\" } ] } ],\n  \"shapes\": [\n";
+  for (int i = 0; i < n; ++i) {
+    const Placement p = placement(i, n);
+    f << "    { \"type\": \"instance\", \"object\": \"bunny\", " << (i % 7 == 0 ? "\"material\": \"red\", " : "")
+      << "\"transform\": [ { \"scale\": " << p.scale << " }, { \"rotate\": { \"axis\": [0, 1, 0], \"angle\": "
+      << p.degrees << " } }, { \"translate\": [" << p.x << ", 0, " << p.z << "] } ] }" << (i + 1 < n ? ",\n" : "\n");
+  }
+  f << "  ]\n}\n";
+  return static_cast<bool>(f);
 }
 
 struct Measure {
@@ -94,7 +132,14 @@ int main(int argc, char** argv) {
   app.add_option("--placements", n, "Placements of the mesh")->check(CLI::Range(2, 10000000));
   app.add_option("--backends", backends, "Backends")->delimiter(',');
   app.add_option("--mesh", mesh_path, "The mesh (OBJ)");
+  std::string scene_path;
+  app.add_option("--write-scene", scene_path, "Write the placements as a native scene file instead of measuring");
   CLI11_PARSE(app, argc, argv);
+  if (!scene_path.empty()) {
+    if (write_scene(scene_path, mesh_path, n)) return 0;
+    std::cerr << "cannot write " << scene_path << "\n";
+    return 1;
+  }
 
   TriangleMesh mesh;
   std::string error;

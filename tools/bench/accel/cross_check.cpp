@@ -18,7 +18,8 @@ Verdict compare_nearest(const Accelerator& a, const Accelerator& b, const Ray& r
   if (!fa) return Verdict::Agree;
   const float scale = std::max({ha.t, hb.t, length(ray.origin) / length(ray.dir), 1e-3f});
   if (!(std::fabs(ha.t - hb.t) <= tolerance * scale)) return Verdict::Distance;
-  return (ha.shape == hb.shape && ha.prim == hb.prim) ? Verdict::Agree : Verdict::Tie;
+  // The same primitive of another placement of the same object is a different surface.
+  return (ha.shape == hb.shape && ha.prim == hb.prim && ha.instance == hb.instance) ? Verdict::Agree : Verdict::Tie;
 }
 
 Verdict compare_any(const Accelerator& a, const Accelerator& b, const Ray& ray) {

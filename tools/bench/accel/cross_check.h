@@ -1,8 +1,9 @@
 // Traces the same rays through two backends and classifies every ray:
-//  - agree:      both miss, or both hit the same primitive at distances within
-//                the tolerance (relative to max(t, |origin| / |dir|, 1e-3));
+//  - agree:      both miss, or both hit the same primitive (of the same
+//                instance) at distances within the tolerance (relative to
+//                max(t, |origin| / |dir|, 1e-3));
 //  - tie:        both hit at distances within the tolerance but different
-//                primitives (coincident or touching surfaces: exact ties,
+//                primitives or placements (coincident or touching surfaces: exact ties,
 //                documented, not disagreements);
 //  - hit_miss:   one hits, the other does not;
 //  - distance:   both hit, at distances differing beyond the tolerance.
