@@ -26,6 +26,7 @@ if [ "$mode" = test ]; then
     python3 python3-jsonschema
     python3-matplotlib  # the study_quick test (tools/study/samplers/run_study.py --quick) plots; it skips without
     blender  # Blender 3.4 reading our EXRs (tests/app/test_blender_exr.cpp); it skips without
+    openmpi-bin libopenmpi-dev  # pathtracer --mpi and its test (mpirun -np 3); the build works without (docs/distributed.md)
   )
 fi
 

@@ -26,10 +26,6 @@ uint64_t fnv1a(uint64_t h, const char* data, std::size_t n) {
   return h;
 }
 
-// A header line longer than this is not one of ours (they are a few hundred
-// bytes); reading on would let a damaged file claim any amount of memory.
-constexpr std::size_t kMaxHeaderBytes = 64 * 1024;
-
 // The header's keys, each required; any other is refused.
 constexpr std::string_view kHeaderKeys[] = {"scene", "scene_hash", "settings", "spp_done"};
 
@@ -60,9 +56,13 @@ int nesting_depth(const std::string& text) {
   return deepest;
 }
 
-bool damaged(const std::string& path, const std::string& why, std::string& error) {
-  error = "'" + path + "': damaged checkpoint header: " + why;
+bool damaged_file(const std::string& path, const std::string& kind, const std::string& why, std::string& error) {
+  error = "'" + path + "': damaged " + kind + " header: " + why;
   return false;
+}
+
+bool damaged(const std::string& path, const std::string& why, std::string& error) {
+  return damaged_file(path, "checkpoint", why, error);
 }
 
 // A JSON value for a message: its type and, shortened, the value.
@@ -90,20 +90,11 @@ bool read_line(std::istream& in, std::string& line, std::size_t limit) {
 }
 
 bool read_header(std::istream& in, const std::string& path, CheckpointInfo& info, std::string& error) {
-  std::string magic, json;
-  if (!read_line(in, magic, 64) || magic != kMagicLine) {
-    error = "'" + path + "' is not a pathtracer checkpoint";
-    return false;
-  }
-  if (!read_line(in, json, kMaxHeaderBytes)) {
-    return damaged(path, in.eof() ? "the file ends inside its second line (truncated)"
-                                  : "its second line is longer than " + std::to_string(kMaxHeaderBytes) + " bytes",
-                   error);
-  }
-  if (nesting_depth(json) > kMaxHeaderDepth)
-    return damaged(path, "its JSON nests deeper than " + std::to_string(kMaxHeaderDepth) + " levels", error);
-  const nlohmann::ordered_json j = nlohmann::ordered_json::parse(json, nullptr, false);
-  if (j.is_discarded() || !j.is_object()) return damaged(path, "its second line is not a JSON object", error);
+  nlohmann::ordered_json j;
+  // A header line longer than this is not one of ours (they are a few hundred
+  // bytes); reading on would let a damaged file claim any amount of memory.
+  constexpr std::size_t kMaxHeaderBytes = 64 * 1024;
+  if (!read_json_header(in, path, kMagicLine, "checkpoint", j, error, kMaxHeaderBytes)) return false;
   for (const std::string_view key : kHeaderKeys)
     if (!j.contains(std::string(key))) return damaged(path, "no \"" + std::string(key) + "\"", error);
   for (const auto& [key, value] : j.items()) {
@@ -130,6 +121,28 @@ bool read_header(std::istream& in, const std::string& path, CheckpointInfo& info
 }
 
 }  // namespace
+
+bool read_json_header(std::istream& in, const std::string& path, const std::string& magic_line, const std::string& kind,
+                      nlohmann::ordered_json& out, std::string& error, std::size_t max_bytes) {
+  std::string magic, json;
+  if (!read_line(in, magic, 64) || magic != magic_line) {
+    error = "'" + path + "' is not a pathtracer " + kind;
+    return false;
+  }
+  if (!read_line(in, json, max_bytes)) {
+    return damaged_file(path, kind,
+                        in.eof() ? "the file ends inside its second line (truncated)"
+                                 : "its second line is longer than " + std::to_string(max_bytes) + " bytes",
+                        error);
+  }
+  if (nesting_depth(json) > kMaxHeaderDepth)
+    return damaged_file(path, kind, "its JSON nests deeper than " + std::to_string(kMaxHeaderDepth) + " levels",
+                        error);
+  out = nlohmann::ordered_json::parse(json, nullptr, false);
+  if (out.is_discarded() || !out.is_object())
+    return damaged_file(path, kind, "its second line is not a JSON object", error);
+  return true;
+}
 
 std::string scene_content_hash(const std::string& path, const std::string& extra, std::string& error) {
   if (const std::string why = why_unreadable(path); !why.empty()) {

@@ -12,6 +12,7 @@
 // render: the images are bit-identical.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <iosfwd>
 #include <string>
@@ -55,6 +56,13 @@ bool read_checkpoint_info(std::istream& in, const std::string& path, CheckpointI
 bool read_checkpoint(const std::string& path, CheckpointInfo& info, Film& film, std::string& error);
 // The same from a stream; `path` names it in messages.
 bool read_checkpoint(std::istream& in, const std::string& path, CheckpointInfo& info, Film& film, std::string& error);
+
+// The first two lines of a checkpoint or shard file: `magic_line`, then one
+// JSON object of at most `max_bytes` bytes and 16 levels of nesting. Errors
+// name the file and `kind`: "'<path>' is not a pathtracer <kind>", "'<path>':
+// damaged <kind> header: ...". Nothing here throws, whatever the bytes.
+bool read_json_header(std::istream& in, const std::string& path, const std::string& magic_line, const std::string& kind,
+                      nlohmann::ordered_json& out, std::string& error, std::size_t max_bytes);
 
 // Why `saved` cannot be resumed by a run with `current` (scene hash or settings
 // differ), or an empty string when it can.

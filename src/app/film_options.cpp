@@ -8,6 +8,7 @@
 #include <string>
 
 #include "app/options.h"
+#include "app/shard.h"
 #include "io/image_io.h"
 
 namespace pt {
@@ -36,7 +37,7 @@ bool film_aovs(const Options& o, const IntegratorInfo& integrator, std::vector<A
   return true;
 }
 
-bool crop_window(const Options& o, int width, int height, PixelRect& out, std::string& error) {
+bool region_window(const Options& o, int width, int height, PixelRect& out, std::string& error) {
   out = {0, 0, width, height};
   if (o.replaying()) {
     const int x = o.replay[0], y = o.replay[1];
@@ -71,9 +72,26 @@ bool crop_window(const Options& o, int width, int height, PixelRect& out, std::s
   return true;
 }
 
+bool crop_window(const Options& o, int width, int height, PixelRect& out, std::string& error) {
+  if (!region_window(o, width, height, out, error)) return false;
+  if (o.tile.empty() || o.replaying()) return true;
+  const std::optional<Fraction> tile = parse_fraction(o.tile, error);
+  if (!tile) return false;
+  const PixelRect region = out;
+  out = tile_of(region, *tile);
+  if (out.empty()) {
+    error = "--tile " + o.tile + ": the region has " + std::to_string(region.height()) + " rows, fewer than " +
+            std::to_string(tile->n) + " tiles";
+    return false;
+  }
+  return true;
+}
+
 std::size_t film_bytes_per_pixel(const std::vector<AovRequest>& aovs) {
   std::size_t bytes = sizeof(PixelSum);
-  for (const AovRequest& r : aovs) bytes += sizeof(double) * static_cast<std::size_t>(aov_state_doubles(r));
+  for (const AovRequest& r : aovs)
+    bytes += sizeof(ExactSum) * static_cast<std::size_t>(aov_state_sums(r)) +
+             sizeof(double) * static_cast<std::size_t>(aov_state_values(r));
   return bytes;
 }
 
@@ -120,7 +138,7 @@ std::string replay_text(const Film& film, int x, int y, int sample) {
   out << std::setprecision(9) << "replay pixel (" << x << ", " << y << ") sample " << sample << ": radiance " << v.r
       << " " << v.g << " " << v.b << '\n';
   // The pixel is the mean of its samples weighted by this (1 for the box filter).
-  out << "  filter weight: " << film.sum(x, y).weight << '\n';
+  out << "  filter weight: " << film.sum(x, y).weight.value() << '\n';
   for (const AovRequest& r : film.aovs()) {
     if (r.type == AovType::Samples || r.type == AovType::Variance) continue;
     out << "  " << aov_info(r.type).name << ":";

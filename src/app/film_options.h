@@ -25,8 +25,11 @@ bool film_aovs(const Options& o, const IntegratorInfo& integrator, std::vector<A
                std::string& error);
 
 // The region to render, in pixels of a width x height frame: the crop, the
-// replayed pixel, or the whole frame. Returns false with `error`.
+// replayed pixel, or the whole frame; then its tile (--tile K/N,
+// docs/distributed.md). Returns false with `error`.
 bool crop_window(const Options& o, int width, int height, PixelRect& out, std::string& error);
+// The same before the tile: the region that tiles split.
+bool region_window(const Options& o, int width, int height, PixelRect& out, std::string& error);
 
 // Bytes the film stores per pixel for these AOVs (the memory pre-flight).
 std::size_t film_bytes_per_pixel(const std::vector<AovRequest>& aovs);

@@ -142,7 +142,7 @@ bool check_job_memory(const Options& o, Job& job, Messages& m, int& status) {
 
 // What a checkpoint must match, and where a resumed render starts.
 bool checkpoint_job(const Options& o, Job& job, Messages& m) {
-  if (o.checkpoint.empty() && o.resume.empty()) return true;
+  if (o.checkpoint.empty() && o.resume.empty() && !job.shard.active) return true;
   std::string extra, error;
   for (const std::string& ov : o.overrides) extra += ov + '\n';
   job.identity.scene = o.scene;
@@ -156,6 +156,10 @@ bool checkpoint_job(const Options& o, Job& job, Messages& m) {
   const bool adaptive = plan.time_budget_s > 0 && plan.pass_spp <= 0 && !plan.equal_passes;
   job.identity.settings["pass_spp"] = adaptive ? nlohmann::ordered_json("adaptive")
                                                : nlohmann::ordered_json(fixed_pass_size(plan));
+  if (job.shard.active) {  // a checkpoint of a shard resumes only that shard
+    job.identity.settings["sample_range"] = {job.shard.share.begin, job.shard.share.end};
+    job.identity.settings["tile"] = o.tile;
+  }
   if (o.resume.empty()) return true;
   CheckpointInfo saved;
   if (!read_checkpoint_info(o.resume, saved, error)) {
@@ -178,8 +182,8 @@ void Messages::add(const Diagnostics& diag, bool quiet) {
 }
 
 int check_request(const Options& o, Messages& m) {
-  if (o.outputs.empty() && !o.replaying()) {
-    m.error("--output is required (except for a replay, --pixel or --replay)");
+  if (o.outputs.empty() && !o.replaying() && o.shard_out.empty()) {
+    m.error("--output is required (except for a replay, --pixel or --replay, or a shard's --shard-out)");
     return kExitUsage;
   }
   if (std::string error; !check_outputs(o.outputs, error) || !check_output_files(output_files(o), error)) {
@@ -187,12 +191,14 @@ int check_request(const Options& o, Messages& m) {
     return kExitUsage;
   }
   const bool replay = o.replaying();
-  if (!o.aov.empty() && !replay && std::none_of(o.outputs.begin(), o.outputs.end(), is_exr_path)) {
+  // A shard's AOVs go into its state (--shard-out), whatever its -o are.
+  if (!o.aov.empty() && !replay && o.shard_out.empty() &&
+      std::none_of(o.outputs.begin(), o.outputs.end(), is_exr_path)) {
     m.error("--aov: AOV layers are written to EXR outputs only, and no -o is an EXR (" + join(o.outputs, ", ") +
             "); add one (-o layers.exr) or leave out --aov");
     return kExitUsage;
   }
-  if (o.time_budget > 0 && o.spp == 0 && !o.quiet && !replay)
+  if (o.time_budget > 0 && o.spp == 0 && !o.quiet && !replay && !o.sharded())
     m.note("--time-budget without --spp renders until the time is up (the scene's spp is ignored)");
   if (replay && !o.quiet && !(o.outputs.empty() && o.checkpoint.empty() && o.report.empty()))
     m.note("a replay writes no files (-o, --checkpoint and --report are ignored)");
@@ -214,6 +220,8 @@ std::optional<Job> prepare_job(const Options& o, Messages& m, int& status) {
     return std::nullopt;
   }
   if (!check_job_memory(o, job, m, status)) return std::nullopt;
+  status = kExitUsage;
+  if (!plan_shard(o, job, m)) return std::nullopt;
   status = kExitFailure;
   if (!checkpoint_job(o, job, m)) return std::nullopt;
   return job;

@@ -17,6 +17,7 @@
 #include "app/output_checks.h"
 #include "app/render_driver.h"
 #include "app/render_settings.h"
+#include "app/shard.h"
 #include "core/diagnostics.h"
 #include "core/stopwatch.h"
 #include "io/display.h"
@@ -56,7 +57,8 @@ struct Job {
   MemoryEstimate memory;
   std::vector<AovRequest> aovs;  // --aov (every AOV for a replay)
   ChannelType beauty_type = ChannelType::Float;  // --aov beauty:half
-  CheckpointInfo identity;  // scene hash and settings, for --checkpoint and --resume
+  CheckpointInfo identity;  // scene hash and settings, for --checkpoint, --resume and shards
+  ShardPlan shard;          // a shard of a distributed render (app/shard.h)
   double parse_s = 0;       // load_scene, meshes included
   OutputStamps stamps;      // every output as it was when the run started (two runs, one name)
 };

@@ -20,8 +20,10 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/distributed.h"
 #include "app/film_options.h"
 #include "app/job.h"
+#include "app/mpi_launch.h"
 #include "app/options.h"
 #include "app/outputs.h"
 #include "app/progress.h"
@@ -103,6 +105,12 @@ int run(const Options& o) {
   // A texture read that failed mid-render (a file changed since the build) leaves black texels: no image.
   if (const std::string why = scene->texture_failure(); !why.empty())
     return fail("a texture could not be read during the render (no image written): " + why, kExitFailure);
+  if (job->shard.active) {  // a shard of a distributed render (docs/distributed.md)
+    figures.samples = monitor.samples();
+    figures.rays = monitor.rays();
+    figures.signal = signals.received();
+    return finish_shard(o, *job, *scene, film, outcome, figures, signals.received());
+  }
 
   // Write.
   t0 = Clock::now();
@@ -136,6 +144,14 @@ int run(const Options& o) {
 }  // namespace pt
 
 int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "merge") {  // a scene file named "merge" is ./merge
+    try {
+      return pt::merge_main(argc, argv);
+    } catch (const std::exception& e) {
+      std::cerr << "error: " << e.what() << '\n';
+      return pt::kExitFailure;
+    }
+  }
   CLI::App app{"pathtracer: renders a scene file (native, Path of Light or CGR JSON) to EXR/PNG/PPM"};
   pt::Options options;
   pt::add_options(app, options);
@@ -151,6 +167,7 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : pt::kExitUsage;
   }
   try {
+    if (options.mpi) return pt::run_with_mpi(options, pt::run);
     return pt::run(options);
   } catch (const std::exception& e) {  // e.g. std::bad_alloc for an absurdly large scene
     std::cerr << "error: " << e.what() << '\n';

@@ -316,6 +316,7 @@ void add_options(CLI::App& app, Options& o) {
   add_scene_output_options(app, o);
   add_quality_options(app, o);
   add_long_render_options(app, o);
+  add_distributed_options(app, o);
   add_compositing_options(app, o);
   add_debugging_options(app, o);
   app.footer(kHelpExamples);

@@ -58,7 +58,16 @@ struct Options {
   std::vector<int> replay;         // x, y, sample; empty: a normal render
   std::string replay_option;       // "--pixel" or "--replay"; empty: a normal render
 
+  // Distributed rendering (docs/distributed.md; the options: shard_options.cpp).
+  std::string shard;               // "K/N": share K of N of every pixel's samples; empty: all
+  std::vector<int> sample_range;   // A,B: samples [A, B) of every pixel; empty: all
+  std::string tile;                // "K/N": band K of N of the region; empty: all of it
+  std::string shard_out;           // the film state and its provenance, for `pathtracer merge`
+  bool mpi = false;                // under mpirun: rank r renders shard r/size, rank 0 merges
+
   bool replaying() const { return !replay.empty(); }
+  // A shard of a distributed render (any of the options above).
+  bool sharded() const { return !shard.empty() || !sample_range.empty() || !tile.empty() || !shard_out.empty() || mpi; }
   // The option that gave the replayed sample's index (for messages).
   const char* sample_option() const { return replay_option == "--pixel" ? "--sample" : "--replay"; }
 };
@@ -68,6 +77,8 @@ constexpr int kExitFailure = 1;
 constexpr int kExitUsage = 2;
 
 void add_options(CLI::App& app, Options& o);
+// The distributed-rendering group (shard_options.cpp), called by add_options.
+void add_distributed_options(CLI::App& app, Options& o);
 // For CLI11's "arguments were not expected": one line per unknown option in
 // `extras` (app.remaining()), "unknown option '--samples'; did you mean
 // '--spp'?" (a table of other tools' names, then the edit distance), or ""

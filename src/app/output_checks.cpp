@@ -82,6 +82,7 @@ std::vector<OutputFile> output_files(const Options& o) {
   if (o.replaying()) return files;
   for (const std::string& path : o.outputs) files.push_back({"-o", path});
   if (!o.checkpoint.empty()) files.push_back({"--checkpoint", o.checkpoint});
+  if (!o.shard_out.empty()) files.push_back({"--shard-out", o.shard_out});
   if (!o.report.empty()) files.push_back({"--report", o.report});
   return files;
 }

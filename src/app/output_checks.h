@@ -18,12 +18,12 @@ struct Options;
 struct SceneDescription;
 
 struct OutputFile {
-  std::string option;  // "-o", "--checkpoint" or "--report"
+  std::string option;  // "-o", "--checkpoint", "--shard-out" or "--report"
   std::string path;    // as given
 };
 
-// The files the run will write: each -o, the checkpoint and the run record
-// (none for a replay, which writes nothing).
+// The files the run will write: each -o, the checkpoint, a shard's state
+// (--shard-out) and the run record (none for a replay, which writes nothing).
 std::vector<OutputFile> output_files(const Options& o);
 
 // Before the scene is read: each output's folder exists and can take a new

@@ -357,10 +357,15 @@ TEST(MemoryEstimate, OutputBuffersCountEveryAovChannel) {
   }
   EXPECT_EQ(channels, 39u + 2 * 12u);  // Cryptomatte: 6 ranks are 3 layers of r, g, b, a
   EXPECT_EQ(output_bytes_per_pixel(all, {"a.png", "a.exr"}), 2 * 63u * 4u);  // 504 bytes a pixel
-  // The film: PixelSum, then each AOV's doubles (Cryptomatte: an id and a weight per rank).
+  // The film: PixelSum (five 16-byte exact sums: r, g, b, weight, coverage;
+  // and a count), then each AOV's exact sums and plain values (Cryptomatte:
+  // two exact sums per rank, the id's bits and its weight).
+  EXPECT_EQ(sizeof(PixelSum), 88u);
   EXPECT_EQ(film_bytes_per_pixel({}), sizeof(PixelSum));
   EXPECT_EQ(film_bytes_per_pixel({{AovType::Position, ChannelType::Float}}), sizeof(PixelSum) + 4 * sizeof(double));
-  EXPECT_EQ(film_bytes_per_pixel({{AovType::CryptoObject, ChannelType::Float, 6}}), sizeof(PixelSum) + 12 * sizeof(double));
+  EXPECT_EQ(film_bytes_per_pixel({{AovType::Variance, ChannelType::Float}}), sizeof(PixelSum) + 6 * sizeof(ExactSum));
+  EXPECT_EQ(film_bytes_per_pixel({{AovType::CryptoObject, ChannelType::Float, 6}}),
+            sizeof(PixelSum) + 12 * sizeof(ExactSum));  // 280 bytes
 }
 
 // Textures are estimated from their files' headers: only those a material

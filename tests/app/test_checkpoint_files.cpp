@@ -111,12 +111,13 @@ TEST_F(ResumeHostile, DamagedFilmStatesAreRefused) {
   expect_refused(good_.magic + good_.header, "not a film state");                                // header only
   expect_refused(good_.magic + good_.header + good_.body.substr(0, good_.body.size() / 2), "truncated film state");
   expect_refused(good_.magic + good_.header + good_.body + "x", "film state has trailing data");
-  // A NaN in the first pixel's red sum: the film would put it in the image.
+  // A sample count in the first pixel beyond the header's spp_done (the
+  // sums are exact integers: any bits are some sum, none is non-finite).
   std::string body = good_.body;
-  const std::size_t first_pixel = body.size() - 8 * 6 * 48;  // 8x6 pixels of 48 bytes, no AOVs
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  body.replace(first_pixel, sizeof nan, reinterpret_cast<const char*>(&nan), sizeof nan);
-  expect_refused(good_.magic + good_.header + body, "corrupt film state (pixel (0, 0) holds a non-finite sum)");
+  const std::size_t first_count = body.size() - 8 * 6 * 88 + 80;  // 8x6 pixels of 88 bytes, no AOVs
+  const uint64_t many = 1000;
+  body.replace(first_count, sizeof many, reinterpret_cast<const char*>(&many), sizeof many);
+  expect_refused(good_.magic + good_.header + body, "holds 1000 samples in pixel (0, 0)");
 }
 
 TEST_F(ResumeHostile, CheckpointsOfAnotherSceneOrResolutionAreRefused) {

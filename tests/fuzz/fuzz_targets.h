@@ -43,6 +43,13 @@ int film_state_one_input(const uint8_t* data, std::size_t size);
 // once written.
 int checkpoint_one_input(const uint8_t* data, std::size_t size);
 
+// A shard file (--shard-out, `pathtracer merge`; src/app/shard_file.h): the
+// header, then, for crops of at most 2^16 pixels, the film state. A refusal
+// names the file; an accepted shard has a header of valid types and ranges
+// (pieces inside the frame and the target), reads back unchanged once
+// written, and goes through a merge of it alone.
+int shard_one_input(const uint8_t* data, std::size_t size);
+
 struct Harness {
   const char* name;  // also the folder name of its regression cases
   int (*run)(const uint8_t* data, std::size_t size);

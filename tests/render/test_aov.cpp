@@ -154,7 +154,7 @@ TEST(Aov, MissesAndAbsentLayers) {
   EXPECT_EQ(film.aov_value(AovType::ObjectId, 3, 3)[0], 0.0f);
   EXPECT_EQ(film.aov_value(AovType::Normal, 3, 3)[2], 0.0f);
   EXPECT_TRUE(film.aov_value(AovType::Albedo, 3, 3).empty());  // not requested: not stored
-  EXPECT_EQ(Film(8, 8).aov_doubles(), 0);
+  EXPECT_EQ(Film(8, 8).aov_slots(), 0);
 }
 
 // Lambert floor, a glossy Phong sphere, a mirror sphere and a visible area light.

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "core/parallel.h"
 #include "render/film/film.h"
@@ -199,19 +200,45 @@ TEST(Coverage, CryptomatteRanksEveryIdBySummedWeight) {
   EXPECT_GT(shared, 3);  // pixels where both are seen
 }
 
-TEST(Coverage, RanksKeepTheFirstIdsAndSortByCoverage) {
-  Film film(1, 1, PixelRect{0, 0, 1, 1}, {{AovType::CryptoObject, ChannelType::Float, 2}});
-  std::vector<double> scratch(static_cast<std::size_t>(film.aov_doubles()));
-  PixelSum sum;
-  for (const float id : {1.5f, 2.5f, 2.5f, 3.5f, 2.5f}) {  // 3.5 arrives when both ranks are taken
-    AovSample s;
-    s.crypto_object = id;
-    film.accumulate(scratch.data(), s, RGB(), 1.0f, false);
-    sum.add(RGB(), 1.0f, true);
+// One pixel's Cryptomatte from `ids`, one sample each of weight 1, added in
+// passes of `pass` samples (a scratch per pass, as the render loop does).
+Film ranked_pixel(const std::vector<float>& ids, int ranks, std::size_t pass) {
+  Film film(1, 1, PixelRect{0, 0, 1, 1}, {{AovType::CryptoObject, ChannelType::Float, ranks}});
+  AovScratch scratch = film.make_scratch();
+  for (std::size_t first = 0; first < ids.size(); first += pass) {
+    scratch.clear();
+    PixelSum sum;
+    for (std::size_t i = first; i < std::min(ids.size(), first + pass); ++i) {
+      AovSample s;
+      s.crypto_object = ids[i];
+      film.accumulate(scratch, s, RGB(), 1.0f, false);
+      sum.add(RGB(), 1.0f, true);
+    }
+    film.add(0, 0, sum);
+    film.add_aovs(0, 0, scratch);
   }
-  film.add(0, 0, sum);
-  film.add_aovs(0, 0, scratch.data());
-  EXPECT_EQ(film.aov_value(AovType::CryptoObject, 0, 0), (std::vector<float>{2.5f, 0.6f, 1.5f, 0.2f}));
+  return film;
+}
+
+std::string film_state(const Film& film) {
+  std::ostringstream out;
+  film.write_state(out);
+  return out.str();
+}
+
+TEST(Coverage, RanksKeepTheSmallestIdsWhateverThePassesAndSortByCoverage) {
+  // 3.5 comes first but is the largest of three ids for two ranks: the
+  // smallest two are kept, each with every sample's weight.
+  const std::vector<float> ids = {3.5f, 2.5f, 2.5f, 1.5f, 2.5f, 3.5f};
+  const Film one_pass = ranked_pixel(ids, 2, ids.size());
+  EXPECT_EQ(one_pass.aov_value(AovType::CryptoObject, 0, 0), (std::vector<float>{2.5f, 0.5f, 1.5f, 1.0f / 6.0f}));
+  // The same bits in passes of 1, 2, 4 samples (first-come ranks would keep
+  // 3.5 and lose 1.5 in one pass, but keep 1.5 in passes of one sample).
+  for (std::size_t pass : {1u, 2u, 4u}) EXPECT_EQ(film_state(ranked_pixel(ids, 2, pass)), film_state(one_pass)) << pass;
+  // Enough ranks: every id, in any order of the samples.
+  std::vector<float> reversed(ids.rbegin(), ids.rend());
+  EXPECT_EQ(ranked_pixel(reversed, 4, 3).aov_value(AovType::CryptoObject, 0, 0),
+            (std::vector<float>{2.5f, 0.5f, 3.5f, 1.0f / 3.0f, 1.5f, 1.0f / 6.0f, 0.0f, 0.0f}));
 }
 
 TEST(Coverage, CryptomatteNamesOfShapesInstancesAndMaterials) {

@@ -58,7 +58,7 @@ TEST(FilmState, RejectsWrongSizeTruncationAndGarbage) {
   EXPECT_NE(error.find("4x4"), std::string::npos) << error;
 
   Film target = filled_film(4, 4);
-  const double before = target.sum(1, 1).r;
+  const ExactSum before = target.sum(1, 1).r;
   std::istringstream truncated(state.substr(0, state.size() - 3));
   EXPECT_FALSE(target.read_state(truncated, error));
   EXPECT_NE(error.find("truncated"), std::string::npos) << error;

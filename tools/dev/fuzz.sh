@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer harnesses (tests/fuzz: scene, ply, obj, film_state,
-# checkpoint) with clang, AddressSanitizer and UndefinedBehaviorSanitizer in
+# checkpoint, shard) with clang, AddressSanitizer and UndefinedBehaviorSanitizer in
 # build-fuzz/, and runs each for SECONDS (default 600), one after the other.
 #
 #   tools/dev/fuzz.sh [SECONDS] [HARNESS...]      e.g. tools/dev/fuzz.sh 60 ply, tools/dev/fuzz.sh 600 checkpoint
@@ -19,7 +19,7 @@ build="${PT_FUZZ_BUILD_DIR:-$repo/build-fuzz}"
 seconds="${1:-600}"
 shift || true
 harnesses=("$@")
-((${#harnesses[@]})) || harnesses=(scene ply obj film_state checkpoint)
+((${#harnesses[@]})) || harnesses=(scene ply obj film_state checkpoint shard)
 shared="$repo/../shared"
 
 command -v clang++ >/dev/null || { echo "fuzz: clang++ is needed (apt-get install clang)" >&2; exit 2; }
@@ -39,6 +39,7 @@ seed_files() {
     obj)   dirs=(tests/hostile/files tests/fuzz/seeds/obj); pattern='*.obj' ;;
     film_state) dirs=(tests/fuzz/seeds/film_state); pattern='*.bin' ;;
     checkpoint) dirs=(tests/fuzz/seeds/checkpoint); pattern='*.ckpt' ;;
+    shard) dirs=(tests/fuzz/seeds/shard); pattern='*.ptshard' ;;
   esac
   for d in "${dirs[@]}"; do [ -d "$repo/$d" ] && find "$repo/$d" -maxdepth 1 -type f -name "$pattern"; done
   case "$1" in  # ../shared beside the checkout, when present

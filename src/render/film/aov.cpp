@@ -12,24 +12,24 @@ constexpr ChannelType kHalf = ChannelType::Half, kFloat = ChannelType::Float;
 // Defaults: half where 11 bits of mantissa are plenty (albedo, normals, the
 // mask); float for positions, depths, ids and radiance-valued layers.
 const std::vector<AovInfo> kCatalogue = {
-    {AovType::Albedo, "albedo", 3, {"R", "G", "B"}, kHalf, A::FilteredAverage, 3, false},
-    {AovType::Normal, "N", 3, {"X", "Y", "Z"}, kHalf, A::FilteredAverage, 3, false},
-    {AovType::Position, "P", 3, {"X", "Y", "Z"}, kFloat, A::FirstSample, 4, false},
-    {AovType::Depth, "Z", 1, {"", "", ""}, kFloat, A::FirstSample, 2, false},
-    {AovType::ObjectId, "IndexOB", 1, {"X", "", ""}, kFloat, A::FirstSample, 2, false},
-    {AovType::MaterialId, "IndexMA", 1, {"X", "", ""}, kFloat, A::FirstSample, 2, false},
-    {AovType::Emission, "emission", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, true},
-    {AovType::DiffuseDirect, "diffuse_direct", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, true},
-    {AovType::DiffuseIndirect, "diffuse_indirect", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, true},
-    {AovType::SpecularDirect, "specular_direct", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, true},
-    {AovType::SpecularIndirect, "specular_indirect", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, true},
-    {AovType::Variance, "variance", 3, {"R", "G", "B"}, kFloat, A::Sum, 6, false},
-    {AovType::Samples, "samples", 1, {"X", "", ""}, kFloat, A::Sum, 0, false},
-    {AovType::NonFinite, "nonfinite", 1, {"X", "", ""}, kHalf, A::Max, 1, false},
-    {AovType::Ambient, "ambient", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, true},
-    // Ids are 32-bit patterns: float only.
-    {AovType::CryptoObject, "CryptoObject", 2, {"", "", ""}, kFloat, A::Ranked, 2, false},
-    {AovType::CryptoMaterial, "CryptoMaterial", 2, {"", "", ""}, kFloat, A::Ranked, 2, false},
+    {AovType::Albedo, "albedo", 3, {"R", "G", "B"}, kHalf, A::FilteredAverage, 3, 0, false},
+    {AovType::Normal, "N", 3, {"X", "Y", "Z"}, kHalf, A::FilteredAverage, 3, 0, false},
+    {AovType::Position, "P", 3, {"X", "Y", "Z"}, kFloat, A::FirstSample, 0, 4, false},
+    {AovType::Depth, "Z", 1, {"", "", ""}, kFloat, A::FirstSample, 0, 2, false},
+    {AovType::ObjectId, "IndexOB", 1, {"X", "", ""}, kFloat, A::FirstSample, 0, 2, false},
+    {AovType::MaterialId, "IndexMA", 1, {"X", "", ""}, kFloat, A::FirstSample, 0, 2, false},
+    {AovType::Emission, "emission", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, 0, true},
+    {AovType::DiffuseDirect, "diffuse_direct", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, 0, true},
+    {AovType::DiffuseIndirect, "diffuse_indirect", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, 0, true},
+    {AovType::SpecularDirect, "specular_direct", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, 0, true},
+    {AovType::SpecularIndirect, "specular_indirect", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, 0, true},
+    {AovType::Variance, "variance", 3, {"R", "G", "B"}, kFloat, A::Sum, 6, 0, false},
+    {AovType::Samples, "samples", 1, {"X", "", ""}, kFloat, A::Sum, 0, 0, false},
+    {AovType::NonFinite, "nonfinite", 1, {"X", "", ""}, kHalf, A::Max, 0, 1, false},
+    {AovType::Ambient, "ambient", 3, {"R", "G", "B"}, kFloat, A::FilteredAverage, 3, 0, true},
+    // Ids are 32-bit patterns: float only. Per rank two sums: the id's bits and its weight.
+    {AovType::CryptoObject, "CryptoObject", 2, {"", "", ""}, kFloat, A::Ranked, 2, 0, false},
+    {AovType::CryptoMaterial, "CryptoMaterial", 2, {"", "", ""}, kFloat, A::Ranked, 2, 0, false},
 };
 
 std::string trim(const std::string& s) {
@@ -44,10 +44,12 @@ const std::vector<AovInfo>& aov_catalogue() { return kCatalogue; }
 
 const AovInfo& aov_info(AovType type) { return kCatalogue[static_cast<std::size_t>(type)]; }
 
-int aov_state_doubles(const AovRequest& r) {
+int aov_state_sums(const AovRequest& r) {
   const AovInfo& info = aov_info(r.type);
-  return info.accumulation == Accumulation::Ranked ? info.state_doubles * r.ranks : info.state_doubles;
+  return info.accumulation == Accumulation::Ranked ? info.sums * r.ranks : info.sums;
 }
+
+int aov_state_values(const AovRequest& r) { return aov_info(r.type).values; }
 
 int aov_channel_count(const AovRequest& r) {
   const AovInfo& info = aov_info(r.type);

@@ -44,7 +44,7 @@ enum class Accumulation : uint8_t {
   Sum,              // sums kept as they are (variance: sum and sum of squares; samples)
   Max,              // the largest value seen (the non-finite mask)
   Ranked,           // Cryptomatte: per id, the sum of the weights of the samples that hit it; the ids
-                    // ranked by it (render/film/cryptomatte.h)
+                    // ranked by it (render/film/cryptomatte.h); the smallest ids kept (film.cpp: add_ranked)
 };
 
 struct AovInfo {
@@ -56,7 +56,11 @@ struct AovInfo {
   std::array<const char*, 3> suffix;
   ChannelType default_type;
   Accumulation accumulation;
-  int state_doubles;                   // doubles per pixel in the film; Ranked: per rank
+  // Its state per pixel in the film: exact sums (FilteredAverage, Sum; see
+  // render/film/exact_sum.h; Ranked: per rank, the id's bits and its weight)
+  // and plain values (FirstSample: the values and a set flag; Max: the value).
+  int sums;
+  int values;
   bool lighting;                       // a part of the beauty's lighting split, filled by the integrator
                                        // (which integrator fills which: IntegratorInfo::aovs)
 };
@@ -88,8 +92,10 @@ struct AovRequest {
   int ranks = 0;  // Ranked (Cryptomatte) layers: the ids kept per pixel, 1 .. kCryptomatteMaxRanks; else 0
 };
 
-// Doubles per pixel the film keeps for `r` (Ranked: an id and a weight per rank).
-int aov_state_doubles(const AovRequest& r);
+// Exact sums per pixel the film keeps for `r` (Ranked: an id and a weight per
+// rank), and plain values.
+int aov_state_sums(const AovRequest& r);
+int aov_state_values(const AovRequest& r);
 // The full channel names `r` writes, in order: "albedo.R", ..., "IndexOB.X",
 // "Z", and for a Ranked layer "CryptoObject00.r", "CryptoObject00.g", ...
 // (lower case, as Blender writes them; DWA compression keeps them lossless).

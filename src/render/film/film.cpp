@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <utility>
 #include <sstream>
@@ -19,13 +20,14 @@ PixelRect clip(PixelRect r, int width, int height) {
   return r;
 }
 
-void add_weighted(double* s, float w, float a, float b, float c) {
-  s[0] += static_cast<double>(w) * a;
-  s[1] += static_cast<double>(w) * b;
-  s[2] += static_cast<double>(w) * c;
+// Products of two floats: exact in double, rounded once by ExactSum.
+void add_weighted(ExactSum* s, float w, float a, float b, float c) {
+  s[0].add(static_cast<double>(w) * a);
+  s[1].add(static_cast<double>(w) * b);
+  s[2].add(static_cast<double>(w) * c);
 }
 
-void add_weighted(double* s, float w, RGB v) { add_weighted(s, w, v.r, v.g, v.b); }
+void add_weighted(ExactSum* s, float w, RGB v) { add_weighted(s, w, v.r, v.g, v.b); }
 
 // First-sample layers: n values and a flag (1 once set).
 void set_first(double* s, int n, const float* v) {
@@ -34,46 +36,75 @@ void set_first(double* s, int n, const float* v) {
   s[n] = 1.0;
 }
 
-// Ranked (Cryptomatte) layers: `ranks` slots of (id, weight sum); id 0 marks
-// a free slot (no name hashes to 0). A weight goes to its id's slot, else to
-// the first free one; when every slot holds another id it is dropped (as
-// Cycles does), so the ids kept are the first `ranks` distinct ones in sample
-// order, and the result does not depend on scheduling.
-void add_ranked(double* slots, int ranks, double id, double w) {
-  if (id == 0.0) return;  // the camera ray hit nothing
-  for (int k = 0; k < ranks; ++k) {
-    double* slot = slots + 2 * k;
-    if (slot[0] == id) {
-      slot[1] += w;
-      return;
-    }
-    if (slot[0] == 0.0) {
-      slot[0] = id;
-      slot[1] = w;
-      return;
-    }
+// Ranked (Cryptomatte) layers: `ranks` slots of (id, weight sum), the id's
+// 32 bits held as the integer of an ExactSum (0 marks a free slot: no name
+// hashes to 0), in increasing order of those bits, free slots last. The slots
+// keep the `ranks` smallest ids seen: a weight goes to its id's slot; a new id
+// smaller than one kept takes its place in the order and the largest kept id
+// falls out, for good (it can never again be among the smallest), and a new
+// id larger than every one of full slots is dropped. Which ids are kept is
+// thus a function of the set of ids the pixel's samples hit, not of their
+// order or of how they are grouped into passes, shards and merges, and every
+// id kept has the weight of every sample that hit it: sums and merges are
+// exact (docs/output.md). (Cycles keeps the first ids met, which depends on
+// the grouping.)
+uint32_t slot_id(const ExactSum& s) { return static_cast<uint32_t>(s.raw()); }
+
+void add_ranked(ExactSum* slots, int ranks, uint32_t id, const ExactSum& w) {
+  if (id == 0) return;  // the camera ray hit nothing
+  int k = 0;
+  while (k < ranks && !slots[2 * k].is_zero() && slot_id(slots[2 * k]) < id) ++k;
+  if (k == ranks) return;
+  if (!slots[2 * k].is_zero() && slot_id(slots[2 * k]) == id) {
+    slots[2 * k + 1].add(w);
+    return;
   }
+  for (int j = ranks - 1; j > k; --j) {
+    slots[2 * j] = slots[2 * j - 2];
+    slots[2 * j + 1] = slots[2 * j - 1];
+  }
+  slots[2 * k].set_raw(id);
+  slots[2 * k + 1] = w;
+}
+
+void add_ranked(ExactSum* slots, int ranks, float id, float w) {
+  add_ranked(slots, ranks, std::bit_cast<uint32_t>(id), ExactSum(static_cast<double>(w)));
 }
 
 // The ranked ids and coverages (weight / the pixel's total weight, clamped
 // to [0, 1]) into out[0 .. 2 * ranks), highest coverage first (ties: the
 // smaller id first); free slots give (0, 0).
-void ranked_values(const double* slots, int ranks, double weight, float* out) {
+void ranked_values(const ExactSum* slots, int ranks, const ExactSum& weight, float* out) {
   std::array<int, kCryptomatteMaxRanks> order{};
-  for (int k = 0; k < ranks; ++k) order[static_cast<std::size_t>(k)] = k;
-  const auto key = [slots](int k) { return std::make_pair(slots[2 * k] == 0.0, -slots[2 * k + 1]); };
-  std::sort(order.begin(), order.begin() + ranks, [&](int a, int b) {
-    return key(a) != key(b) ? key(a) < key(b) : slots[2 * a] < slots[2 * b];
-  });
+  std::array<double, kCryptomatteMaxRanks> w{};
+  std::array<float, kCryptomatteMaxRanks> id{};
   for (int k = 0; k < ranks; ++k) {
-    const double* slot = slots + 2 * order[static_cast<std::size_t>(k)];
-    const bool used = slot[0] != 0.0 && weight != 0.0;
-    out[2 * k] = used ? static_cast<float>(slot[0]) : 0.0f;
-    out[2 * k + 1] = used ? static_cast<float>(std::clamp(slot[1] / weight, 0.0, 1.0)) : 0.0f;
+    const auto i = static_cast<std::size_t>(k);
+    order[i] = k;
+    w[i] = slots[2 * k + 1].value();
+    id[i] = std::bit_cast<float>(slot_id(slots[2 * k]));
+  }
+  const auto key = [&](int k) {
+    const auto i = static_cast<std::size_t>(k);
+    return std::make_tuple(slots[2 * k].is_zero(), -w[i], id[i]);
+  };
+  std::sort(order.begin(), order.begin() + ranks, [&](int a, int b) { return key(a) < key(b); });
+  const double total = weight.value();
+  for (int k = 0; k < ranks; ++k) {
+    const int o = order[static_cast<std::size_t>(k)];
+    const bool used = !slots[2 * o].is_zero() && !weight.is_zero();
+    out[2 * k] = used ? id[static_cast<std::size_t>(o)] : 0.0f;
+    out[2 * k + 1] = used ? static_cast<float>(std::clamp(w[static_cast<std::size_t>(o)] / total, 0.0, 1.0)) : 0.0f;
   }
 }
 
 }  // namespace
+
+std::string PixelRect::text() const {
+  std::string s = "[";  // appended, not "[" + ...: GCC 12 warns falsely about that (-Wrestrict)
+  s += std::to_string(x0) + "," + std::to_string(x1) + ")x[" + std::to_string(y0) + "," + std::to_string(y1) + ")";
+  return s;
+}
 
 void NonFiniteReport::record(int px, int py, int sample_index, RGB v) {
   if (std::isnan(v.r) || std::isnan(v.g) || std::isnan(v.b)) {
@@ -126,12 +157,15 @@ Film::Film(int width, int height, PixelRect crop, std::vector<AovRequest> aovs)
     r.ranks = info.accumulation != Accumulation::Ranked ? 0
               : r.ranks <= 0                             ? kCryptomatteDefaultRanks
                                                          : std::min(r.ranks, kCryptomatteMaxRanks);
-    offset_.push_back(stride_);
-    stride_ += aov_state_doubles(r);
+    sum_offset_.push_back(sum_stride_);
+    value_offset_.push_back(value_stride_);
+    sum_stride_ += aov_state_sums(r);
+    value_stride_ += aov_state_values(r);
     if (aov_bit(r.type) & kGeometryAovs) wants_geometry_ = true;
     if (info.lighting) wants_lighting_ = true;
   }
-  aov_data_.assign(pixels_.size() * static_cast<std::size_t>(stride_), 0.0);
+  aov_sums_.assign(pixels_.size() * static_cast<std::size_t>(sum_stride_), ExactSum{});
+  aov_values_.assign(pixels_.size() * static_cast<std::size_t>(value_stride_), 0.0);
 }
 
 Image Film::image() const {
@@ -142,30 +176,39 @@ Image Film::image() const {
 
 void Film::clear() {
   std::fill(pixels_.begin(), pixels_.end(), PixelSum{});
-  std::fill(aov_data_.begin(), aov_data_.end(), 0.0);
+  std::fill(aov_sums_.begin(), aov_sums_.end(), ExactSum{});
+  std::fill(aov_values_.begin(), aov_values_.end(), 0.0);
   non_finite_ = {};
 }
 
-void Film::accumulate(double* scratch, const AovSample& a, RGB radiance, float w, bool non_finite) const {
+AovScratch Film::make_scratch() const {
+  AovScratch scratch;
+  scratch.sums.resize(static_cast<std::size_t>(sum_stride_));
+  scratch.values.resize(static_cast<std::size_t>(value_stride_));
+  return scratch;
+}
+
+void Film::accumulate(AovScratch& scratch, const AovSample& a, RGB radiance, float w, bool non_finite) const {
   for (std::size_t i = 0; i < aovs_.size(); ++i) {
-    double* s = scratch + offset_[i];
+    ExactSum* s = scratch.sums.data() + sum_offset_[i];
+    double* v = scratch.values.data() + value_offset_[i];
     switch (aovs_[i].type) {
       case AovType::Albedo: add_weighted(s, w, a.albedo); break;
       case AovType::Normal: add_weighted(s, w, a.normal.x, a.normal.y, a.normal.z); break;
       case AovType::Position: {
-        const float v[3] = {a.position.x, a.position.y, a.position.z};
-        set_first(s, 3, v);
+        const float p[3] = {a.position.x, a.position.y, a.position.z};
+        set_first(v, 3, p);
         break;
       }
-      case AovType::Depth: set_first(s, 1, &a.depth); break;
+      case AovType::Depth: set_first(v, 1, &a.depth); break;
       case AovType::ObjectId: {
-        const float v = static_cast<float>(a.object);
-        set_first(s, 1, &v);
+        const float id = static_cast<float>(a.object);
+        set_first(v, 1, &id);
         break;
       }
       case AovType::MaterialId: {
-        const float v = static_cast<float>(a.material);
-        set_first(s, 1, &v);
+        const float id = static_cast<float>(a.material);
+        set_first(v, 1, &id);
         break;
       }
       case AovType::Emission: if (!non_finite) add_weighted(s, w, a.emission); break;
@@ -177,41 +220,70 @@ void Film::accumulate(double* scratch, const AovSample& a, RGB radiance, float w
       case AovType::Variance:
         if (!non_finite) {
           for (int c = 0; c < 3; ++c) {
-            const double v = radiance[c];
-            s[c] += v;
-            s[3 + c] += v * v;
+            const double x = radiance[c];
+            s[c].add(x);
+            s[3 + c].add(x * x);  // a float squared: exact in double
           }
         }
         break;
       case AovType::Samples: break;  // the beauty's count
-      case AovType::NonFinite: if (non_finite) s[0] = 1.0; break;
+      case AovType::NonFinite: if (non_finite) v[0] = 1.0; break;
       case AovType::CryptoObject: add_ranked(s, aovs_[i].ranks, a.crypto_object, w); break;
       case AovType::CryptoMaterial: add_ranked(s, aovs_[i].ranks, a.crypto_material, w); break;
     }
   }
 }
 
-void Film::add_aovs(int x, int y, const double* scratch) {
-  double* film = aov_data_.data() + index(x, y) * static_cast<std::size_t>(stride_);
+void Film::add_aovs(int x, int y, const AovScratch& scratch) {
+  const std::size_t pixel = index(x, y);
+  add_sums(pixel, scratch.sums.data());
+  double* values = aov_values_.data() + pixel * static_cast<std::size_t>(value_stride_);
   for (std::size_t i = 0; i < aovs_.size(); ++i) {
     const AovInfo& info = aov_info(aovs_[i].type);
-    double* d = film + offset_[i];
-    const double* s = scratch + offset_[i];
-    switch (info.accumulation) {
-      case Accumulation::FilteredAverage:
-      case Accumulation::Sum:
-        for (int c = 0; c < info.state_doubles; ++c) d[c] += s[c];
-        break;
-      case Accumulation::FirstSample:
-        if (d[info.channels] == 0.0 && s[info.channels] != 0.0)
-          std::copy(s, s + info.state_doubles, d);
-        break;
-      case Accumulation::Max:
-        d[0] = std::max(d[0], s[0]);
-        break;
-      case Accumulation::Ranked:
-        for (int k = 0; k < aovs_[i].ranks; ++k) add_ranked(d, aovs_[i].ranks, s[2 * k], s[2 * k + 1]);
-        break;
+    double* d = values + value_offset_[i];
+    const double* s = scratch.values.data() + value_offset_[i];
+    if (info.accumulation == Accumulation::FirstSample) {
+      if (d[info.channels] == 0.0 && s[info.channels] != 0.0) std::copy(s, s + info.values, d);
+    } else if (info.accumulation == Accumulation::Max) {
+      d[0] = std::max(d[0], s[0]);
+    }
+  }
+}
+
+bool Film::valid_ranked(const ExactSum* s) const {
+  for (std::size_t i = 0; i < aovs_.size(); ++i) {
+    const AovRequest& r = aovs_[i];
+    if (aov_info(r.type).accumulation != Accumulation::Ranked) continue;
+    const ExactSum* slots = s + sum_offset_[i];
+    uint32_t previous = 0;
+    for (int k = 0; k < r.ranks; ++k) {
+      const ExactSum& id = slots[2 * k];
+      const uint32_t bits = slot_id(id), exponent = (bits >> 23) & 0xffu;
+      if (id.raw() >> 32 != 0) return false;
+      if (bits == 0) {  // free: so are the rest, without weight
+        if (!slots[2 * k + 1].is_zero()) return false;
+        previous = ~0u;
+      } else if (bits <= previous || exponent == 0 || exponent == 255) {
+        return false;  // out of order, after a free slot, or not an id
+      } else {
+        previous = bits;
+      }
+    }
+  }
+  return true;
+}
+
+void Film::add_sums(std::size_t pixel, const ExactSum* s) {
+  ExactSum* d = aov_sums_.data() + pixel * static_cast<std::size_t>(sum_stride_);
+  for (std::size_t i = 0; i < aovs_.size(); ++i) {
+    const AovRequest& r = aovs_[i];
+    ExactSum* dl = d + sum_offset_[i];
+    const ExactSum* sl = s + sum_offset_[i];
+    if (aov_info(r.type).accumulation == Accumulation::Ranked) {
+      for (int k = 0; k < r.ranks && !sl[2 * k].is_zero(); ++k)
+        add_ranked(dl, r.ranks, slot_id(sl[2 * k]), sl[2 * k + 1]);
+    } else {
+      for (int k = 0; k < aov_state_sums(r); ++k) dl[k].add(sl[k]);
     }
   }
 }
@@ -219,19 +291,22 @@ void Film::add_aovs(int x, int y, const double* scratch) {
 void Film::aov_values(std::size_t layer, std::size_t pixel, float* out) const {
   const AovType type = aovs_[layer].type;
   const AovInfo& info = aov_info(type);
-  const double* d = aov_data_.data() + pixel * static_cast<std::size_t>(stride_) + offset_[layer];
+  const ExactSum* s = aov_sums_.data() + pixel * static_cast<std::size_t>(sum_stride_) + sum_offset_[layer];
+  const double* d = aov_values_.data() + pixel * static_cast<std::size_t>(value_stride_) + value_offset_[layer];
   const PixelSum& p = pixels_[pixel];
   std::fill(out, out + aov_channel_count(aovs_[layer]), 0.0f);
   switch (info.accumulation) {
     case Accumulation::FilteredAverage:
-      if (p.weight != 0.0)
-        for (int c = 0; c < info.channels; ++c) out[c] = static_cast<float>(d[c] / p.weight);
+      if (!p.weight.is_zero()) {
+        const double weight = p.weight.value();
+        for (int c = 0; c < info.channels; ++c) out[c] = static_cast<float>(s[c].value() / weight);
+      }
       // A reflectance: a filter's negative lobes must not make it negative.
       if (type == AovType::Albedo)
         for (int c = 0; c < 3; ++c) out[c] = std::max(out[c], 0.0f);
       break;
     case Accumulation::Ranked:
-      ranked_values(d, aovs_[layer].ranks, p.weight, out);
+      ranked_values(s, aovs_[layer].ranks, p.weight, out);
       break;
     case Accumulation::FirstSample:
       for (int c = 0; c < info.channels; ++c) out[c] = static_cast<float>(d[c]);
@@ -242,8 +317,8 @@ void Film::aov_values(std::size_t layer, std::size_t pixel, float* out) const {
       } else if (p.samples >= 2) {  // variance of the mean: unbiased sample variance / n
         const double n = static_cast<double>(p.samples);
         for (int c = 0; c < 3; ++c) {
-          const double mean = d[c] / n;
-          const double var = std::max(0.0, (d[3 + c] - d[c] * mean) / (n - 1.0));
+          const double sum = s[c].value(), mean = sum / n;
+          const double var = std::max(0.0, (s[3 + c].value() - sum * mean) / (n - 1.0));
           out[c] = static_cast<float>(var / n);
         }
       }

@@ -1,14 +1,15 @@
 // Film: the image being rendered, row 0 at the top. Each pixel holds sums, not
-// a final value: the filter-weighted sum of its samples' radiance and the sum of
-// their weights (both in double, so that 10^5 samples and more add up without
-// losing precision), and the number of samples. The pixel value is
+// a final value: the filter-weighted sum of its samples' radiance, the sum of
+// their weights and of the weights of those that hit a surface (coverage, the
+// alpha), all exact (ExactSum), and the number of samples. The pixel value is
 // sum / weight_sum. Because sums add, passes over sample ranges rendered one
 // after another (or elsewhere) merge into the same image.
 //
 // A film covers a frame of width x height pixels but stores only its crop
 // window (the whole frame by default); pixel coordinates are always the
 // frame's. Requested AOV layers (render/film/aov.h) are stored beside the
-// beauty, per pixel, in double; a film without AOVs stores nothing for them.
+// beauty, per pixel, as exact sums and plain doubles; a film without AOVs
+// stores nothing for them.
 //
 // Each pixel is written by exactly one task at a time (the render loop gives
 // every pixel to one task), so adding needs no synchronisation and the result
@@ -25,45 +26,63 @@
 #include "core/image.h"
 #include "io/layered_image.h"
 #include "render/film/aov.h"
+#include "render/film/exact_sum.h"
 
 namespace pt {
 
-// The running sums of one pixel.
+// The running sums of one pixel. The sums are exact (render/film/exact_sum.h):
+// they hold the same bits whatever the grouping of the samples into passes,
+// shards or merges.
 struct PixelSum {
-  double r = 0, g = 0, b = 0;  // sum of weight * radiance
-  double weight = 0;           // sum of filter weights
-  double coverage = 0;         // sum of the weights of the samples whose camera ray hit a surface
-  uint64_t samples = 0;        // number of samples (non-finite ones included, as black)
+  ExactSum r, g, b;     // sum of weight * radiance
+  ExactSum weight;      // sum of filter weights
+  ExactSum coverage;    // sum of the weights of the samples whose camera ray hit a surface
+  uint64_t samples = 0; // number of samples (non-finite ones included, as black)
 
   // One sample: its radiance, filter weight and whether its camera ray hit a surface.
   void add(RGB value, float w, bool hit) {
-    r += static_cast<double>(w) * value.r;
-    g += static_cast<double>(w) * value.g;
-    b += static_cast<double>(w) * value.b;
-    weight += w;
-    if (hit) coverage += w;
+    r.add(static_cast<double>(w) * value.r);  // a product of two floats: exact in double
+    g.add(static_cast<double>(w) * value.g);
+    b.add(static_cast<double>(w) * value.b);
+    weight.add(w);
+    if (hit) coverage.add(w);
     ++samples;
   }
   void add(const PixelSum& o) {
-    r += o.r;
-    g += o.g;
-    b += o.b;
-    weight += o.weight;
-    coverage += o.coverage;
+    r.add(o.r);
+    g.add(o.g);
+    b.add(o.b);
+    weight.add(o.weight);
+    coverage.add(o.coverage);
     samples += o.samples;
   }
   // sum / weight; black for a pixel without weight.
   RGB value() const {
-    if (weight == 0.0) return {};
-    const double inv = 1.0 / weight;
-    return {static_cast<float>(r * inv), static_cast<float>(g * inv), static_cast<float>(b * inv)};
+    if (weight.is_zero()) return {};
+    const double inv = 1.0 / weight.value();
+    return {static_cast<float>(r.value() * inv), static_cast<float>(g.value() * inv),
+            static_cast<float>(b.value() * inv)};
   }
   // The beauty's alpha: coverage / weight, the filter-weighted fraction of
   // the samples whose camera ray hit a surface, clamped to [0, 1] (a filter
   // with negative lobes can take the ratio out of it); 0 without weight.
   float alpha() const {
-    if (weight == 0.0) return 0.0f;
-    return static_cast<float>(std::clamp(coverage / weight, 0.0, 1.0));
+    if (weight.is_zero()) return 0.0f;
+    return static_cast<float>(std::clamp(coverage.value() / weight.value(), 0.0, 1.0));
+  }
+};
+// No padding: the film state writes the pixel sums as they are in memory.
+static_assert(sizeof(PixelSum) == 5 * sizeof(ExactSum) + sizeof(uint64_t));
+
+// One pixel's AOV samples of one pass, gathered before they are added to the
+// film (Film::make_scratch, accumulate, add_aovs): the AOVs' exact sums and
+// their plain values (first-sample values with a set flag, maxima).
+struct AovScratch {
+  std::vector<ExactSum> sums;
+  std::vector<double> values;
+  void clear() {
+    std::fill(sums.begin(), sums.end(), ExactSum{});
+    std::fill(values.begin(), values.end(), 0.0);
   }
 };
 
@@ -74,6 +93,10 @@ struct PixelRect {
   int height() const { return y1 - y0; }
   bool empty() const { return x1 <= x0 || y1 <= y0; }
   bool contains(int x, int y) const { return x >= x0 && x < x1 && y >= y0 && y < y1; }
+  bool contains(const PixelRect& r) const { return r.x0 >= x0 && r.y0 >= y0 && r.x1 <= x1 && r.y1 <= y1; }
+  bool intersects(const PixelRect& r) const { return r.x0 < x1 && x0 < r.x1 && r.y0 < y1 && y0 < r.y1; }
+  // "[x0,x1)x[y0,y1)", for messages.
+  std::string text() const;
   bool operator==(const PixelRect&) const = default;
 };
 
@@ -94,6 +117,15 @@ struct NonFiniteReport {
   std::string describe() const;
 };
 
+// What Film::add_state may take from a film state: the crop it must cover,
+// and per pixel of that crop (row-major) whether its first-sample values come
+// before the film's, and the most samples it may hold there.
+struct StateRules {
+  PixelRect crop;  // the state's crop, as its shard's header says
+  std::vector<uint8_t> other_first;
+  std::vector<uint64_t> max_samples;
+};
+
 class Film {
  public:
   Film(int width, int height);
@@ -111,18 +143,30 @@ class Film {
   Image image() const;
   void clear();
 
-  // AOVs. A pixel's samples are gathered in a scratch array of aov_doubles()
-  // zeros (accumulate() per sample, lowest sample index first), then added
-  // with add_aovs().
+  // AOVs. A pixel's samples are gathered in a scratch of zeros from
+  // make_scratch() (accumulate() per sample, lowest sample index first), then
+  // added with add_aovs().
   const std::vector<AovRequest>& aovs() const { return aovs_; }
   bool wants_geometry() const { return wants_geometry_; }  // albedo, N, P, Z or ids
   bool wants_lighting() const { return wants_lighting_; }  // the integrator's lighting split
-  int aov_doubles() const { return stride_; }
-  void accumulate(double* scratch, const AovSample& sample, RGB radiance, float weight, bool non_finite) const;
-  void add_aovs(int x, int y, const double* scratch);
+  // Per-pixel state slots of the AOVs (exact sums and plain values); 0 when
+  // no requested AOV keeps a state (none, or "samples" alone).
+  int aov_slots() const { return sum_stride_ + value_stride_; }
+  AovScratch make_scratch() const;
+  void accumulate(AovScratch& scratch, const AovSample& sample, RGB radiance, float weight, bool non_finite) const;
+  void add_aovs(int x, int y, const AovScratch& scratch);
   // The final values of AOV `type` at (x, y) (aov_channel_names().size()
   // floats); empty if not requested.
   std::vector<float> aov_value(AovType type, int x, int y) const;
+
+  // Adds the state of `other` (a shard: docs/distributed.md) over `region`,
+  // which lies inside both films' crops; the frame and AOVs must match. Sums
+  // add exactly, maxima take the larger, and a first-sample AOV takes
+  // `other`'s value where this film has none, or wherever `other` has one when
+  // `other_first` (its samples there come before this film's). The non-finite
+  // report is not added (add_non_finite). Returns false with `error`, this
+  // film unchanged, when the frame, the AOVs or the region do not fit.
+  bool add_film(const Film& other, const PixelRect& region, bool other_first, std::string& error);
 
   const NonFiniteReport& non_finite() const { return non_finite_; }
   void add_non_finite(const NonFiniteReport& r) { non_finite_.merge(r); }
@@ -143,8 +187,23 @@ class Film {
   // unchanged, when the stream does not hold a state of a film of this size,
   // crop and AOV list.
   bool read_state(std::istream& in, std::string& error);
+  // Adds a film state (a film of this frame and AOVs whose crop lies inside
+  // this one's: a shard) while it is read, a block at a time, as add_film
+  // would add that film, so that a merge holds one film in memory. False with
+  // `error` when the state does not fit or breaks `rules` (sized for its crop);
+  // this film may then hold part of it (the merge discards it).
+  bool add_state(std::istream& in, const StateRules& rules, std::string& error);
 
  private:
+  // Adds another film's (or a scratch's) AOV sums `s` to pixel number `pixel`:
+  // exact sums add, Cryptomatte slots merge (add_ranked).
+  void add_sums(std::size_t pixel, const ExactSum* s);
+  // Whether the Cryptomatte slots among a pixel's AOV sums `s` are as
+  // add_ranked leaves them (ids in increasing order, free slots last and
+  // empty); a film state read from a file may hold anything.
+  bool valid_ranked(const ExactSum* s) const;
+  // Adds another film's plain AOV values `s` (first-sample layers, maxima) to pixel number `pixel`.
+  void add_values(std::size_t pixel, const double* s, bool other_first);
   // The final values of AOV number `layer` of pixel number `pixel` (in the crop, row-major) into `out`.
   void aov_values(std::size_t layer, std::size_t pixel, float* out) const;
   std::size_t index(int x, int y) const {
@@ -156,10 +215,12 @@ class Film {
   PixelRect crop_;
   std::vector<PixelSum> pixels_;
   std::vector<AovRequest> aovs_;
-  std::vector<int> offset_;  // per request: its first double in a pixel's AOV block
-  int stride_ = 0;           // doubles per pixel for all AOVs
+  // Per request: its first sum and first value in a pixel's AOV blocks.
+  std::vector<int> sum_offset_, value_offset_;
+  int sum_stride_ = 0, value_stride_ = 0;  // per pixel, for all AOVs
   bool wants_geometry_ = false, wants_lighting_ = false;
-  std::vector<double> aov_data_;  // pixels * stride_
+  std::vector<ExactSum> aov_sums_;  // pixels * sum_stride_
+  std::vector<double> aov_values_;  // pixels * value_stride_
   NonFiniteReport non_finite_;
 };
 

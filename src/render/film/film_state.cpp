@@ -1,10 +1,12 @@
 // Film::write_state / read_state: checkpoints of a film, bit for bit.
 #include <algorithm>
 #include <bit>
+#include <cstddef>
 #include <cmath>
 #include <cstring>
 #include <istream>
 #include <ostream>
+#include <vector>
 
 #include "render/film/film.h"
 
@@ -12,19 +14,22 @@ namespace pt {
 
 namespace {
 
-// State layout (version 3), all little-endian:
+// State layout (version 4), all little-endian:
 //   the 8-byte magic; uint32 version, width, height; int32 crop x0, y0, x1, y1;
 //   uint32 AOV count, then per AOV uint8 type, uint8 channel type and uint8
 //   ranks (Cryptomatte; 0 for the others);
 //   the non-finite report: uint64 nan, pos_inf, neg_inf; uint8 has_first;
 //   int32 x, y, sample; float r, g, b;
 //   per pixel of the crop (row-major, top row first): r, g, b, weight,
-//   coverage as IEEE doubles and samples as uint64;
-//   then the AOV block: per pixel, aov_doubles() doubles.
-// Versions 1 (beauty only, no crop) and 2 (no coverage, hence no alpha; no
-// ranks) are no longer read.
+//   coverage as exact sums (render/film/exact_sum.h: 128-bit two's-complement
+//   integers, the low 64 bits first, in units of 2^-44) and samples as uint64;
+//   then the AOVs' exact sums: per pixel, their sums in request order (a
+//   Cryptomatte layer: per rank, its id's 32 bits as the integer and its weight);
+//   then the AOVs' plain values: per pixel, their values as IEEE doubles.
+// Versions 1 (beauty only, no crop), 2 (sums in double) and 3 (either sums in
+// double with coverage, or exact sums without it) are no longer read.
 constexpr char kMagic[8] = {'P', 'T', 'F', 'I', 'L', 'M', '\r', '\n'};
-constexpr uint32_t kStateVersion = 3;
+constexpr uint32_t kStateVersion = 4;
 static_assert(std::endian::native == std::endian::little, "film states are written in the host's byte order");
 
 template <typename T>
@@ -34,6 +39,18 @@ void put(std::ostream& out, const T& v) {
 template <typename T>
 bool get(std::istream& in, T& v) {
   return static_cast<bool>(in.read(reinterpret_cast<char*>(&v), sizeof v));
+}
+
+// A vector of trivially copyable elements, as in memory.
+template <typename T>
+void put_all(std::ostream& out, const std::vector<T>& v) {
+  const auto bytes = static_cast<std::streamsize>(v.size() * sizeof(T));
+  if (!v.empty()) out.write(reinterpret_cast<const char*>(v.data()), bytes);
+}
+template <typename T>
+bool get_all(std::istream& in, std::vector<T>& v) {
+  const auto bytes = static_cast<std::streamsize>(v.size() * sizeof(T));
+  return v.empty() || static_cast<bool>(in.read(reinterpret_cast<char*>(v.data()), bytes));
 }
 
 std::string describe_aovs(const std::vector<AovRequest>& aovs) {
@@ -78,9 +95,9 @@ bool read_aov_list(std::istream& in, uint32_t count, const std::vector<AovReques
 }
 
 // The header up to the AOV list; false with `error` unless it describes a
-// film of this size, crop and AOVs.
-bool read_layout(std::istream& in, int width, int height, const PixelRect& crop,
-                 const std::vector<AovRequest>& expected, std::string& error) {
+// film of this size and AOVs. `crop` is the state's.
+bool read_layout(std::istream& in, int width, int height, PixelRect& crop, const std::vector<AovRequest>& expected,
+                 std::string& error) {
   char magic[sizeof kMagic];
   uint32_t version = 0, w = 0, h = 0;
   if (!in.read(magic, sizeof magic) || std::memcmp(magic, kMagic, sizeof kMagic) != 0) {
@@ -104,13 +121,7 @@ bool read_layout(std::istream& in, int width, int height, const PixelRect& crop,
             std::to_string(width) + "x" + std::to_string(height);
     return false;
   }
-  if (PixelRect{c[0], c[1], c[2], c[3]} != crop) {
-    error = "film state covers pixels [" + std::to_string(c[0]) + "," + std::to_string(c[2]) + ")x[" +
-            std::to_string(c[1]) + "," + std::to_string(c[3]) + "), the render's crop is [" +
-            std::to_string(crop.x0) + "," + std::to_string(crop.x1) + ")x[" + std::to_string(crop.y0) + "," +
-            std::to_string(crop.y1) + ")";
-    return false;
-  }
+  crop = {c[0], c[1], c[2], c[3]};
   return read_aov_list(in, count, expected, error);
 }
 
@@ -133,26 +144,19 @@ bool read_non_finite(std::istream& in, NonFiniteReport& nf, std::string& error) 
   return true;
 }
 
-// The sums of every pixel of `crop` (`pixels` has its size).
-bool read_pixel_sums(std::istream& in, const PixelRect& crop, std::vector<PixelSum>& pixels, std::string& error) {
-  for (PixelSum& p : pixels) {
-    if (!get(in, p.r) || !get(in, p.g) || !get(in, p.b) || !get(in, p.weight) || !get(in, p.coverage) ||
-        !get(in, p.samples)) {
-      error = "truncated film state";
+// Reads `items` groups of `per_item` values of T in blocks of about 8 MiB,
+// calling `add(block, first_item, item_count)` for each; false if the stream
+// ends first or `add` refuses.
+template <typename T, typename F>
+bool read_blocks(std::istream& in, std::size_t items, std::size_t per_item, F&& add) {
+  if (per_item == 0) return true;
+  const std::size_t per_block = std::max<std::size_t>(1, (std::size_t{8} << 20) / (sizeof(T) * per_item));
+  std::vector<T> block(std::min(items, per_block) * per_item);
+  for (std::size_t first = 0; first < items; first += per_block) {
+    const std::size_t n = std::min(per_block, items - first);
+    if (!in.read(reinterpret_cast<char*>(block.data()), static_cast<std::streamsize>(n * per_item * sizeof(T))) ||
+        !add(block.data(), first, n))
       return false;
-    }
-  }
-  // The render loop adds non-finite samples as black, so a film's sums are
-  // always finite: anything else is corruption, which would reach the image.
-  for (std::size_t i = 0; i < pixels.size(); ++i) {
-    const PixelSum& p = pixels[i];
-    if (!std::isfinite(p.r) || !std::isfinite(p.g) || !std::isfinite(p.b) || !std::isfinite(p.weight) ||
-        !std::isfinite(p.coverage)) {
-      const std::size_t row = static_cast<std::size_t>(crop.width());
-      error = "corrupt film state (pixel (" + std::to_string(crop.x0 + static_cast<int>(i % row)) + ", " +
-              std::to_string(crop.y0 + static_cast<int>(i / row)) + ") holds a non-finite sum)";
-      return false;
-    }
   }
   return true;
 }
@@ -178,29 +182,27 @@ bool Film::write_state(std::ostream& out) const {
   put(out, static_cast<uint8_t>(nf.has_first));
   for (int v : {nf.x, nf.y, nf.sample}) put(out, static_cast<int32_t>(v));
   for (float v : {nf.value.r, nf.value.g, nf.value.b}) put(out, v);
-  for (const PixelSum& p : pixels_) {
-    put(out, p.r);
-    put(out, p.g);
-    put(out, p.b);
-    put(out, p.weight);
-    put(out, p.coverage);
-    put(out, p.samples);
-  }
-  if (!aov_data_.empty())
-    out.write(reinterpret_cast<const char*>(aov_data_.data()),
-              static_cast<std::streamsize>(aov_data_.size() * sizeof(double)));
+  put_all(out, pixels_);
+  put_all(out, aov_sums_);
+  put_all(out, aov_values_);
   return static_cast<bool>(out);
 }
 
 bool Film::read_state(std::istream& in, std::string& error) {
-  if (!read_layout(in, width_, height_, crop_, aovs_, error)) return false;
+  PixelRect crop;
+  if (!read_layout(in, width_, height_, crop, aovs_, error)) return false;
+  if (crop != crop_) {
+    error = "film state covers pixels " + crop.text() + ", the render's crop is " + crop_.text();
+    return false;
+  }
   NonFiniteReport nf;
   if (!read_non_finite(in, nf, error)) return false;
+  // Integer sums cannot be corrupt in value (any bits are some sum); the
+  // samples are checked against the header by the checkpoint and shard readers.
   std::vector<PixelSum> pixels(pixels_.size());
-  if (!read_pixel_sums(in, crop_, pixels, error)) return false;
-  std::vector<double> aov_data(aov_data_.size());
-  if (!aov_data.empty() && !in.read(reinterpret_cast<char*>(aov_data.data()),
-                                    static_cast<std::streamsize>(aov_data.size() * sizeof(double)))) {
+  std::vector<ExactSum> sums(aov_sums_.size());
+  std::vector<double> values(aov_values_.size());
+  if (!get_all(in, pixels) || !get_all(in, sums) || !get_all(in, values)) {
     error = "truncated film state";
     return false;
   }
@@ -208,9 +210,85 @@ bool Film::read_state(std::istream& in, std::string& error) {
     error = "film state has trailing data";
     return false;
   }
+  const auto stride = static_cast<std::size_t>(sum_stride_);
+  for (std::size_t i = 0; i < pixels.size(); ++i)
+    if (!valid_ranked(sums.data() + i * stride)) {
+      error = "corrupt film state (Cryptomatte slots of pixel " + std::to_string(i) + " of the crop)";
+      return false;
+    }
   pixels_ = std::move(pixels);
-  aov_data_ = std::move(aov_data);
+  aov_sums_ = std::move(sums);
+  aov_values_ = std::move(values);
   non_finite_ = nf;
+  return true;
+}
+
+bool Film::add_state(std::istream& in, const StateRules& rules, std::string& error) {
+  PixelRect c;
+  if (!read_layout(in, width_, height_, c, aovs_, error)) return false;
+  if (c != rules.crop || !crop_.contains(c)) {
+    error = "film state covers pixels " + c.text() + ", not " + rules.crop.text() + " inside " + crop_.text();
+    return false;
+  }
+  NonFiniteReport nf;
+  if (!read_non_finite(in, nf, error)) return false;
+  const auto width = static_cast<std::size_t>(c.width());
+  const std::size_t n = width * static_cast<std::size_t>(c.height());
+  if (rules.other_first.size() != n || rules.max_samples.size() != n) {
+    error = "film state rules of the wrong size";
+    return false;
+  }
+  const auto x_of = [&](std::size_t i) { return c.x0 + static_cast<int>(i % width); };
+  const auto y_of = [&](std::size_t i) { return c.y0 + static_cast<int>(i / width); };
+  const auto to = [&](std::size_t i) { return index(x_of(i), y_of(i)); };
+  std::size_t bad = n;  // the first pixel with too many samples, and its count
+  uint64_t bad_samples = 0;
+  const auto add_pixels = [&](const PixelSum* p, std::size_t first, std::size_t count) {
+    for (std::size_t i = 0; i < count; ++i) {
+      if (p[i].samples > rules.max_samples[first + i]) {
+        bad = first + i;
+        bad_samples = p[i].samples;
+        return false;
+      }
+      pixels_[to(first + i)].add(p[i]);
+    }
+    return true;
+  };
+  const bool pixels_ok = read_blocks<PixelSum>(in, n, 1, add_pixels);
+  if (bad < n) {
+    error = "its film state holds " + std::to_string(bad_samples) + " samples in pixel (" + std::to_string(x_of(bad)) +
+            ", " + std::to_string(y_of(bad)) + "), more than its pieces' " + std::to_string(rules.max_samples[bad]) +
+            " (the two do not belong together)";
+    return false;
+  }
+  const auto sums = static_cast<std::size_t>(sum_stride_), values = static_cast<std::size_t>(value_stride_);
+  bool corrupt = false;
+  const bool ok =
+      pixels_ok &&
+      read_blocks<ExactSum>(in, n, sums, [&](const ExactSum* s, std::size_t first, std::size_t count) {
+        for (std::size_t i = 0; i < count; ++i) {
+          if (!valid_ranked(s + i * sums)) {
+            corrupt = true;
+            return false;
+          }
+          add_sums(to(first + i), s + i * sums);
+        }
+        return true;
+      }) &&
+      read_blocks<double>(in, n, values, [&](const double* v, std::size_t first, std::size_t count) {
+        for (std::size_t i = 0; i < count; ++i)
+          add_values(to(first + i), v + i * values, rules.other_first[first + i] != 0);
+        return true;
+      });
+  if (!ok) {
+    error = corrupt ? "corrupt film state (Cryptomatte slots)" : "truncated film state";
+    return false;
+  }
+  if (in.peek() != std::char_traits<char>::eof()) {
+    error = "film state has trailing data";
+    return false;
+  }
+  non_finite_.merge(nf);
   return true;
 }
 

@@ -76,7 +76,7 @@ void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, cons
   RenderMonitor* const monitor = settings.monitor;
   const bool geometry = film.wants_geometry(), lighting = film.wants_lighting();
   const bool transparent = settings.film_transparent;
-  const std::size_t aov_doubles = static_cast<std::size_t>(film.aov_doubles());
+  const bool aovs = film.aov_slots() > 0;
   std::mutex report_mutex;
   NonFiniteReport report;
 
@@ -85,10 +85,10 @@ void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, cons
   // kCancelPollSamples samples, so that a signal is seen within a fraction of
   // a second even in a single pass of many samples per pixel). The pixel then
   // keeps the samples it got: its value is their mean, and PixelSum counts them.
-  auto render_pixel = [&](Sampler& sampler, std::vector<double>& scratch, NonFiniteReport& bad, int x, int y) {
+  auto render_pixel = [&](Sampler& sampler, AovScratch& scratch, NonFiniteReport& bad, int x, int y) {
     const Vec2f corner(static_cast<float>(x), static_cast<float>(y));
     PixelSum sum;
-    std::fill(scratch.begin(), scratch.end(), 0.0);
+    scratch.clear();
     AovSample aov;  // reset per sample only when the film has AOVs
     int s = first;
     for (; s < end; ++s) {
@@ -97,7 +97,7 @@ void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, cons
       const FilterSample fs = filter.sample(sampler.get_pixel_2d());
       const Vec2f film_px = corner + fs.offset;
       const CameraRay ray = camera_ray(scene, sampler, film_px, lens, scene.footprints);
-      if (aov_doubles > 0) aov = AovSample{};
+      if (aovs) aov = AovSample{};
       CameraEstimate e = radiance(ray, sampler, lighting ? &aov : nullptr);
       if (transparent && !e.hit) {  // the background is not part of the image: only lights the scene
         e.radiance = RGB();
@@ -107,20 +107,20 @@ void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, cons
       const bool finite = c.is_finite();
       if (!finite) bad.record(x, y, s, c);
       sum.add(finite ? c : RGB(), fs.weight, e.hit);
-      if (aov_doubles > 0) {
+      if (aovs) {
         if (geometry) first_hit_aovs(scene, ray, aov);
-        film.accumulate(scratch.data(), aov, c, fs.weight, !finite);
+        film.accumulate(scratch, aov, c, fs.weight, !finite);
       }
     }
     film.add(x, y, sum);
-    if (aov_doubles > 0) film.add_aovs(x, y, scratch.data());
+    if (aovs) film.add_aovs(x, y, scratch);
     return static_cast<int64_t>(s - first);
   };
 
   pool.run([&] {
     tbb::parallel_for(tbb::blocked_range2d<int>(0, tiles_y, 0, tiles_x), [&](const tbb::blocked_range2d<int>& r) {
       Sampler sampler = prototype;
-      std::vector<double> scratch(aov_doubles);
+      AovScratch scratch = film.make_scratch();
       NonFiniteReport bad;
       for (int ty = r.rows().begin(); ty != r.rows().end(); ++ty) {
         for (int tx = r.cols().begin(); tx != r.cols().end(); ++tx) {

@@ -1,0 +1,196 @@
+// `pathtracer merge` (docs/distributed.md): shard files in, one render out.
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <tuple>
+
+#include <CLI/CLI.hpp>
+
+#include "app/distributed.h"
+#include "app/options.h"
+#include "app/output_checks.h"
+#include "app/outputs.h"
+#include "app/shard_merge.h"
+#include "core/stopwatch.h"
+
+namespace pt {
+namespace {
+
+struct MergeOptions {
+  std::vector<std::string> shards;
+  std::vector<std::string> outputs;
+  std::string shard_out;
+  std::string ocio_config;
+  ExrSettings exr;
+  bool allow_partial = false;
+  bool quiet = false;
+};
+
+void add_merge_options(CLI::App& app, MergeOptions& m) {
+  app.add_option("shards", m.shards, "Shard files (--shard-out of the shards, or of earlier merges), in any order")
+      ->required();
+  app.add_option("-o,--output", m.outputs, "Output image (.exr, .png, .jpg, .ppm); repeatable")
+      ->allow_extra_args(false);
+  app.add_option("--shard-out", m.shard_out, "Also write the merged state, to merge again later");
+  app.add_flag("--allow-partial", m.allow_partial,
+               "Merge an incomplete set (missing tiles or samples): the result is marked partial");
+  app.add_option("--ocio-config", m.ocio_config, "OpenColorIO config for display images (default: the shards')");
+  app.add_option("--exr-compression", m.exr.compression,
+                 "EXR compression: " + join(exr_compression_names(), ", ") + " (dwaa/dwab take a level: dwaa:45)")
+      ->check([](const std::string& value) {
+        std::string error;
+        return check_exr_compression(value, error) ? std::string() : error;
+      });
+  app.add_flag("--multipart", m.exr.multipart, "EXR: one part per layer");
+  app.add_flag("--quiet", m.quiet, "Print errors only");
+}
+
+// CPU seconds (user + system) of this process so far.
+double cpu_seconds() {
+  rusage u{};
+  if (::getrusage(RUSAGE_SELF, &u) != 0) return 0;
+  const auto s = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
+  return s(u.ru_utime) + s(u.ru_stime);
+}
+
+struct Input {
+  std::string path;
+  ShardInfo info;
+};
+
+// The fixed order: by tile (top row first), then first sample, then path.
+void sort_inputs(std::vector<Input>& inputs) {
+  const auto key = [](const Input& in) {
+    const ShardPiece& p = in.info.pieces.front();
+    return std::tie(p.crop.y0, p.crop.x0, p.share.begin, in.path);
+  };
+  std::sort(inputs.begin(), inputs.end(), [&](const Input& a, const Input& b) { return key(a) < key(b); });
+}
+
+bool read_headers(const MergeOptions& m, std::vector<Input>& inputs, std::string& error) {
+  for (const std::string& path : m.shards) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+      error = "cannot open shard file '" + path + "'";
+      return false;
+    }
+    Input input{path, {}};
+    if (!read_shard_info(in, path, input.info, error)) return false;
+    inputs.push_back(std::move(input));
+  }
+  sort_inputs(inputs);
+  return true;
+}
+
+bool add_films(const std::vector<Input>& inputs, ShardMerger& merger, std::string& error) {
+  for (const Input& input : inputs) {
+    std::ifstream in(input.path, std::ios::binary);
+    ShardInfo again;
+    if (!in || !read_shard_info(in, input.path, again, error)) {
+      if (error.empty()) error = "cannot open shard file '" + input.path + "'";
+      return false;
+    }
+    if (!merger.add(input.path, again, in, error)) return false;
+  }
+  return true;
+}
+
+// Every output checked before any shard is read (as a render's: app/output_checks.h),
+// and none of them one of the shards (the merge would replace its input).
+bool check_merge_outputs(const MergeOptions& m, std::vector<OutputFile>& files, std::string& error) {
+  if (!check_outputs(m.outputs, error)) return false;
+  for (const std::string& path : m.outputs) files.push_back({"-o", path});
+  if (!m.shard_out.empty()) files.push_back({"--shard-out", m.shard_out});
+  if (!check_output_files(files, error)) return false;
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  for (const OutputFile& f : files)
+    for (const std::string& shard : m.shards)
+      if (fs::exists(f.path, ec) && fs::equivalent(f.path, shard, ec)) {
+        error = "cannot write " + f.option + " '" + f.path + "': it is the shard '" + shard + "' being merged";
+        return false;
+      }
+  return true;
+}
+
+// An EXR compression that rounds floats destroys Cryptomatte ids (as for a render: app/job.cpp).
+bool check_compression(const MergeOptions& m, const ShardInfo& info, std::string& error) {
+  std::vector<AovRequest> aovs;
+  ChannelType beauty;
+  if (!info.film_aovs(aovs, beauty, error)) return false;
+  for (const AovRequest& r : aovs)
+    if (r.ranks > 0 && exr_compression_rounds_floats(m.exr.compression)) {
+      error = "--exr-compression " + m.exr.compression + " rounds 32-bit floats to 24 bits, which destroys " +
+              aov_info(r.type).name + "'s ids; choose another compression (zip, piz, dwaa, ...)";
+      return false;
+    }
+  return true;
+}
+
+int merge(const MergeOptions& m) {
+  std::string error;
+  if (m.outputs.empty() && m.shard_out.empty()) {
+    std::cerr << "error: merge: --output (or --shard-out) is required\n";
+    return kExitUsage;
+  }
+  std::vector<OutputFile> files;
+  if (!check_merge_outputs(m, files, error)) {
+    std::cerr << "error: merge: " << error << '\n';
+    return kExitUsage;
+  }
+  OutputStamps stamps;
+  stamps.take(files);
+  const auto t0 = Clock::now();
+  const double cpu0 = cpu_seconds();
+  std::vector<Input> inputs;
+  ShardMerger merger(m.allow_partial);
+  bool ok = read_headers(m, inputs, error);
+  if (ok && !check_compression(m, inputs.front().info, error)) {
+    std::cerr << "error: merge: " << error << '\n';
+    return kExitUsage;
+  }
+  for (std::size_t i = 0; ok && i < inputs.size(); ++i) ok = merger.check(inputs[i].path, inputs[i].info, error);
+  ok = ok && add_films(inputs, merger, error) && merger.finish(error);
+  const double merge_s = seconds_since(t0), cpu1 = cpu_seconds();
+  const auto t1 = Clock::now();
+  ok = ok && write_merged(merger, m.outputs, m.shard_out, m.ocio_config, m.exr, stamps, error);
+  if (!ok) {
+    std::cerr << "error: merge: " << error << '\n';
+    return kExitFailure;
+  }
+  for (const std::string& w : merger.warnings()) std::cerr << "warning: " << w << '\n';
+  if (!merger.notes().empty()) std::cerr << "warning: " << merger.notes() << '\n';
+  if (!m.quiet) {
+    std::vector<std::string> written = m.outputs;
+    if (!m.shard_out.empty()) written.push_back(m.shard_out);
+    const Film& film = merger.film();
+    std::cout << std::fixed << std::setprecision(3) << "merged " << merger.shards() << " shard"
+              << (merger.shards() == 1 ? "" : "s") << " into " << join(written, ", ") << " (" << film.crop().width()
+              << "x" << film.crop().height() << ", " << merger.spp() << " spp"
+              << (merger.info().partial ? ", partial" : "") << "): read and add " << merge_s << " s (CPU "
+              << cpu1 - cpu0 << " s), write " << seconds_since(t1) << " s (CPU " << cpu_seconds() - cpu1 << " s)\n";
+  }
+  return 0;
+}
+
+}  // namespace
+
+int merge_main(int argc, char** argv) {
+  CLI::App app{"pathtracer merge: adds up the shards of a distributed render (docs/distributed.md)",
+               "pathtracer merge"};
+  MergeOptions m;
+  add_merge_options(app, m);
+  try {
+    app.parse(argc - 1, argv + 1);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : kExitUsage;
+  }
+  return merge(m);
+}
+
+}  // namespace pt

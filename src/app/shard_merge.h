@@ -1,0 +1,95 @@
+// The merge of shards (`pathtracer merge`, the MPI launcher's rank 0;
+// docs/distributed.md): their headers checked against each other, their film
+// states added up exactly, the coverage checked, the result's provenance.
+//
+// The result does not depend on the order in which shards are added: the
+// sums are exact integers, maxima commute, Cryptomatte keeps the smallest ids
+// (a set, whatever the order: render/film/film.cpp), and a first-sample AOV (P, Z, ids)
+// takes, per tile, the value of the shard whose samples there start lowest.
+// The file merge still adds in a fixed order (tile, then first sample).
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "app/shard_file.h"
+#include "io/image_io.h"
+#include "io/image_metadata.h"
+#include "render/film/film.h"
+
+namespace pt {
+
+class OutputStamps;
+
+class ShardMerger {
+ public:
+  explicit ShardMerger(bool allow_partial) : allow_partial_(allow_partial) {}
+
+  // Checks `info` against the shards checked before: the same scene, assets,
+  // version, settings, frame, target, window, AOVs and display, and no piece
+  // that overlaps one of theirs. False with `error` naming both shards and
+  // the difference. A different build only warns (warnings()).
+  bool check(const std::string& name, const ShardInfo& info, std::string& error);
+  // Adds the film of a checked shard. False with `error`.
+  bool add(const std::string& name, const ShardInfo& info, const Film& film, std::string& error);
+  // The same from its film state as it is read (read_shard_info has read the
+  // header): one block at a time, so that a merge holds one film in memory.
+  // Also checks that no pixel holds more samples than the pieces say. After
+  // a failure the merged film is unusable.
+  bool add(const std::string& name, const ShardInfo& info, std::istream& state, std::string& error);
+  // After the last shard: every tile of the window and every sample of the
+  // target present? Missing pieces are an error, unless allowed: then the
+  // result is marked partial and notes() says what is missing.
+  bool finish(std::string& error);
+
+  const Film& film() const { return *film_; }
+  // The merged provenance: the pieces of every shard, their render times
+  // summed, partial when pieces are missing.
+  const ShardInfo& info() const { return merged_; }
+  // The samples every rendered pixel has: the fewest over the tiles.
+  int spp() const;
+  // The image metadata of the merged render (the shards' own, with the
+  // render time summed, spp, partial, and pathtracer:shards describing them).
+  ImageMetadata metadata() const;
+  const std::vector<std::string>& warnings() const { return warnings_; }
+  const std::string& notes() const { return notes_; }
+  int shards() const { return static_cast<int>(names_.size()); }
+
+ private:
+  using Key = std::tuple<int, int, int, int>;  // a piece's crop
+  struct Placed {
+    ShardPiece piece;
+    std::string name;
+  };
+  bool check_pieces(const std::string& name, const ShardInfo& info, std::string& error) const;
+  bool make_film(std::string& error);
+  // Per crop of `info`'s pieces: whether its first-sample values come first
+  // there (its lowest first sample is below every earlier shard's), and that
+  // first sample; the caller records the ones that come first.
+  std::map<Key, std::pair<bool, int>> precedence(const ShardInfo& info) const;
+  std::string missing_tiles() const;
+  std::string missing_samples() const;
+
+  bool allow_partial_;
+  std::vector<std::string> names_;
+  ShardInfo merged_;
+  std::vector<Placed> placed_;
+  std::optional<Film> film_;
+  std::map<Key, int> first_start_;  // per crop: the lowest first sample added so far
+  std::vector<std::string> warnings_;
+  std::string notes_;
+};
+
+// Writes the merged images (`outputs`: EXR with every AOV at its recorded
+// type, display images through the shards' display settings, with
+// `ocio_config` replacing theirs when not empty) and, if `shard_out` is not
+// empty, the merged state (a shard file of all the pieces, to merge again).
+// False with the first error; files written before it stay.
+// `exr` and `stamps` as for a render's outputs (app/outputs.h).
+bool write_merged(const ShardMerger& merger, const std::vector<std::string>& outputs, const std::string& shard_out,
+                  const std::string& ocio_config, const ExrSettings& exr, OutputStamps& stamps, std::string& error);
+
+}  // namespace pt

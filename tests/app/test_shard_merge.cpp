@@ -1,0 +1,421 @@
+// The merge of shards without a process (docs/distributed.md): exact sums,
+// Film::add_film, shares and tiles, shard files, and ShardMerger's checks.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "app/shard.h"
+#include "app/shard_file.h"
+#include "app/shard_merge.h"
+#include "render/film/exact_sum.h"
+#include "render/film/film.h"
+
+namespace pt {
+namespace {
+
+// ---------------------------------------------------------------- exact sums
+
+TEST(ExactSum, AnyGroupingGivesTheSameBits) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  std::vector<double> terms;
+  for (int i = 0; i < 1000; ++i) {  // products of floats over 20 orders of magnitude
+    const float w = u(rng), c = u(rng) * std::pow(10.0f, static_cast<float>(i % 20) - 10.0f);
+    terms.push_back(static_cast<double>(w) * c);
+  }
+  ExactSum forward, backward, grouped;
+  for (double t : terms) forward.add(t);
+  for (auto it = terms.rbegin(); it != terms.rend(); ++it) backward.add(*it);
+  for (std::size_t start = 0; start < terms.size(); start += 37) {  // partial sums of ranges, added up
+    ExactSum part;
+    for (std::size_t i = start; i < std::min(terms.size(), start + 37); ++i) part.add(terms[i]);
+    grouped.add(part);
+  }
+  EXPECT_EQ(forward, backward);
+  EXPECT_EQ(forward, grouped);
+  // The exact sum is within half a unit per term of the true sum; a long double
+  // sum is within its own rounding (64-bit mantissa) of it.
+  long double sum = 0, magnitude = 0;
+  for (double t : terms) {
+    sum += t;
+    magnitude += std::fabs(t);
+  }
+  const double tolerance = static_cast<double>(terms.size()) * 0.5 * ExactSum::kUnit + 1e-18 * magnitude;
+  EXPECT_NEAR(forward.value(), static_cast<double>(sum), tolerance);
+}
+
+TEST(ExactSum, RoundsToUnitsAndClampsHugeTerms) {
+  EXPECT_EQ(ExactSum(1.0).value(), 1.0);
+  EXPECT_EQ(ExactSum(-2.5).value(), -2.5);
+  EXPECT_EQ(ExactSum(0x1p-46).value(), 0.0);              // a quarter unit rounds to 0
+  EXPECT_EQ(ExactSum(3 * 0x1p-45).value(), 2 * 0x1p-44);  // one and a half units: to even
+  EXPECT_EQ(ExactSum(1e30).value(), ExactSum::kMaxTerm);
+  EXPECT_EQ(ExactSum(-1e30).value(), -ExactSum::kMaxTerm);
+  EXPECT_EQ(ExactSum(1e6 + 0.25).value(), 1e6 + 0.25);  // the slow path keeps the fraction
+  ExactSum s(1e15);
+  s.add(-1e15);
+  s.add(0.5);
+  EXPECT_EQ(s.value(), 0.5);  // no cancellation error
+  EXPECT_TRUE(ExactSum().is_zero());
+}
+
+// ---------------------------------------------------------------- films
+
+std::vector<AovRequest> all_aovs() {
+  std::vector<AovRequest> all;
+  for (const AovInfo& info : aov_catalogue()) all.push_back({info.type, info.default_type});
+  return all;
+}
+
+// A stand-in for a renderer: sample s of pixel (x, y) is a function of
+// (x, y, s) only, as the render loop's are; a NaN now and then.
+void render(Film& film, const PixelRect& crop, Range samples) {
+  AovScratch scratch = film.make_scratch();
+  for (int y = crop.y0; y < crop.y1; ++y)
+    for (int x = crop.x0; x < crop.x1; ++x) {
+      PixelSum sum;
+      scratch.clear();
+      NonFiniteReport bad;
+      for (int s = samples.begin; s < samples.end; ++s) {
+        std::mt19937 rng(static_cast<unsigned>(x * 7919 + y * 104729 + s * 1299709));
+        std::uniform_real_distribution<float> u(0.0f, 3.0f);
+        RGB c(u(rng), u(rng), u(rng) * 1e-3f);
+        if ((x + y + s) % 97 == 0) c.r = std::nanf("");
+        const float w = u(rng) - 0.5f;
+        AovSample a;
+        a.albedo = RGB(u(rng), u(rng), u(rng));
+        a.normal = Vec3f(u(rng), u(rng), u(rng));
+        a.position = Vec3f(static_cast<float>(s), u(rng), u(rng));
+        a.depth = static_cast<float>(s) + 1.0f;
+        a.object = static_cast<uint32_t>(s % 5);
+        a.emission = RGB(u(rng));
+        a.diffuse_direct = RGB(u(rng));
+        // Cryptomatte: up to 9 ids in a pixel, more than its 6 ranks, and misses.
+        a.hit = (s + x) % 4 != 0;
+        a.crypto_object = a.hit ? 1.0f + static_cast<float>((s * 3 + y) % 9) : 0.0f;
+        a.crypto_material = a.hit ? 0.5f + static_cast<float>(s % 3) : 0.0f;
+        const bool finite = c.is_finite();
+        if (!finite) bad.record(x, y, s, c);
+        sum.add(finite ? c : RGB(), w, a.hit);
+        film.accumulate(scratch, a, c, w, !finite);
+      }
+      film.add(x, y, sum);
+      film.add_aovs(x, y, scratch);
+      film.add_non_finite(bad);
+    }
+}
+
+std::string state(const Film& film) {
+  std::ostringstream out;
+  film.write_state(out);
+  return out.str();
+}
+std::string state_of_film(const Film& film) { return state(film); }
+
+constexpr int kW = 6, kH = 5, kSpp = 30;
+
+TEST(FilmMerge, SampleRangesAddUpToTheWholeExactly) {
+  Film whole(kW, kH, {0, 0, kW, kH}, all_aovs());
+  render(whole, whole.crop(), {0, kSpp});
+  // Shares added with the earlier range first, and with it last.
+  for (bool earlier_first : {true, false}) {
+    Film merged(kW, kH, {0, 0, kW, kH}, all_aovs());
+    Film a(kW, kH, {0, 0, kW, kH}, all_aovs()), b(kW, kH, {0, 0, kW, kH}, all_aovs());
+    render(a, a.crop(), {0, 11});
+    render(b, b.crop(), {11, kSpp});
+    std::string error;
+    const Film& first = earlier_first ? a : b;
+    const Film& second = earlier_first ? b : a;
+    ASSERT_TRUE(merged.add_film(first, merged.crop(), true, error)) << error;
+    ASSERT_TRUE(merged.add_film(second, merged.crop(), !earlier_first, error)) << error;
+    merged.add_non_finite(a.non_finite());
+    merged.add_non_finite(b.non_finite());
+    EXPECT_EQ(state(merged), state(whole)) << "earlier range first: " << earlier_first;
+  }
+}
+
+TEST(FilmMerge, TilesLandInTheirPixelsAndBadRegionsAreRefused) {
+  Film whole(kW, kH, {0, 0, kW, kH}, all_aovs());
+  render(whole, whole.crop(), {0, kSpp});
+  Film merged(kW, kH, {0, 0, kW, kH}, all_aovs());
+  std::string error;
+  for (const PixelRect& tile : {PixelRect{0, 0, kW, 2}, PixelRect{0, 2, kW, kH}}) {
+    Film part(kW, kH, tile, all_aovs());
+    render(part, tile, {0, kSpp});
+    ASSERT_TRUE(merged.add_film(part, tile, true, error)) << error;
+    merged.add_non_finite(part.non_finite());
+  }
+  EXPECT_EQ(state(merged), state(whole));
+  Film part(kW, kH, {0, 0, kW, 2}, all_aovs());
+  EXPECT_FALSE(merged.add_film(part, {0, 0, kW, 3}, true, error));  // the region is not all in `part`
+  EXPECT_NE(error.find("not inside"), std::string::npos) << error;
+  Film fewer(kW, kH, {0, 0, kW, kH});
+  EXPECT_FALSE(merged.add_film(fewer, fewer.crop(), true, error));
+  EXPECT_EQ(error, "its AOVs differ");
+  EXPECT_EQ(state(merged), state(whole));  // unchanged by the refusals
+}
+
+// ---------------------------------------------------------------- shares and tiles
+
+TEST(Shards, SharesAndTilesCoverEverythingOnce) {
+  for (int n : {1, 2, 3, 5, 7}) {
+    int next = 0, row = 2;
+    for (int k = 0; k < n; ++k) {
+      const Range r = share_of({k, n}, 64);
+      EXPECT_EQ(r.begin, next);
+      EXPECT_LE(r.size() - 64 / n, 1);
+      next = r.end;
+      const PixelRect t = tile_of({1, 2, 9, 40}, {k, n});
+      EXPECT_EQ(t.y0, row);
+      EXPECT_EQ(t.x0, 1);
+      EXPECT_EQ(t.x1, 9);
+      row = t.y1;
+    }
+    EXPECT_EQ(next, 64);
+    EXPECT_EQ(row, 40);
+  }
+  EXPECT_TRUE(tile_of({0, 0, 8, 3}, {0, 4}).empty());  // fewer rows than tiles
+  std::string error;
+  EXPECT_FALSE(parse_fraction("4/4", error));
+  EXPECT_NE(error.find("K must be in 0..3"), std::string::npos) << error;
+  EXPECT_FALSE(parse_fraction("1/0", error));
+  EXPECT_FALSE(parse_fraction("1/2x", error));
+  EXPECT_FALSE(parse_fraction(" 1/2", error));
+  ASSERT_TRUE(parse_fraction("2/3", error));
+  EXPECT_EQ(parse_fraction("2/3", error)->k, 2);
+}
+
+// ---------------------------------------------------------------- shard files and the merger
+
+ShardInfo info_of(const Film& film, Range share, Range done, std::optional<Fraction> tile = std::nullopt) {
+  ShardInfo info;
+  info.scene = "scene.json";
+  info.scene_hash = "0123456789abcdef";
+  info.assets_hash = "fedcba9876543210";
+  info.version = "0.1.0";
+  info.build = "00000000000000aa";
+  info.settings = {{"integrator", "path"}, {"seed", 1}};
+  info.width = film.width();
+  info.height = film.height();
+  info.target_spp = kSpp;
+  info.window = {0, 0, kW, kH};
+  info.crop = film.crop();
+  info.aovs = aov_list_text(film.aovs(), ChannelType::Half);
+  info.pieces.push_back({film.crop(), tile, share, done});
+  info.metadata.set("pathtracer:seed", "1");
+  info.metadata.set("pathtracer:spp", 0);
+  info.metadata.set("worldToCamera", ImageMetadata::Matrix{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1});
+  info.render_seconds = 1.5;
+  return info;
+}
+
+struct Shard {
+  ShardInfo info;
+  Film film;
+};
+
+Shard shard(Range share, std::optional<Fraction> tile = std::nullopt, int done_end = -1) {
+  const PixelRect crop = tile ? tile_of({0, 0, kW, kH}, *tile) : PixelRect{0, 0, kW, kH};
+  const Range done{share.begin, done_end < 0 ? share.end : done_end};
+  Film film(kW, kH, crop, all_aovs());
+  render(film, crop, done);
+  return {info_of(film, share, done, tile), std::move(film)};
+}
+
+TEST(ShardFile, RoundTripKeepsEveryFieldAndBit) {
+  const Shard s = shard({0, 10}, Fraction{1, 2});
+  std::stringstream buffer;
+  ASSERT_TRUE(write_shard(buffer, s.info, s.film));
+  ShardInfo back;
+  std::string error;
+  ASSERT_TRUE(read_shard_info(buffer, "s", back, error)) << error;
+  EXPECT_EQ(shard_mismatch(s.info, back), "");
+  EXPECT_EQ(back.crop, s.film.crop());
+  ASSERT_EQ(back.pieces.size(), 1u);
+  EXPECT_EQ(back.pieces[0].tile->k, 1);
+  EXPECT_EQ(back.pieces[0].done, (Range{0, 10}));
+  EXPECT_EQ(back.metadata.matrices, s.info.metadata.matrices);
+  const std::optional<Film> film = read_shard_film(buffer, "s", back, error);
+  ASSERT_TRUE(film) << error;
+  EXPECT_EQ(state(*film), state(s.film));
+}
+
+TEST(ShardFile, DamagedHeadersAndStatesAreRefused) {
+  const Shard s = shard({0, 10});
+  std::stringstream buffer;
+  ASSERT_TRUE(write_shard(buffer, s.info, s.film));
+  const std::string bytes = buffer.str();
+  const std::size_t body = bytes.find('\n', bytes.find('\n') + 1) + 1;
+  const auto refused = [&](const std::string& file, const std::string& expected) {
+    std::istringstream in(file);
+    ShardInfo info;
+    std::string error;
+    bool ok = read_shard_info(in, "bad.ptshard", info, error);
+    if (ok) ok = read_shard_film(in, "bad.ptshard", info, error).has_value();
+    EXPECT_FALSE(ok) << expected;
+    EXPECT_NE(error.find(expected), std::string::npos) << error;
+  };
+  auto header = nlohmann::ordered_json::parse(bytes.substr(bytes.find('\n') + 1, body - bytes.find('\n') - 2));
+  const auto with = [&](const std::function<void(nlohmann::ordered_json&)>& edit) {
+    nlohmann::ordered_json h = header;
+    edit(h);
+    return "pathtracer-shard 2\n" + h.dump() + "\n" + bytes.substr(body);
+  };
+  refused("pathtracer-checkpoint 1\n{}\n", "'bad.ptshard' is not a pathtracer shard file");
+  refused(with([](auto& h) { h.erase("pieces"); }), "damaged shard header: no \"pieces\"");
+  refused(with([](auto& h) { h["x"] = 1; }), "unknown key \"x\"");
+  refused(with([](auto& h) { h["pieces"][0]["share"] = {5, 2}; }), "a piece's share must be in [5, 30], got 2");
+  refused(with([](auto& h) { h["pieces"][0]["done"] = {1, 2}; }), "done range is not a prefix of its share");
+  refused(with([](auto& h) { h["pieces"][0]["crop"] = {0, 0, 99, 1}; }), "a piece's crop must be in [0, 6]");
+  refused(with([](auto& h) { h["aovs"] = "glitter"; }), "\"aovs\"");
+  refused(with([](auto& h) { h["pieces"][0]["done"] = {0, 3}; }), "more than its pieces' 3");
+  refused(bytes.substr(0, bytes.size() - 5), "truncated film state");
+}
+
+// Merges `shards` in the order given (their films, or with `streams` their
+// film states as read, as `pathtracer merge` does); the merged film's state,
+// or "" with `error`.
+std::string merge(const std::vector<const Shard*>& shards, std::string& error, bool allow_partial = false,
+                  ShardMerger* out = nullptr, bool streams = false) {
+  ShardMerger local(allow_partial);
+  ShardMerger& merger = out ? *out : local;
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < shards.size(); ++i) names.push_back(std::string("s").append(std::to_string(i)));
+  for (std::size_t i = 0; i < shards.size(); ++i)
+    if (!merger.check(names[i], shards[i]->info, error)) return {};
+  for (std::size_t i = 0; i < shards.size(); ++i) {
+    std::stringstream state(state_of_film(shards[i]->film));
+    if (!(streams ? merger.add(names[i], shards[i]->info, state, error)
+                  : merger.add(names[i], shards[i]->info, shards[i]->film, error)))
+      return {};
+  }
+  return merger.finish(error) ? state(merger.film()) : std::string();
+}
+
+TEST(ShardMerger, AnyOrderOfAnySplitGivesTheWholeRender) {
+  Film whole(kW, kH, {0, 0, kW, kH}, all_aovs());
+  render(whole, whole.crop(), {0, kSpp});
+  for (int n : {1, 2, 3, 5}) {
+    std::vector<Shard> shards;
+    for (int k = 0; k < n; ++k) shards.push_back(shard(share_of({k, n}, kSpp)));
+    std::vector<const Shard*> order;
+    for (const Shard& s : shards) order.push_back(&s);
+    std::mt19937 rng(static_cast<unsigned>(n));
+    for (int trial = 0; trial < 3; ++trial) {
+      std::shuffle(order.begin(), order.end(), rng);
+      std::string error;
+      EXPECT_EQ(merge(order, error), state(whole)) << n << " shards: " << error;
+      EXPECT_EQ(merge(order, error, false, nullptr, true), state(whole)) << n << " shards, streamed: " << error;
+    }
+  }
+  // Tiles of sample shares.
+  std::vector<Shard> parts;
+  for (int t = 0; t < 2; ++t)
+    for (int k = 0; k < 3; ++k) parts.push_back(shard(share_of({k, 3}, kSpp), Fraction{t, 2}));
+  std::vector<const Shard*> order;
+  for (const Shard& s : parts) order.push_back(&s);
+  std::reverse(order.begin(), order.end());
+  std::string error;
+  EXPECT_EQ(merge(order, error), state(whole)) << error;
+  EXPECT_EQ(merge(order, error, false, nullptr, true), state(whole)) << error;
+}
+
+TEST(ShardMerger, StreamedStatesAreCheckedAsTheyAreRead) {
+  Shard a = shard({0, 15});
+  const Shard b = shard({15, kSpp});
+  a.info.pieces[0].done = {0, 14};  // its header claims fewer samples than its film holds
+  std::string error;
+  EXPECT_EQ(merge({&a, &b}, error, false, nullptr, true), "");
+  EXPECT_EQ(error, "'s0': its film state holds 15 samples in pixel (0, 0), more than its pieces' 14 "
+                   "(the two do not belong together)");
+  ShardMerger merger(false);
+  ASSERT_TRUE(merger.check("b", b.info, error)) << error;
+  std::stringstream truncated(state(b.film).substr(0, 500));
+  EXPECT_FALSE(merger.add("b", b.info, truncated, error));
+  EXPECT_EQ(error, "'b': truncated film state");
+  // The state of tile 0/5 under the header of tile 1/5 (the same size, another
+  // place) is refused, not added in the wrong place.
+  const Shard t0 = shard({0, kSpp}, Fraction{0, 5}), t1 = shard({0, kSpp}, Fraction{1, 5});
+  ShardMerger tiles(true);
+  ASSERT_TRUE(tiles.check("t1", t1.info, error)) << error;
+  std::stringstream other_tile(state(t0.film));
+  EXPECT_FALSE(tiles.add("t1", t1.info, other_tile, error));
+  EXPECT_EQ(error, "'t1': film state covers pixels [0,6)x[0,1), not [0,6)x[1,2) inside [0,6)x[0,5)");
+}
+
+TEST(ShardMerger, MergesOfMergesGiveTheSameBits) {
+  Film whole(kW, kH, {0, 0, kW, kH}, all_aovs());
+  render(whole, whole.crop(), {0, kSpp});
+  const Shard a = shard({0, 7}), b = shard({7, 19}), c = shard({19, kSpp});
+  ShardMerger ac(true);  // a and c, b missing: a partial merge, merged again with b
+  std::string error;
+  ASSERT_FALSE(merge({&a, &c}, error, true, &ac).empty()) << error;
+  EXPECT_TRUE(ac.info().partial);
+  EXPECT_NE(ac.notes().find("no shard holds samples [7,19)"), std::string::npos) << ac.notes();
+  Shard merged{ac.info(), ac.film()};
+  merged.info.partial = false;  // as if re-read: the merge of it with b is complete
+  EXPECT_EQ(merge({&b, &merged}, error), state(whole)) << error;
+}
+
+TEST(ShardMerger, RefusesWhatDoesNotBelongTogether) {
+  const Shard a = shard({0, 15}), b = shard({15, kSpp});
+  std::string error;
+  Shard seed = shard({15, kSpp});
+  seed.info.settings["seed"] = 2;
+  EXPECT_EQ(merge({&a, &seed}, error), "");
+  EXPECT_EQ(error, "cannot merge 's1' with 's0': they differ in seed 1 vs 2");
+  Shard scene = shard({15, kSpp});
+  scene.info.scene_hash = "1111111111111111";
+  scene.info.version = "0.2.0";
+  EXPECT_EQ(merge({&a, &scene}, error), "");
+  EXPECT_NE(error.find("the scene: 'scene.json' (hash 0123456789abcdef) vs 'scene.json' (hash 1111111111111111"),
+            std::string::npos)
+      << error;
+  EXPECT_NE(error.find("version 0.1.0 vs 0.2.0"), std::string::npos) << error;
+  EXPECT_EQ(merge({&a, &b, &b}, error), "");
+  EXPECT_EQ(error, "'s2' and 's1' are the same shard (samples [15,30) of every pixel)");
+  const Shard overlap = shard({10, 20});
+  EXPECT_EQ(merge({&a, &overlap}, error), "");
+  EXPECT_EQ(error, "'s1' and 's0' overlap: both hold samples [10,15) of every pixel");
+  EXPECT_EQ(merge({&b}, error), "");
+  EXPECT_EQ(error,
+            "the shards are incomplete: no shard holds samples [0,15) of every pixel (of 30 per pixel) "
+            "(--allow-partial merges what is there, marked partial)");
+  const Shard top = shard({0, kSpp}, Fraction{0, 3});
+  EXPECT_EQ(merge({&top}, error), "");
+  EXPECT_NE(error.find("no shard holds tile 1/3 (rows [1,3) x columns [0,6)); tile 2/3 (rows [3,5)"),
+            std::string::npos)
+      << error;
+  const Shard other_tiling = shard({0, kSpp}, Fraction{0, 2});
+  EXPECT_EQ(merge({&top, &other_tiling}, error), "");
+  EXPECT_NE(error.find("overlapping tiles of different tilings"), std::string::npos) << error;
+}
+
+TEST(ShardMerger, TimeBudgetSharesWeighTheSamplesTaken) {
+  // Shares cut short (done < share) are complete: the pixels average what was taken.
+  const Shard a = shard({0, 15}, std::nullopt, 9), b = shard({15, kSpp}, std::nullopt, 20);
+  ShardMerger merger(false);
+  std::string error;
+  ASSERT_FALSE(merge({&b, &a}, error, false, &merger).empty()) << error;
+  EXPECT_FALSE(merger.info().partial);
+  EXPECT_EQ(merger.spp(), 14);
+  EXPECT_EQ(merger.film().sum(2, 3).samples, 14u);
+  Film taken(kW, kH, {0, 0, kW, kH}, all_aovs());  // the same samples in one film
+  render(taken, taken.crop(), {0, 9});
+  render(taken, taken.crop(), {15, 20});
+  EXPECT_EQ(state(merger.film()), state(taken));
+  const ImageMetadata m = merger.metadata();
+  const auto has = [&](const std::string& text) {
+    return std::any_of(m.strings.begin(), m.strings.end(), [&](const auto& s) { return s.second == text; });
+  };
+  EXPECT_TRUE(has("2 shards: [0,15)(done [0,9)) [15,30)(done [15,20))"));
+}
+
+}  // namespace
+}  // namespace pt
