@@ -82,7 +82,10 @@ TEST(ImportRender, ObjMaterialsAndTextureOrientation) {
 }
 
 // The .gltf (external image) and .glb (embedded image) files hold the same
-// scene: the same image, lit, its texture both red and blue.
+// scene: the same image, lit, its texture both red and blue. Not the same
+// bits: the external image goes through the texture cache, filtered over the
+// footprint, the embedded one is decoded into memory and read bilinearly
+// (docs/importing.md); the mean difference stays within 3% of the mean.
 TEST(ImportRender, GltfAndGlbGiveTheSameTexturedImage) {
   WorkerPool pool(2);
   std::unique_ptr<RenderScene> a, b;
@@ -94,11 +97,12 @@ TEST(ImportRender, GltfAndGlbGiveTheSameTexturedImage) {
   const Image ia = render(da, "path", 4, pool, a), ib = render(db, "path", 4, pool, b);
   ASSERT_TRUE(a && b);
   int red = 0, blue = 0;
-  double luminance = 0;
+  double luminance = 0, luminance_b = 0, difference = 0;
   for (int y = 0; y < ia.height; ++y)
     for (int x = 0; x < ia.width; ++x) {
-      ASSERT_EQ(ia.at(x, y), ib.at(x, y)) << x << "," << y;
-      const RGB c = ia.at(x, y);
+      const RGB c = ia.at(x, y), d = ib.at(x, y);
+      luminance_b += d.luminance();
+      difference += std::abs(c.luminance() - d.luminance());
       red += c.r > 2.0f * (c.g + c.b) ? 1 : 0;
       blue += c.b > 2.0f * (c.r + c.g) ? 1 : 0;
       luminance += c.luminance();
@@ -107,6 +111,8 @@ TEST(ImportRender, GltfAndGlbGiveTheSameTexturedImage) {
   EXPECT_GT(red, n / 30);
   EXPECT_GT(blue, n / 30);
   EXPECT_GT(luminance / n, 0.05);
+  EXPECT_NEAR(luminance_b, luminance, 0.03 * luminance);
+  EXPECT_LT(difference / n, 0.25 * luminance / n);  // per pixel: texture detail at 72x48, 4 spp
 }
 
 // Two red panels (one mesh, two nodes) on a grey ground, lit by the file's

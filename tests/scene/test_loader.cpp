@@ -85,6 +85,9 @@ TEST(NativeFormat, EveryKeyIsRead) {
   ASSERT_TRUE(s) << diag.format();
   EXPECT_EQ(diag.all().size(), 0u) << diag.format();
   EXPECT_EQ(s->camera.type, CameraType::ThinLens);
+  int coated = 0;
+  for (const MaterialDesc& m : s->materials) coated += m.type.value == MaterialType::CoatedDiffuse;
+  EXPECT_GE(coated, 1);
   EXPECT_TRUE(near(s->camera.position, Vec3f(1, 2, 3)));
   EXPECT_TRUE(near(s->camera.up, Vec3f(0, 0, 1)));
   EXPECT_TRUE(s->camera.left_handed.value);
@@ -309,6 +312,9 @@ TEST(CourseFormats, PathOfLightThinLensUsesOurKeys) {
   ASSERT_TRUE(s) << diag.format();
   EXPECT_EQ(diag.all().size(), 0u) << diag.format();
   EXPECT_EQ(s->camera.type, CameraType::ThinLens);
+  int coated = 0;
+  for (const MaterialDesc& m : s->materials) coated += m.type.value == MaterialType::CoatedDiffuse;
+  EXPECT_GE(coated, 1);
   EXPECT_EQ(s->camera.lens_radius.value, 0.1f);
   EXPECT_EQ(s->camera.focus_distance.value, 5.0f);
   EXPECT_TRUE(near(s->camera.look_at, Vec3f(0, -4, 1)));
@@ -477,12 +483,15 @@ TEST(ShippedScenes, ShowcaseShowsWhatThePathTracerIsFor) {
   ASSERT_TRUE(s) << diag.format();
   EXPECT_EQ(s->render.integrator.value, "path");
   EXPECT_EQ(s->camera.type, CameraType::ThinLens);
+  int coated = 0;
+  for (const MaterialDesc& m : s->materials) coated += m.type.value == MaterialType::CoatedDiffuse;
+  EXPECT_GE(coated, 1);
   ASSERT_TRUE(s->environment.has_value());
   EXPECT_NE(s->environment->resolved.find("scenes/assets/"), std::string::npos) << "the map ships with the repository";
   int glass = 0, metals = 0, emitters = 0;
   for (const MaterialDesc& m : s->materials) {
     glass += m.type.value == MaterialType::Glass;
-    metals += m.type.value == MaterialType::Mirror;
+    metals += m.type.value == MaterialType::Conductor && m.uroughness.value.value > 0.0f;  // a rough metal
     emitters += m.emission.value.max_component() > 0.0f;
   }
   EXPECT_GE(glass, 1);
