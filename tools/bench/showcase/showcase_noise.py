@@ -25,6 +25,13 @@ REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.a
 SCENE = os.path.join(REPO, "scenes", "showcase.json")
 
 
+def showcase_aovs():
+    """The --aov list tools/showcase.sh passes (its two `aovs=` lines): the first command's cost."""
+    with open(os.path.join(REPO, "tools", "showcase.sh")) as f:
+        parts = [line.split("=", 1)[1].strip() for line in f if line.startswith("aovs=") or line.startswith("aovs+=")]
+    return "".join(parts)
+
+
 def render(exe, out, extra):
     """Renders SCENE to OUT; returns its run record with the process's CPU seconds added."""
     report = out + ".run.json"
@@ -73,7 +80,8 @@ def main():
     rows = []
     for run in range(args.runs):
         test = os.path.join(work, "showcase-%d.exr" % run)
-        record = render(args.exe, test, ["--spp", str(args.spp)] if args.spp else [])
+        extra = ["--aov", showcase_aovs()] + (["--spp", str(args.spp)] if args.spp else [])
+        record = render(args.exe, test, extra)
         linear = imgerr(args.imgerr, test, reference)
         rows.append((record, linear))
         print("run %d: render %.1f s wall, %.1f s CPU, RMSE %.5f" % (
@@ -89,7 +97,7 @@ def write_markdown(args, rows, ref_record):
     lines = [
         "# The showcase: render time and noise (issue 21)",
         "",
-        "`scenes/showcase.json` as the README's first command renders it (`tools/showcase.sh`), against a",
+        "`scenes/showcase.json` as the README's first command renders it (`tools/showcase.sh`, its AOVs too), against a",
         "reference of the same scene at %d spp with another seed. Made by" % args.reference_spp,
         "`python3 tools/bench/showcase/showcase_noise.py --markdown docs/bench/showcase.md`.",
         "",
