@@ -21,6 +21,9 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "pylib"))
+from pt_tools import image_error, lscpu  # noqa: E402
+
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 SCENE = os.path.join(REPO, "scenes", "showcase.json")
 
@@ -44,19 +47,10 @@ def render(exe, out, extra):
     return record
 
 
-def imgerr(tool, test, reference):
-    args = [tool, test, reference, "--json"]
-    out = subprocess.run(args, check=True, capture_output=True, text=True).stdout
-    return json.loads(out)
-
-
-def lscpu():
-    try:
-        text = subprocess.run(["lscpu"], capture_output=True, text=True, check=True).stdout
-    except (OSError, subprocess.CalledProcessError):
-        return "(lscpu unavailable)"
+def machine():
+    """The lines of `lscpu` that name the machine."""
     keep = ("Architecture", "Model name", "CPU(s)", "Thread(s) per core", "Core(s) per socket", "L3 cache")
-    return "\n".join(line for line in text.splitlines() if line.split(":")[0].strip() in keep)
+    return "\n".join(line for line in lscpu().splitlines() if line.split(":")[0].strip() in keep)
 
 
 def main():
@@ -82,7 +76,7 @@ def main():
         test = os.path.join(work, "showcase-%d.exr" % run)
         extra = ["--aov", showcase_aovs()] + (["--spp", str(args.spp)] if args.spp else [])
         record = render(args.exe, test, extra)
-        linear = imgerr(args.imgerr, test, reference)
+        linear = image_error(args.imgerr, test, reference)
         rows.append((record, linear))
         print("run %d: render %.1f s wall, %.1f s CPU, RMSE %.5f" % (
             run, record["timings"]["render"], record["cpu_seconds"],
@@ -119,7 +113,7 @@ def write_markdown(args, rows, ref_record):
     ]
     if ref_record:
         lines.append("The reference took %.0f s of rendering." % ref_record["timings"]["render"])
-    lines += ["", "Machine (`lscpu`):", "", "```", lscpu(), "```", ""]
+    lines += ["", "Machine (`lscpu`):", "", "```", machine(), "```", ""]
     with open(args.markdown, "w") as f:
         f.write("\n".join(lines))
 
