@@ -133,7 +133,7 @@ Blas build_mesh_blas(const TriangleMesh& mesh, uint32_t object, const BuildSetti
   tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, 4096), [&](const tbb::blocked_range<uint32_t>& r) {
     for (uint32_t i = r.begin(); i != r.end(); ++i) refs[i] = PrimRef{bounds(mesh, i), i};
   });
-  const BuildTree tree = build_tree(std::move(refs), sanitise(settings, 4));
+  BuildTree tree = build_tree(std::move(refs), sanitise(settings, 4));
   blas.bounds = tree.bounds;
 
   // The flattening numbers the blocks in depth-first order; filling them
@@ -149,7 +149,13 @@ Blas build_mesh_blas(const TriangleMesh& mesh, uint32_t object, const BuildSetti
     next_block += (count + 3) / 4;
     return (count + 3) / 4;
   };
+  blas.nodes.reserve(tree.nodes.size());  // exact: no spare capacity from doubling
+  pending.reserve(tree.leaves.size());
   blas.root = Flattener(tree, blas.nodes, blas.stats, emit).run();
+  // The build's nodes and leaves are not needed any more: freed before the
+  // blocks (the largest array) are allocated, so they never coexist.
+  std::vector<BuildNode>().swap(tree.nodes);
+  std::vector<BuildLeaf>().swap(tree.leaves);
   blas.blocks.resize(next_block);
   tbb::parallel_for(std::size_t{0}, pending.size(), [&](std::size_t l) {
     const PendingLeaf& leaf = pending[l];
