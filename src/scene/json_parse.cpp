@@ -173,6 +173,16 @@ class TreeBuilder {
 
   bool close() {
     prev_end_ = consumed_;
+    // The container is complete: its spare capacity (up to half of it, from
+    // push_back's doubling) is given back. A course file of small objects
+    // (a triangle's three 3-vectors, a material's nine members) keeps about
+    // a third less this way.
+    JsonValue& done = *stack_.back().value;
+    if (done.is_array()) {
+      done.as_array().shrink_to_fit();
+    } else {
+      done.as_object().shrink_to_fit();
+    }
     stack_.pop_back();
     return true;
   }
