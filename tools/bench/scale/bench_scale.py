@@ -9,6 +9,10 @@ Inputs (made in --work, not committed):
   - bunny-obj:  the Stanford bunny's OBJ (../shared/assets/meshes) in a native scene;
   - bunny-cgr:  the same 69,451 triangles written as CGR "triangle" shapes, each
                 with its inline material, as a course file holds them;
+  - sponza-import: Sponza's OBJ with its MTL materials placed by {"type": "import"}
+                (the Assimp asset path, src/scene/asset_assimp.cpp);
+  - bunny-gltf: the bunny's triangles written as a glTF 2.0 file (.gltf + .bin,
+                float positions, uint32 indices) placed by {"type": "import"};
   - baseline:   one triangle in a native scene: the process's own footprint.
 Each is rendered by the pathtracer at 16x16, 1 spp, with --report; the run
 record gives the time of each phase (parse, mesh load, scene build, accel
@@ -20,7 +24,7 @@ CPU time of each run (rusage of the child) is recorded too: on a machine shared
 with other jobs, wall-clock times include the waiting.
 
   python3 tools/bench/scale/bench_scale.py [--build build] [--work /tmp/pt-scale] [--runs 3]
-          [--threads 2] [--triangles 10000000] [--inputs grid,sponza,bunny-obj,bunny-cgr]
+          [--threads 2] [--triangles 10000000] [--inputs grid,sponza,sponza-import,bunny-obj,bunny-gltf,bunny-cgr]
           [--json docs/bench/scale.json] [--markdown docs/bench/scale.md] [--note TEXT]
 """
 import argparse
@@ -29,6 +33,7 @@ import os
 import platform
 import resource
 import statistics
+import struct
 import subprocess
 import sys
 import time
@@ -85,6 +90,29 @@ def course_file(path, obj):
     return len(triangles)
 
 
+def gltf_file(path, obj):
+    """The OBJ's positions and triangles as a glTF 2.0 file with one mesh."""
+    vertices, triangles = obj_triangles(obj)
+    pos = struct.pack(f"<{3 * len(vertices)}f", *[c for v in vertices for c in v])
+    idx = struct.pack(f"<{3 * len(triangles)}I", *[i for t in triangles for i in t])
+    binary = os.path.splitext(path)[0] + ".bin"
+    with open(binary, "wb") as f:
+        f.write(pos + idx)
+    lo = [min(v[k] for v in vertices) for k in range(3)]
+    hi = [max(v[k] for v in vertices) for k in range(3)]
+    doc = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+           "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+           "buffers": [{"uri": os.path.basename(binary), "byteLength": len(pos) + len(idx)}],
+           "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": len(pos), "target": 34962},
+                           {"buffer": 0, "byteOffset": len(pos), "byteLength": len(idx), "target": 34963}],
+           "accessors": [{"bufferView": 0, "componentType": 5126, "count": len(vertices), "type": "VEC3",
+                          "min": lo, "max": hi},
+                         {"bufferView": 1, "componentType": 5125, "count": 3 * len(triangles), "type": "SCALAR"}]}
+    with open(path, "w") as f:
+        json.dump(doc, f)
+    return len(triangles), len(pos) + len(idx)
+
+
 def make_inputs(a):
     os.makedirs(a.work, exist_ok=True)
     cam = {"position": [0, 3, 3], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov": 45}
@@ -103,12 +131,24 @@ def make_inputs(a):
         scene = os.path.join(a.work, "grid.json")
         native_scene(scene, [{"type": "mesh", "material": "white", "file": ply}], cam)
         inputs["grid"] = {"scene": scene, "triangles": faces, "source": f"gen_grid_ply, binary PLY, {os.path.getsize(ply)} bytes"}
+    far = {"position": [0, 20, 0], "look_at": [-100, 60, 0], "up": [0, 1, 0], "fov": 60}
     for name, obj in (("sponza", SPONZA_OBJ), ("bunny-obj", BUNNY_OBJ)):
         if name in a.inputs and os.path.exists(obj):
             scene = os.path.join(a.work, name + ".json")
-            native_scene(scene, [{"type": "mesh", "material": "white", "file": obj}],
-                         {"position": [0, 20, 0], "look_at": [-100, 60, 0], "up": [0, 1, 0], "fov": 60})
+            native_scene(scene, [{"type": "mesh", "material": "white", "file": obj}], far)
             inputs[name] = {"scene": scene, "triangles": None, "source": f"OBJ, {os.path.getsize(obj)} bytes"}
+    if "sponza-import" in a.inputs and os.path.exists(SPONZA_OBJ):
+        scene = os.path.join(a.work, "sponza-import.json")
+        native_scene(scene, [{"type": "import", "file": SPONZA_OBJ}], far)
+        inputs["sponza-import"] = {"scene": scene, "triangles": None,
+                                   "source": f"OBJ + MTL through Assimp (import), {os.path.getsize(SPONZA_OBJ)} bytes"}
+    if "bunny-gltf" in a.inputs and os.path.exists(BUNNY_OBJ):
+        gltf = os.path.join(a.work, "bunny.gltf")
+        n, size = gltf_file(gltf, BUNNY_OBJ)
+        scene = os.path.join(a.work, "bunny-gltf.json")
+        native_scene(scene, [{"type": "import", "file": gltf}], cam)
+        inputs["bunny-gltf"] = {"scene": scene, "triangles": n,
+                                "source": f"glTF 2.0 through Assimp (import), {n} triangles, {size} bytes of buffer"}
     if "bunny-cgr" in a.inputs and os.path.exists(BUNNY_OBJ):
         scene = os.path.join(a.work, "bunny-cgr.json")
         n = course_file(scene, BUNNY_OBJ)
@@ -164,7 +204,7 @@ def main():
     p.add_argument("--runs", type=int, default=3)
     p.add_argument("--threads", type=int, default=2)
     p.add_argument("--triangles", type=int, default=10_000_000)
-    p.add_argument("--inputs", default="grid,sponza,bunny-obj,bunny-cgr")
+    p.add_argument("--inputs", default="grid,sponza,sponza-import,bunny-obj,bunny-gltf,bunny-cgr")
     p.add_argument("--accel", default="embree,bvh")
     p.add_argument("--json")
     p.add_argument("--markdown")
