@@ -15,6 +15,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "accel/embree/compact.h"
 #include "core/file_access.h"
 #include "render/textures/texture.h"
 #include "scene/scene_description.h"
@@ -23,13 +24,16 @@ namespace pt {
 namespace {
 
 // The acceleration structure's bytes per triangle at the peak of its build
-// (the structure, its build's primitive references and scratch, which exist
-// together), measured as peak RSS differences with tools/bench/memory
-// (docs/bench/memory.md: a 980k-triangle PLY took 82 bytes a triangle on our
-// BVH, whose final structure is 49, and 102 on Embree, final 73), with ~8%
-// to spare.
-constexpr uint64_t kBvhBytesPerTriangle = 88;
-constexpr uint64_t kEmbreeBytesPerTriangle = 112;
+// beyond the mesh arrays counted beside them, measured as peak RSS
+// differences with tools/bench/memory (docs/bench/memory.md) and
+// tools/bench/scale: on our BVH 40 (980k-triangle grid) to 47 (10M), on
+// Embree 59 (980k); Embree's compact build (scenes of
+// kEmbreeCompactTriangles or more, accel/embree/compact.h) 17 (10M). Below 4Mi
+// triangles part of the build reuses heap the PLY reader freed, hence the
+// lower figure there.
+constexpr uint64_t kBvhBytesPerTriangle = 44;
+constexpr uint64_t kEmbreeBytesPerTriangle = 64;
+constexpr uint64_t kEmbreeCompactBytesPerTriangle = 18;
 // What any render adds whatever its size: the worker threads (stacks and
 // scratch), the task scheduler's and Embree's own state, the image writers'
 // buffers. Measured: 5.2 MiB (BVH) and 6.6 MiB (Embree) on the Cornell box.
@@ -138,20 +142,22 @@ uint64_t texture_bytes(const SceneDescription& scene, const TextureLimits& limit
 }
 
 uint64_t geometry_bytes(const SceneDescription& scene, AccelKind accel) {
-  const uint64_t per_triangle = accel == AccelKind::Embree ? kEmbreeBytesPerTriangle : kBvhBytesPerTriangle;
-  uint64_t bytes = 0;
+  uint64_t bytes = 0, triangles = 0;
   const auto add = [&](const ShapeDesc& shape) {
     bytes += kBytesPerShape;
     if (const auto* mesh = std::get_if<TriangleMesh>(&shape.geometry)) {
       bytes += mesh->positions.size() * sizeof(Vec3f) + mesh->indices.size() * sizeof(uint32_t) +
-               mesh->normals.size() * sizeof(Vec3f) + mesh->uvs.size() * sizeof(Vec2f);  // the copy
-      bytes += mesh->triangle_count() * per_triangle;
+               mesh->normals.size() * sizeof(Vec3f) + mesh->uvs.size() * sizeof(Vec2f);  // the arrays
+      triangles += mesh->triangle_count();
     }
   };
   for (const ShapeDesc& shape : scene.shapes) add(shape);
   for (const ObjectDesc& object : scene.objects)
     for (const ShapeDesc& shape : object.shapes) add(shape);
-  return bytes + scene.instances.size() * kBytesPerShape;
+  uint64_t per_triangle = kBvhBytesPerTriangle;
+  if (accel == AccelKind::Embree)
+    per_triangle = triangles >= kEmbreeCompactTriangles ? kEmbreeCompactBytesPerTriangle : kEmbreeBytesPerTriangle;
+  return bytes + triangles * per_triangle + scene.instances.size() * kBytesPerShape;
 }
 
 MemoryEstimate estimate_memory(const SceneDescription& scene, uint64_t pixels, const PixelBytes& per_pixel,

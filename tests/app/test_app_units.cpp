@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "app/film_options.h"
+#include "accel/embree/compact.h"
 #include "app/memory_estimate.h"
 #include "app/progress.h"
 #include "app/render_driver.h"
@@ -316,6 +317,29 @@ TEST(MemoryEstimate, CountsTheProcessAsItIsAndReusesFreedHeap) {
   EXPECT_GT(geometry_bytes(scene, AccelKind::Embree), geometry_bytes(scene, AccelKind::Bvh));
 }
 
+// Embree builds scenes of kEmbreeCompactTriangles or more compact, about a
+// third of the bytes a triangle at its build's peak (docs/bench/scale.md): the
+// estimate follows the backend's choice, counting a scene's triangles together.
+TEST(MemoryEstimate, EmbreeCompactBuildFromItsTriangleCount) {
+  const auto scene_of = [](std::size_t triangles, int meshes) {
+    SceneDescription scene;
+    for (int k = 0; k < meshes; ++k) {
+      ShapeDesc mesh;
+      TriangleMesh m;
+      m.positions.resize(3);
+      m.indices.resize(3 * (triangles / meshes));  // every triangle the same: only the count matters here
+      mesh.geometry = std::move(m);
+      scene.shapes.push_back(std::move(mesh));
+    }
+    return scene;
+  };
+  const SceneDescription below = scene_of(kEmbreeCompactTriangles - 2, 2);
+  const SceneDescription at = scene_of(kEmbreeCompactTriangles, 2);
+  EXPECT_LT(geometry_bytes(at, AccelKind::Embree), geometry_bytes(below, AccelKind::Embree));
+  EXPECT_GT(geometry_bytes(at, AccelKind::Bvh), geometry_bytes(below, AccelKind::Bvh));
+  EXPECT_LT(geometry_bytes(at, AccelKind::Embree), geometry_bytes(at, AccelKind::Bvh));
+}
+
 TEST(MemoryEstimate, ScalesWithPixelsFilmBytesAndTriangles) {
   SceneDescription scene;
   const MemoryEstimate small = estimate_memory(scene, 100 * 100, {40, 32});
@@ -331,7 +355,8 @@ TEST(MemoryEstimate, ScalesWithPixelsFilmBytesAndTriangles) {
   m.indices.resize(3 * 1000);
   mesh.geometry = m;
   scene.shapes.push_back(mesh);
-  EXPECT_GT(estimate_memory(scene, 100 * 100, {40, 32}).geometry, 1000u * 100u);
+  // The arrays (positions, indices) and at least 40 bytes a triangle of acceleration structure.
+  EXPECT_GT(estimate_memory(scene, 100 * 100, {40, 32}).geometry, 3000u * 12u + 3000u * 4u + 1000u * 40u);
   const MemoryEstimate e = estimate_memory(scene, 100 * 100, {40, 32});
   EXPECT_EQ(e.total(), e.film + e.images + e.textures + e.geometry + e.runtime);
   EXPECT_TRUE(check_memory(e, 0, 0).empty());

@@ -21,6 +21,7 @@
 #include <string>
 #include <variant>
 
+#include "accel/embree/compact.h"
 #include "accel/embree/embree_device.h"
 #include "accel/embree/triangle_geometry.h"
 #include "accel/embree/user_geometry.h"
@@ -103,9 +104,6 @@ RTCGeometry new_geometry(RTCDevice device, const Shape& shape, const CutoutGeome
   return new_user_geometry(device, shape, cutout);
 }
 
-// Scenes with at least this many mesh triangles are built compact (new_scene).
-constexpr std::size_t kCompactTriangles = std::size_t{4} << 20;
-
 class EmbreeAccelerator final : public Accelerator {
  public:
   explicit EmbreeAccelerator(const CutoutTest* cutouts) : cutouts_(cutouts) {}
@@ -180,7 +178,7 @@ bool report_device_errors(const Device& device, Diagnostics& diag) {
 // corner, where a ray aimed at a mesh vertex passes), and triangles are tested
 // with Embree's Plücker test, watertight along shared edges. HIGH: spatial
 // splits for triangles, the best tree Embree builds. COMPACT, only for scenes
-// of kCompactTriangles or more: 4-wide nodes over indexed triangles (leaves
+// of kEmbreeCompactTriangles or more: 4-wide nodes over indexed triangles (leaves
 // refer to the shared vertex buffer instead of copying the vertices), which
 // halves the build's peak memory (10M triangles: 53 instead of 107 bytes a
 // triangle above the process's baseline, docs/bench/scale.md).
@@ -269,7 +267,7 @@ bool EmbreeAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, D
   std::size_t triangles = 0;
   for (const Shape& shape : geometry.shapes)
     if (const auto* mesh = std::get_if<TriangleMesh>(&shape)) triangles += mesh->triangle_count();
-  compact_ = triangles >= kCompactTriangles;
+  compact_ = triangles >= kEmbreeCompactTriangles;
   scene_ = new_scene(diag);
   if (scene_ == nullptr) return false;
   instance_base_ = static_cast<uint32_t>(geometry.shapes.size());
