@@ -42,6 +42,7 @@ REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.a
 SHARED = os.path.join(os.path.dirname(REPO), "shared")
 SPONZA_OBJ = os.path.join(SHARED, "assets", "sponza", "sponza.obj")
 BUNNY_OBJ = os.path.join(SHARED, "assets", "meshes", "stanford-bunny.obj")
+MARKER = "<!-- hand-written analysis: kept when bench_scale.py rewrites the tables above -->"
 PHASES = ["parse", "mesh_load", "scene_build", "accel_build"]
 COURSE_MATERIAL = {"ks": 0.1, "kd": 0.9, "specularexponent": 20, "diffusecolor": [0.8, 0.8, 0.8],
                    "specularcolor": [1.0, 1.0, 1.0], "isreflective": False, "reflectivity": 1.0,
@@ -174,7 +175,8 @@ def run(a, scene, accel):
     return {"load_build_seconds": sum(t[k] for k in PHASES), "phases": {k: t[k] for k in PHASES},
             "process_wall_seconds": wall,
             "process_cpu_seconds": (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime),
-            "peak_rss_bytes": r["memory"]["peak_rss_bytes"], "accel_memory_bytes": r["accel"]["memory_bytes"],
+            "peak_rss_bytes": r["memory"]["peak_rss_bytes"], "estimate_bytes": r["memory"].get("estimate_bytes"),
+            "accel_memory_bytes": r["accel"]["memory_bytes"],
             "primitives": r["accel"]["primitive_count"], "backend": r["accel"]["backend"]}
 
 
@@ -236,7 +238,8 @@ def main():
                      "phases_median": {k: statistics.median(x["phases"][k] for x in rs) for k in PHASES},
                      "peak_rss_bytes": peak, "baseline_peak_rss_bytes": base,
                      "bytes_per_triangle_above_baseline": (peak - base) / tris if name != "baseline" else None,
-                     "accel_memory_bytes": rs[0]["accel_memory_bytes"]}
+                     "accel_memory_bytes": rs[0]["accel_memory_bytes"],
+                     "estimate_over_peak": (rs[0]["estimate_bytes"] / peak) if rs[0]["estimate_bytes"] else None}
             if "file_bytes" in spec:
                 entry["file_bytes"] = spec["file_bytes"]
                 entry["peak_above_baseline_over_file_size"] = (peak - base) / spec["file_bytes"]
@@ -249,8 +252,15 @@ def main():
             json.dump(record, f, indent=2)
     md = markdown(record)
     if a.markdown:
+        # The hand-written analysis after MARKER (if the file has one) is kept.
+        kept = ""
+        if os.path.exists(a.markdown):
+            with open(a.markdown) as f:
+                text = f.read()
+            if MARKER in text:
+                kept = "\n" + text[text.index(MARKER):]
         with open(a.markdown, "w") as f:
-            f.write(md)
+            f.write(md + kept)
     else:
         print(md)
 
@@ -267,18 +277,20 @@ def markdown(rec):
             "the same backend. Goals (issue 18): the 10M grid in at most 5 s and 80 bytes per triangle above the "
             "baseline; any mesh format at most 100 bytes per triangle; a course file at most 4x its size.", "",
            "| input | backend | triangles | load + build (s) | parse / mesh / scene / accel (s) | CPU (s) | peak (MiB) | "
-           "above baseline (B/triangle) | accel structure (B/triangle) |",
-           "|---|---|---|---|---|---|---|---|---|"]
+           "above baseline (B/triangle) | accel structure (B/triangle) | pre-flight estimate / peak |",
+           "|---|---|---|---|---|---|---|---|---|---|"]
     for r in rec["results"]:
         lb, cpu, ph = r["load_build_seconds"], r["process_cpu_seconds"], r["phases_median"]
         per = r["bytes_per_triangle_above_baseline"]
+        est = "—" if r["estimate_over_peak"] is None else f"{r['estimate_over_peak']:.2f}"
         extra = ""
         if "peak_above_baseline_over_file_size" in r:
             extra = f" ({r['peak_above_baseline_over_file_size']:.1f}x the file)"
         out.append(f"| {r['input']} | {r['accel']} | {r['triangles']:,} | {lb['median']:.2f} ({lb['min']:.2f}-{lb['max']:.2f}) | "
                    f"{ph['parse']:.2f} / {ph['mesh_load']:.2f} / {ph['scene_build']:.2f} / {ph['accel_build']:.2f} | "
                    f"{cpu['median']:.2f} | {r['peak_rss_bytes'] / 2**20:.0f} | "
-                   f"{'—' if per is None else f'{per:.0f}'}{extra} | {r['accel_memory_bytes'] / r['triangles']:.0f} |")
+                   f"{'—' if per is None else f'{per:.0f}'}{extra} | {r['accel_memory_bytes'] / r['triangles']:.0f} | "
+                   f"{est} |")
     out += ["", "Inputs:", ""]
     seen = set()
     for r in rec["results"]:
