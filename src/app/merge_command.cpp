@@ -1,6 +1,4 @@
 // `pathtracer merge` (docs/distributed.md): shard files in, one render out.
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <filesystem>
 #include <fstream>

@@ -12,9 +12,9 @@
    falls on all alike, and each variant's overhead is paired with its round's
    single render. From the renderer's own timers (run records, the merge's
    report): the render phases' wall and CPU time (every thread), summed over the
-   shards, plus the merge's reading and adding (its EXR write is the single
-   render's own cost, shown beside it), against the single render's render
-   phase; and the CPU time of every process (start-up, parse, build, shard
+   shards, plus the merge (wall: its reading and adding, since its EXR write is
+   the single render's own cost, shown beside it; CPU: the whole merge, the
+   write included), against the single render's render phase; and the CPU time of every process (start-up, parse, build, shard
    files, merge) against the single render's process. CPU time counts the time
    the processes ran, not the time they waited for a core: the robust figure on
    a shared, loaded machine. Medians with the smallest and largest round. Every
@@ -150,9 +150,10 @@ def overhead(a, tmp):
             print(f"| one render | {spread([x['render'] for x in rs], sec)} | {spread([x['render_cpu'] for x in rs], sec)}"
                   f" | | {spread([x['write'] for x in rs], sec)} | | | |")
             continue
-        # Render phases plus the merge's own work (reading and adding; its EXR write is the single render's too).
+        # Render phases plus the merge: in wall time its reading and adding (its EXR write is the single
+        # render's own cost too); in CPU time the whole merge, the write included (errs towards overhead).
         wall = [(x["render"] + x["merge"] - b["render"]) / b["render"] for x, b in zip(rs, base)]
-        cpu = [(x["render_cpu"] + x["merge_cpu"] - b["render_cpu"] - 0.0) / b["render_cpu"] for x, b in zip(rs, base)]
+        cpu = [(x["render_cpu"] + x["merge_cpu"] - b["render_cpu"]) / b["render_cpu"] for x, b in zip(rs, base)]
         proc = [(x["proc_cpu"] - b["proc_cpu"]) / b["proc_cpu"] for x, b in zip(rs, base)]
         print(f"| {v} shards + merge | {spread([x['render'] for x in rs], sec)} |"
               f" {spread([x['render_cpu'] for x in rs], sec)} | {spread([x['merge'] for x in rs], sec)} |"
