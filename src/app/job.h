@@ -66,6 +66,7 @@ struct Job {
 // The seconds of each phase and what the render counted, for the record and the summary.
 struct RunFigures {
   double parse_s = 0, build_s = 0, render_s = 0, write_s = 0;
+  double render_cpu_s = 0;        // the process's CPU time during the render phase
   int64_t samples = 0, rays = 0;  // pixel samples and rays (the progress monitor's counts)
   int threads = 0;
   int signal = 0;  // the signal that stopped the render, or 0

@@ -60,6 +60,7 @@ RunRecord run_record(const Options& o, const Job& job, const RenderScene& scene,
   record.samples_per_second = f.samples_per_second();
   record.rays = f.rays;
   record.rays_per_second = f.rays_per_second();
+  record.render_cpu_seconds = f.render_cpu_s;
   for (const ImportSummary& i : job.desc.imports)
     record.imports.push_back({i.file, i.format, i.seconds, i.imported, i.skipped});
   record.memory_estimate_bytes = job.memory.total();

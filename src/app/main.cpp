@@ -57,10 +57,12 @@ RenderOutcome render(const Options& o, const Job& job, const RenderScene& scene,
     if (checkpointer.due()) write_checkpoint(spp_done);
   };
   const auto t0 = Clock::now();
+  const double cpu0 = process_cpu_seconds();
   monitor.start();
   const RenderOutcome outcome = render_passes(scene, film, pool, job.plan, settings, callbacks);
   monitor.stop();
   figures.render_s = seconds_since(t0);
+  figures.render_cpu_s = process_cpu_seconds() - cpu0;
   if (!outcome.cancelled && !o.checkpoint.empty()) write_checkpoint(outcome.spp_done);
   return outcome;
 }

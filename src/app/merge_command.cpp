@@ -1,6 +1,4 @@
 // `pathtracer merge` (docs/distributed.md): shard files in, one render out.
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -47,14 +45,6 @@ void add_merge_options(CLI::App& app, MergeOptions& m) {
       });
   app.add_flag("--multipart", m.exr.multipart, "EXR: one part per layer");
   app.add_flag("--quiet", m.quiet, "Print errors only");
-}
-
-// CPU seconds (user + system) of this process so far.
-double cpu_seconds() {
-  rusage u{};
-  if (::getrusage(RUSAGE_SELF, &u) != 0) return 0;
-  const auto s = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
-  return s(u.ru_utime) + s(u.ru_stime);
 }
 
 struct Input {
@@ -145,7 +135,7 @@ int merge(const MergeOptions& m) {
   OutputStamps stamps;
   stamps.take(files);
   const auto t0 = Clock::now();
-  const double cpu0 = cpu_seconds();
+  const double cpu0 = process_cpu_seconds();
   std::vector<Input> inputs;
   ShardMerger merger(m.allow_partial);
   bool ok = read_headers(m, inputs, error);
@@ -155,7 +145,7 @@ int merge(const MergeOptions& m) {
   }
   for (std::size_t i = 0; ok && i < inputs.size(); ++i) ok = merger.check(inputs[i].path, inputs[i].info, error);
   ok = ok && add_films(inputs, merger, error) && merger.finish(error);
-  const double merge_s = seconds_since(t0), cpu1 = cpu_seconds();
+  const double merge_s = seconds_since(t0), cpu1 = process_cpu_seconds();
   const auto t1 = Clock::now();
   ok = ok && write_merged(merger, m.outputs, m.shard_out, m.ocio_config, m.exr, stamps, error);
   if (!ok) {
@@ -172,7 +162,7 @@ int merge(const MergeOptions& m) {
               << (merger.shards() == 1 ? "" : "s") << " into " << join(written, ", ") << " (" << film.crop().width()
               << "x" << film.crop().height() << ", " << merger.spp() << " spp"
               << (merger.info().partial ? ", partial" : "") << "): read and add " << merge_s << " s (CPU "
-              << cpu1 - cpu0 << " s), write " << seconds_since(t1) << " s (CPU " << cpu_seconds() - cpu1 << " s)\n";
+              << cpu1 - cpu0 << " s), write " << seconds_since(t1) << " s (CPU " << process_cpu_seconds() - cpu1 << " s)\n";
   }
   return 0;
 }

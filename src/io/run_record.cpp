@@ -37,7 +37,8 @@ std::string run_record_json(const RunRecord& r) {
                    {"scene_build", t.scene_build}, {"accel_build", t.accel_build}, {"render", t.render},
                    {"write", t.write}, {"total", t.total}}},
       {"performance", {{"pixel_samples", r.pixel_samples}, {"samples_per_second", r.samples_per_second},
-                       {"rays", r.rays}, {"rays_per_second", r.rays_per_second}}},
+                       {"rays", r.rays}, {"rays_per_second", r.rays_per_second},
+                       {"render_cpu_seconds", r.render_cpu_seconds}}},
       {"memory", {{"estimate_bytes", r.memory_estimate_bytes}, {"peak_rss_bytes", r.peak_memory_bytes}}},
   };
   nlohmann::ordered_json parts = nlohmann::ordered_json::object();

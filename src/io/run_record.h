@@ -65,6 +65,9 @@ struct RunRecord {
   double samples_per_second = 0;
   int64_t rays = 0;            // rays traced by this run (camera, bounce, shadow)
   double rays_per_second = 0;
+  // CPU time (user + system, every thread) of the process during the render
+  // phase: with `threads`, how well the threads were used on a loaded machine.
+  double render_cpu_seconds = 0;
   // Non-finite samples (counted by the film, added as black; docs/output.md):
   // per kind, and the first one, which `pathtracer --replay X,Y,N` reproduces.
   struct NonFinite {

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <iostream>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -16,6 +17,8 @@
 #include "app/film_options.h"
 #include "accel/embree/compact.h"
 #include "app/memory_estimate.h"
+#include "app/mpi_launch.h"
+#include "app/options.h"
 #include "app/progress.h"
 #include "app/render_driver.h"
 #include "app/render_settings.h"
@@ -510,4 +513,22 @@ TEST(Signals, ASecondSignalExitsAtOnce) {
 }
 
 }  // namespace
+// src/app/mpi_launch_none.cpp, linked into this test in every build (the
+// executable has it only where CMake finds no MPI, or -DPT_WITH_MPI=OFF): --mpi
+// says the build has no MPI, exits 2 and runs nothing.
+TEST(MpiLaunchNone, SaysTheBuildHasNoMpiAndRunsNothing) {
+  EXPECT_FALSE(mpi_built());
+  std::ostringstream err;
+  std::streambuf* const old = std::cerr.rdbuf(err.rdbuf());
+  bool ran = false;
+  const int status = run_with_mpi(Options{}, [&](const Options&) {
+    ran = true;
+    return 0;
+  });
+  std::cerr.rdbuf(old);
+  EXPECT_EQ(status, kExitUsage);
+  EXPECT_FALSE(ran);
+  EXPECT_NE(err.str().find("this pathtracer was built without MPI"), std::string::npos) << err.str();
+}
+
 }  // namespace pt

@@ -289,7 +289,13 @@ TEST_F(Distributed, StratifiedSamplersShareWholePasses) {
 
 TEST_F(Distributed, MpiRanksRenderSharesAndRankZeroMerges) {
 #if !defined(PT_MPIRUN)
-  GTEST_SKIP() << "this build has no MPI launcher (OpenMPI's mpirun and libopenmpi-dev were not found by CMake)";
+  // Without MPI, --mpi says so before reading the scene, exits 2 and writes nothing.
+  const RunResult r = run(kRender + " --mpi -o mpi.exr");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("this pathtracer was built without MPI"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(path("mpi.exr")));
+  GTEST_SKIP() << "this build has no MPI launcher (CMake found no MPI, or -DPT_WITH_MPI=OFF): checked that --mpi "
+                  "says so; mpirun -np 3 not run";
 #else
   ASSERT_EQ(run(kRender + " -o single.exr").status, 0);
   // As root, Open MPI's mpirun needs these; oversubscribe: 3 ranks on fewer cores.

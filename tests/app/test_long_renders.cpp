@@ -351,6 +351,7 @@ TEST_F(LongRender, RunRecordHasVersionsSpeedAndMemory) {
   EXPECT_GT(rec["performance"]["samples_per_second"].get<double>(), 0.0);
   EXPECT_GE(rec["performance"]["rays"].get<int64_t>(), 32 * 24 * 3);  // at least every camera ray
   EXPECT_GT(rec["performance"]["rays_per_second"].get<double>(), 0.0);
+  EXPECT_GT(rec["performance"]["render_cpu_seconds"].get<double>(), 0.0);  // the render phase did work
   EXPECT_GT(rec["memory"]["peak_rss_bytes"].get<double>(), 1e6);  // at least the executable's own pages
   EXPECT_GE(rec["memory"]["estimate_bytes"].get<double>(), 32.0 * 24 * 40);  // at least the film
   for (const char* phase :

@@ -8,15 +8,19 @@
 1. Overhead at equal total samples: one render of --spp samples against N
    shards of --spp/N each, run one after another on this machine (as a farm
    would run them side by side), plus their merge. Each round runs the single
-   render and every N in turn (the order rotates), so the machine's drift falls
-   on all alike. Per variant: the summed wall time of its processes, the summed
-   CPU time (user + system: less disturbed by other processes on a shared
-   machine), the summed render phases (run records), what the shards add
-   (parse, build, writing the shard file) and the merge's own time; medians
-   over the rounds. Every merge is
-   checked to be bit-identical to the single render (idiff).
+   render, then every N (the order of the Ns rotating), so the machine's drift
+   falls on all alike, and each variant's overhead is paired with its round's
+   single render. From the renderer's own timers (run records, the merge's
+   report): the render phases' wall and CPU time (every thread), summed over the
+   shards, plus the merge (wall: its reading and adding, since its EXR write is
+   the single render's own cost, shown beside it; CPU: the whole merge, the
+   write included), against the single render's render phase; and the CPU time of every process (start-up, parse, build, shard
+   files, merge) against the single render's process. CPU time counts the time
+   the processes ran, not the time they waited for a core: the robust figure on
+   a shared, loaded machine. Medians with the smallest and largest round. Every
+   merge is checked to be bit-identical to the single render (idiff).
 2. The merge of a --merge-width x --merge-height frame with every AOV the path
-   integrator makes: the shard files' size, and the merge's read-and-add and
+   integrator makes, Cryptomatte included: the shard files' size, and the merge's read-and-add and
    EXR write times, wall and CPU (its own report), medians over --merge-rounds
    merges of 2 and 4 shards.
 3. With --baseline EXE (a build before exact sums): the render phase and the
@@ -24,7 +28,8 @@
    without every AOV (--ab-rounds rounds), so the cost of exact sums is
    measured at equal error (the images agree to float rounding).
 
-Prints markdown for docs/distributed.md, with lscpu's model and core count.
+Prints markdown for docs/distributed.md, with lscpu's model and core count and
+the load average before and after (progress goes to stderr).
 """
 import argparse
 import json
@@ -34,11 +39,14 @@ import resource
 import statistics
 import subprocess
 import tempfile
+import sys
 import time
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+sys.path.insert(0, os.path.join(REPO, "tools", "pylib"))
+import pt_tools  # noqa: E402
 ALL_AOVS = ("albedo,N,P,Z,IndexOB,IndexMA,emission,diffuse_direct,diffuse_indirect,specular_direct,"
-            "specular_indirect,variance,samples,nonfinite")
+            "specular_indirect,variance,samples,nonfinite,CryptoObject,CryptoMaterial")
 
 
 # CPU seconds (user + system) of the finished child processes so far.
@@ -60,70 +68,101 @@ def timed(cmd, cwd):
     return wall, r.stdout
 
 
-def render_phases(report):
+def run_record(report):
     with open(report) as f:
-        t = json.load(f)["timings"]
-    return t["render"], t["total"] - t["render"]
+        rec = json.load(f)
+    t = rec["timings"]
+    return {"render": t["render"], "render_cpu": rec["performance"].get("render_cpu_seconds", 0.0), "total": t["total"],
+            "write": t["write"]}
 
 
 def merge_times(stdout):
     m = re.search(r"read and add ([0-9.]+) s \(CPU ([0-9.]+) s\), write ([0-9.]+) s \(CPU ([0-9.]+) s\)", stdout)
+    if not m:
+        raise SystemExit(f"the merge printed no times:\n{stdout}")
     return tuple(float(m.group(i)) for i in range(1, 5))
 
 
+def common(a):
+    return [a.scene, "--width", str(a.width), "--height", str(a.height), "--spp", str(a.spp), "--quiet"] + (
+        ["--threads", str(a.threads)] if a.threads else [])
+
+
+# One render of every sample: the renderer's own timers (run record) and the process's wall and CPU time.
 def single(a, tmp):
-    wall, _ = timed([a.exe, a.scene, "--width", str(a.width), "--height", str(a.height), "--spp", str(a.spp),
-                     "-o", "single.exr", "--quiet", "--report", "single.json"], tmp)
-    render, other = render_phases(os.path.join(tmp, "single.json"))
-    return {"wall": wall, "cpu": CPU[0], "render": render, "other": other, "merge": 0.0}
+    wall, _ = timed([a.exe, *common(a), "-o", "single.exr", "--report", "single.json"], tmp)
+    rec = run_record(os.path.join(tmp, "single.json"))
+    return {"proc_wall": wall, "proc_cpu": CPU[0], **rec, "merge": 0.0, "merge_cpu": 0.0, "merge_write": 0.0}
 
 
+# N shards one after another, then their merge, checked bit for bit against the single render.
 def sharded(a, n, tmp):
-    wall = cpu = render = other = 0.0
+    out = {"proc_wall": 0.0, "proc_cpu": 0.0, "render": 0.0, "render_cpu": 0.0, "total": 0.0, "write": 0.0}
     files = []
     for k in range(n):
         f = f"s{n}_{k}.ptshard"
-        w, _ = timed([a.exe, a.scene, "--width", str(a.width), "--height", str(a.height), "--spp", str(a.spp),
-                      "--shard", f"{k}/{n}", "--shard-out", f, "--quiet", "--report", "shard.json"], tmp)
-        r, o = render_phases(os.path.join(tmp, "shard.json"))
-        wall, cpu, render, other = wall + w, cpu + CPU[0], render + r, other + o
+        w, _ = timed([a.exe, *common(a), "--shard", f"{k}/{n}", "--shard-out", f, "--report", "shard.json"], tmp)
+        rec = run_record(os.path.join(tmp, "shard.json"))
+        out["proc_wall"] += w
+        out["proc_cpu"] += CPU[0]
+        for key in rec:
+            out[key] += rec[key]
         files.append(f)
-    w, out = timed([a.exe, "merge", *files, "-o", f"merged{n}.exr"], tmp)
-    cpu += CPU[0]
+    w, stdout = timed([a.exe, "merge", *files, "-o", f"merged{n}.exr"], tmp)
+    add, add_cpu, write, write_cpu = merge_times(stdout)
+    out["proc_wall"] += w
+    out["proc_cpu"] += CPU[0]
+    out.update(merge=add, merge_cpu=add_cpu + write_cpu, merge_write=write)
     check = subprocess.run(["idiff", "-fail", "0", "-warn", "0", "single.exr", f"merged{n}.exr"], cwd=tmp,
                            capture_output=True, text=True)
     if check.returncode != 0:
         raise SystemExit(f"the merge of {n} shards differs from the single render:\n{check.stdout}")
-    return {"wall": wall + w, "cpu": cpu, "render": render, "other": other, "merge": w}
+    return out
+
+
+def spread(values, fmt):
+    return f"{fmt(statistics.median(values))} [{fmt(min(values))}, {fmt(max(values))}]"
 
 
 def overhead(a, tmp):
     variants = ["1"] + [str(n) for n in a.shards]
     runs = {v: [] for v in variants}
     for r in range(a.rounds):
-        order = variants[r % len(variants):] + variants[:r % len(variants)]
-        if "1" in order[1:]:  # the single render first: the merges compare with it
-            order.remove("1")
-            order.insert(0, "1")
-        for v in order:
+        rest = variants[1:]
+        rest = rest[r % len(rest):] + rest[:r % len(rest)]
+        # The single render first (the merges compare with it), then the sharded variants, rotating.
+        for v in ["1"] + rest:
             runs[v].append(single(a, tmp) if v == "1" else sharded(a, int(v), tmp))
-    med = {v: {k: statistics.median(x[k] for x in runs[v]) for k in runs[v][0]} for v in variants}
-    base = med["1"]
-    print(f"Scene `{os.path.relpath(a.scene, REPO)}`, {a.width}x{a.height}, {a.spp} spp in total, path integrator;"
-          f" medians of {a.rounds} interleaved rounds.\n")
-    print("| variant | wall, all processes | CPU, all processes | render phases | parse+build+write |"
-          " merge (process) | overhead: wall | overhead: CPU |")
+        print(f"round {r + 1}/{a.rounds} done, load average {load_average()}", file=sys.stderr)
+    pct = lambda x: f"{100 * x:+.1f}%"  # noqa: E731
+    sec = lambda x: f"{x:.3f} s"  # noqa: E731
+    print(f"Scene `{os.path.relpath(a.scene, REPO)}`, {a.width}x{a.height}, {a.spp} spp in total, path integrator,"
+          f" {a.threads or 'all'} threads a process; {a.rounds} rounds, each the single render then the sharded"
+          f" variants (rotating); medians [smallest, largest]; overheads are paired with the same round's single"
+          f" render.\n")
+    print("| variant | render phases (wall) | render phases (CPU) | merge: read and add | merge: EXR write |"
+          " overhead: render + merge, wall | overhead: render + merge, CPU | overhead: every process, CPU |")
     print("|---|---|---|---|---|---|---|---|")
+    base = runs["1"]
     for v in variants:
-        m = med[v]
-        wall = "" if v == "1" else (f"{100 * (m['wall'] - base['wall']) / base['render']:+.1f}% of the render"
-                                    f" ({100 * (m['wall'] - m['merge'] - base['wall']) / base['render']:+.1f}%"
-                                    " without the merge)")
-        cpu = "" if v == "1" else f"{100 * (m['cpu'] - base['cpu']) / base['cpu']:+.1f}%"
-        name = "one render" if v == "1" else f"{v} shards + merge"
-        print(f"| {name} | {m['wall']:.3f} s | {m['cpu']:.3f} s | {m['render']:.3f} s | {m['other']:.3f} s |"
-              f" {m['merge']:.3f} s | {wall} | {cpu} |")
+        rs = runs[v]
+        if v == "1":
+            print(f"| one render | {spread([x['render'] for x in rs], sec)} | {spread([x['render_cpu'] for x in rs], sec)}"
+                  f" | | {spread([x['write'] for x in rs], sec)} | | | |")
+            continue
+        # Render phases plus the merge: in wall time its reading and adding (its EXR write is the single
+        # render's own cost too); in CPU time the whole merge, the write included (errs towards overhead).
+        wall = [(x["render"] + x["merge"] - b["render"]) / b["render"] for x, b in zip(rs, base)]
+        cpu = [(x["render_cpu"] + x["merge_cpu"] - b["render_cpu"]) / b["render_cpu"] for x, b in zip(rs, base)]
+        proc = [(x["proc_cpu"] - b["proc_cpu"]) / b["proc_cpu"] for x, b in zip(rs, base)]
+        print(f"| {v} shards + merge | {spread([x['render'] for x in rs], sec)} |"
+              f" {spread([x['render_cpu'] for x in rs], sec)} | {spread([x['merge'] for x in rs], sec)} |"
+              f" {spread([x['merge_write'] for x in rs], sec)} | {spread(wall, pct)} | {spread(cpu, pct)} |"
+              f" {spread(proc, pct)} |")
     print()
+    fixed = [(x["proc_cpu"] - x["render_cpu"]) / int(v) for v in variants[1:] for x in runs[v]]
+    print(f"Outside the render phase, a shard process costs {spread(fixed, sec)} of CPU (start-up, parse, build, the"
+          f" shard file; the single render's: {spread([x['proc_cpu'] - x['render_cpu'] for x in base], sec)}).\n")
 
 
 def big_merge(a, tmp):
@@ -133,7 +172,8 @@ def big_merge(a, tmp):
         for k in range(n):
             f = f"big{n}_{k}.ptshard"
             timed([a.exe, a.scene, "--width", str(a.merge_width), "--height", str(a.merge_height), "--spp", str(n),
-                   "--aov", ALL_AOVS, "--shard", f"{k}/{n}", "--shard-out", f, "--quiet"], tmp)
+                   "--aov", ALL_AOVS, "--shard", f"{k}/{n}", "--shard-out", f, "--quiet"] +
+                  (["--threads", str(a.threads)] if a.threads else []), tmp)
             files.append(f)
         sizes[n] = os.path.getsize(os.path.join(tmp, files[0]))
         times[n] = []
@@ -163,7 +203,7 @@ def ab_exact(a, tmp):
             for e, exe in (exes if r % 2 == 0 else exes[::-1]):
                 timed([exe, a.scene, "--width", str(a.width), "--height", str(a.height), "--spp", str(a.ab_spp),
                        "-o", "ab.exr", "--quiet", "--report", "ab.json", *extra], tmp)
-                runs[(v, e)].append((render_phases(os.path.join(tmp, "ab.json"))[0], CPU[0]))
+                runs[(v, e)].append((run_record(os.path.join(tmp, "ab.json"))["render"], CPU[0]))
     print(f"Exact sums against the doubles before them (`{a.baseline}`): `{os.path.relpath(a.scene, REPO)}`,"
           f" {a.width}x{a.height}, {a.ab_spp} spp; medians of {a.ab_rounds} alternating runs.\n")
     print("| film | render phase: baseline | render phase: exact sums | ratio |"
@@ -176,10 +216,15 @@ def ab_exact(a, tmp):
 
 
 def machine():
-    out = subprocess.run(["lscpu"], capture_output=True, text=True).stdout
+    out = pt_tools.lscpu()
     model = re.search(r"Model name:\s*(.*)", out)
     cpus = re.search(r"^CPU\(s\):\s*(\d+)", out, re.M)
     return f"{model.group(1).strip() if model else '?'}, {cpus.group(1) if cpus else '?'} CPUs"
+
+
+def load_average():
+    with open("/proc/loadavg") as f:
+        return " ".join(f.read().split()[:3])
 
 
 def main():
@@ -190,6 +235,7 @@ def main():
     p.add_argument("--height", type=int, default=360)
     p.add_argument("--spp", type=int, default=64)
     p.add_argument("--shards", default="2,4")
+    p.add_argument("--threads", type=int, default=0, help="--threads of every render (default: all)")
     p.add_argument("--rounds", type=int, default=5)
     p.add_argument("--merge-width", type=int, default=1920)
     p.add_argument("--merge-height", type=int, default=1080)
@@ -202,7 +248,7 @@ def main():
     a = p.parse_args()
     a.exe, a.scene = os.path.abspath(a.exe), os.path.abspath(a.scene)
     a.shards = [int(n) for n in a.shards.split(",")]
-    print(f"Machine: {machine()} (lscpu).\n")
+    print(f"Machine: {machine()} (lscpu); load average (1, 5, 15 min) at the start {load_average()}.\n")
     with tempfile.TemporaryDirectory() as tmp:
         if a.baseline:
             a.baseline = os.path.abspath(a.baseline)
@@ -211,6 +257,7 @@ def main():
             overhead(a, tmp)
         if not a.skip_merge:
             big_merge(a, tmp)
+    print(f"Load average at the end: {load_average()}.")
 
 
 if __name__ == "__main__":
