@@ -523,8 +523,11 @@ def configure(scene_json, args, conv):
     c.min_light_bounces = 0
     c.min_transparent_bounces = 0
     c.pixel_filter_type = "BOX"  # its width is ignored: a one-pixel box
-    s.render.threads_mode = "FIXED"
-    s.render.threads = args.threads
+    if args.threads > 0:
+        s.render.threads_mode = "FIXED"
+        s.render.threads = args.threads
+    else:
+        s.render.threads_mode = "AUTO"
     s.render.resolution_x = film.get("width", 640)
     s.render.resolution_y = film.get("height", 480)
     s.render.resolution_percentage = 100
