@@ -342,8 +342,7 @@ def build_shape(conv, i, shape):
     mat_name = shape.get("material")
     material = conv.materials.get(mat_name) if mat_name else conv.default_material
     if kind == "sphere":
-        if "pole" in shape and list(shape["pole"]) != [0, 1, 0]:
-            pass  # the pole only orients texture coordinates, which nothing here uses
+        # `pole` only orients texture coordinates, which nothing converted reads.
         mat = conv.scene.get("materials", {}).get(mat_name, {}) if mat_name else {}
         needs_mesh = (mat.get("type") in ("glass", "dielectric") or mat.get("refractive", False)
                       or any(e > 0 for e in mat.get("emission", [0, 0, 0])))
@@ -355,8 +354,7 @@ def build_shape(conv, i, shape):
         if "file" in shape:
             import_mesh_file(conv, where, name, shape["file"], matrix, material)
         else:
-            if "uvs" in shape:
-                pass  # texture coordinates: nothing converted reads them
+            # `uvs` (texture coordinates): nothing converted reads them.
             mesh_object(name, shape["positions"], shape["indices"], matrix, material, shape.get("normals"))
     else:
         conv.refuse(f"{where}: shape type '{kind}' (only sphere, quad, triangle, polygon and mesh are converted)")
@@ -433,7 +431,7 @@ def build_world(conv):
     bg.inputs["Strength"].default_value = env.get("intensity", 1.0)
 
 
-def build_camera(conv, width, height):
+def build_camera(conv):
     cam = conv.scene["camera"]
     kind = cam.get("type", "pinhole")
     if kind not in ("pinhole", "perspective", "thin_lens", "thinlens"):
@@ -554,7 +552,7 @@ def build(conv):
     for name, mat in scene_json.get("materials", {}).items():
         conv.materials[name] = build_material(conv, name, mat)
     conv.default_material = build_material(conv, "default", {"type": "lambert"})
-    build_camera(conv, 0, 0)
+    build_camera(conv)
     build_world(conv)
     for i, light in enumerate(scene_json.get("lights", [])):
         build_light(conv, i, light)

@@ -44,7 +44,7 @@ import pt_tools  # noqa: E402
 CONVERTER = os.path.join(HERE, "scene_to_cycles.py")
 
 
-def sized_scene(scene_path, width, height, out_dir):
+def sized_scene(scene_path, width, height):
     """A copy of the scene at the given size, written beside the original (relative paths keep working)."""
     scene = json.load(open(scene_path))
     if width:
@@ -113,9 +113,15 @@ def main():
     p.add_argument("--blender", default="blender")
     p.add_argument("--md", default=os.path.join(REPO, "docs", "bench", "peers.md"))
     p.add_argument("--json", default=os.path.join(REPO, "docs", "bench", "peers.json"))
+    p.add_argument("--rewrite", action="store_true",
+                   help="render nothing: rewrite --md from the runs recorded in --json (same other arguments)")
     a = p.parse_args()
+    if a.rewrite:
+        rec = json.load(open(a.json))
+        write_results(a, rec["runs"], rec["loads"])
+        return 0
 
-    scene = sized_scene(a.scene, a.width, a.height, None)
+    scene = sized_scene(a.scene, a.width, a.height)
     work = tempfile.mkdtemp(prefix="pt-tte-")
     loads = []
     try:
@@ -189,6 +195,14 @@ def write_results(a, runs, loads):
         f"{size}, {a.threads} threads each, target RMSE {a.target} against `{ref}` (ours at {a.ref_spp} spp), "
         f"{a.seeds} seeds, spp doubling from {a.min_spp}. Median time to the target over the seeds "
         "(min–max), interpolated log-log between the two spp counts around it.", "",
+        "Caveats: the reference is ours, so a bias of Cycles against ours shows as Cycles' error floor "
+        "(last row), and every RMSE includes the reference's own noise (the same for both renderers). "
+        "Cycles gets a sphere of refracting or emitting material as a 256 × 128 UV-sphere mesh "
+        "(`tools/peers/cycles/README.md`: it finds no exit from inside its exact point spheres), so its "
+        "total time includes that mesh's BVH and its path tracing intersects triangles where ours "
+        "intersects an analytic sphere. Samplers: ours `sobol` (the default), Cycles its default "
+        "progressive multi-jitter. Render time is what each renderer's own timer reports; Blender's "
+        "start-up (about a second) is in neither column.", "",
         "| | ours | Cycles 3.4 | ours / Cycles |", "|---|---|---|---|",
         f"| render time (ours: `timings.render`; Cycles: path tracing, its progress timer) | {fmt(s['ours']['render'])} | "
         f"{fmt(s['cycles']['render'])} | {ratio('render')} |",
