@@ -60,6 +60,7 @@ double image_mean(const std::string& file, int& width, int& height) {
 class CyclesPeer : public AppTest {
  protected:
   void SetUp() override {
+    AppTest::SetUp();  // the test's own scratch folder
     if (std::string(PT_BLENDER_EXE).empty()) GTEST_SKIP() << "blender not found (Debian: apt-get install blender)";
   }
   RunResult cycles(const std::string& scene, const std::string& out, int spp) {
