@@ -4,6 +4,7 @@
 // smaller than the image giving the very same values.
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <condition_variable>
 #include <filesystem>
 #include <functional>
@@ -213,6 +214,42 @@ TEST_F(CachedTextures, ASmallCacheGivesTheSameValues) {
     ASSERT_EQ(a.eval(tc), b.eval(tc)) << i;
   }
   EXPECT_EQ(small.failure(), "");
+}
+
+// Every stored value of 8- and 16-bit files is decoded through a table
+// (srgb_input.cpp): colour channels by the sRGB curve, alpha as stored. A
+// 256 x 1 8-bit RGBA image holds every code in its colour channels (and the
+// code reversed in alpha); a 16-bit one samples the range.
+TEST_F(CachedTextures, EveryStoredValueIsDecoded) {
+  for (const int bits : {8, 16}) {
+    const int n = 256, max = (1 << bits) - 1;
+    std::vector<uint16_t> codes(static_cast<std::size_t>(n) * 4);
+    for (int x = 0; x < n; ++x) {
+      const int v = bits == 8 ? x : (x * 257 + x * 13) % (max + 1);
+      codes[4 * x] = codes[4 * x + 1] = codes[4 * x + 2] = static_cast<uint16_t>(v);
+      codes[4 * x + 3] = static_cast<uint16_t>(max - v);
+    }
+    const std::string path = (dir_ / ("codes" + std::to_string(bits) + ".png")).string();
+    auto out = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(out != nullptr);
+    const OIIO::TypeDesc type = bits == 8 ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16;
+    OIIO::ImageSpec spec(n, 1, 4, type);
+    spec.attribute("oiio:UnassociatedAlpha", 1);  // stored as given, not divided by alpha
+    ASSERT_TRUE(out->open(path, spec)) << out->geterror();
+    const std::vector<unsigned char> bytes(codes.begin(), codes.end());
+    ASSERT_TRUE(bits == 8 ? out->write_image(type, bytes.data()) : out->write_image(type, codes.data()))
+        << out->geterror();
+    out->close();
+    TextureCache cache;
+    const Texture t = open(cache, path, TextureFilter::Point);
+    for (int x = 0; x < n; ++x) {
+      const TexCoord at(Vec2f((static_cast<float>(x) + 0.5f) / n, 0.5f));
+      const float v = static_cast<float>(codes[4 * x]) / static_cast<float>(max);
+      const float a = static_cast<float>(codes[4 * x + 3]) / static_cast<float>(max);
+      ASSERT_NEAR(t.eval(at).g, srgb_to_linear(v), 1e-3f * srgb_to_linear(v) + 1e-7f) << bits << " bits, code " << codes[4 * x];
+      ASSERT_NEAR(t.alpha(at), a, 1e-3f * a + 1e-7f) << bits << " bits, code " << codes[4 * x + 3];
+    }
+  }
 }
 
 // A thread that outlives the caches, as a thread pool's worker does: it runs
