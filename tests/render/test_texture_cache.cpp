@@ -4,8 +4,14 @@
 // smaller than the image giving the very same values.
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <condition_variable>
 #include <filesystem>
+#include <functional>
+#include <memory>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -208,6 +214,125 @@ TEST_F(CachedTextures, ASmallCacheGivesTheSameValues) {
     ASSERT_EQ(a.eval(tc), b.eval(tc)) << i;
   }
   EXPECT_EQ(small.failure(), "");
+}
+
+// Every stored value of 8- and 16-bit files is decoded through a table
+// (srgb_input.cpp): colour channels by the sRGB curve, alpha as stored. A
+// 256 x 1 8-bit RGBA image holds every code in its colour channels (and the
+// code reversed in alpha); a 16-bit one samples the range.
+TEST_F(CachedTextures, EveryStoredValueIsDecoded) {
+  for (const int bits : {8, 16}) {
+    const int n = 256, max = (1 << bits) - 1;
+    std::vector<uint16_t> codes(static_cast<std::size_t>(n) * 4);
+    for (int x = 0; x < n; ++x) {
+      const int v = bits == 8 ? x : (x * 257 + x * 13) % (max + 1);
+      codes[4 * x] = codes[4 * x + 1] = codes[4 * x + 2] = static_cast<uint16_t>(v);
+      codes[4 * x + 3] = static_cast<uint16_t>(max - v);
+    }
+    const std::string path = (dir_ / ("codes" + std::to_string(bits) + ".png")).string();
+    auto out = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(out != nullptr);
+    const OIIO::TypeDesc type = bits == 8 ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16;
+    OIIO::ImageSpec spec(n, 1, 4, type);
+    spec.attribute("oiio:UnassociatedAlpha", 1);  // stored as given, not divided by alpha
+    ASSERT_TRUE(out->open(path, spec)) << out->geterror();
+    const std::vector<unsigned char> bytes(codes.begin(), codes.end());
+    ASSERT_TRUE(bits == 8 ? out->write_image(type, bytes.data()) : out->write_image(type, codes.data()))
+        << out->geterror();
+    out->close();
+    TextureCache cache;
+    const Texture t = open(cache, path, TextureFilter::Point);
+    for (int x = 0; x < n; ++x) {
+      const TexCoord at(Vec2f((static_cast<float>(x) + 0.5f) / n, 0.5f));
+      const float v = static_cast<float>(codes[4 * x]) / static_cast<float>(max);
+      const float a = static_cast<float>(codes[4 * x + 3]) / static_cast<float>(max);
+      ASSERT_NEAR(t.eval(at).g, srgb_to_linear(v), 1e-3f * srgb_to_linear(v) + 1e-7f) << bits << " bits, code " << codes[4 * x];
+      ASSERT_NEAR(t.alpha(at), a, 1e-3f * a + 1e-7f) << bits << " bits, code " << codes[4 * x + 3];
+    }
+  }
+}
+
+// A thread that outlives the caches, as a thread pool's worker does: it runs
+// one job at a time, handed over by run().
+class Worker {
+ public:
+  Worker() : thread_([this] { loop(); }) {}
+  ~Worker() {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      quit_ = true;
+    }
+    changed_.notify_all();
+    thread_.join();
+  }
+  // Runs `job` on the worker and waits for it.
+  void run(std::function<void()> job) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    job_ = std::move(job);
+    pending_ = true;
+    changed_.notify_all();
+    changed_.wait(lock, [this] { return !pending_; });
+  }
+
+ private:
+  void loop() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    for (;;) {
+      changed_.wait(lock, [this] { return pending_ || quit_; });
+      if (quit_) return;
+      job_();
+      pending_ = false;
+      changed_.notify_all();
+    }
+  }
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::function<void()> job_;
+  bool pending_ = false, quit_ = false;
+  std::thread thread_;  // last: started once the rest is ready
+};
+
+// Caches created and destroyed one after another in one process while a
+// thread that outlives them looks up in each, as a program rendering several
+// scenes does (the regression goldens, a test binary). OpenImageIO 2.4 keeps a
+// thread's state for a cache in a thread-specific pointer keyed by the cache's
+// address: the worker's state outlived its cache, a later cache at the same
+// address took it over unregistered, and its tiles outlived that cache in turn
+// (an abort in ImageCacheImpl::decr_tiles, or a crash). Every cache gives the
+// values of the first, alone or with two alive at once, destroyed in either
+// order.
+TEST_F(CachedTextures, CachesComeAndGoAcrossThreads) {
+  const int n = 256;
+  std::vector<unsigned char> px(static_cast<std::size_t>(n) * n * 3);
+  for (std::size_t i = 0; i < px.size(); ++i) px[i] = static_cast<unsigned char>((i * 2654435761u) >> 24);
+  const std::string image = write("noise.png", n, n, 3, px);
+  Worker worker;
+  const auto look_up = [&](const TextureCache& cache) {
+    const Texture t = open(cache, image, TextureFilter::Anisotropic);
+    std::vector<float> out(2048);
+    worker.run([&] {
+      for (std::size_t i = 0; i < out.size(); ++i) {
+        const float x = static_cast<float>(i);
+        const float w = std::ldexp(1.0f, -static_cast<int>(i % 9));
+        out[i] = t.eval(TexCoord(Vec2f(std::fmod(0.618034f * x, 1.0f), std::fmod(0.414214f * x, 1.0f)), {w, 0.0f},
+                                 {0.0f, w})).g;
+      }
+    });
+    EXPECT_EQ(cache.failure(), "");
+    return out;
+  };
+  std::vector<float> first;
+  for (int round = 0; round < 24; ++round) {
+    auto a = std::make_unique<TextureCache>(uint64_t{1} << 20);  // small: tiles come and go
+    const std::vector<float> from_a = look_up(*a);
+    if (round == 0) first = from_a;
+    ASSERT_EQ(from_a, first) << "round " << round;
+    if (round % 3 == 0) continue;  // one cache alone
+    auto b = std::make_unique<TextureCache>(uint64_t{1} << 20);
+    ASSERT_EQ(look_up(*b), first) << "round " << round;
+    ASSERT_EQ(look_up(*a), first) << "round " << round;
+    if (round % 3 == 1) a.reset();  // a first, then b; else b first
+  }
 }
 
 }  // namespace

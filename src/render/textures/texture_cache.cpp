@@ -8,6 +8,7 @@
 #include <OpenImageIO/imagecache.h>
 #include <OpenImageIO/imageio.h>
 #include <OpenImageIO/texture.h>
+#include <tbb/enumerable_thread_specific.h>
 
 #include "core/file_access.h"
 #include "render/textures/srgb_input.h"
@@ -16,9 +17,27 @@ namespace pt {
 
 namespace fs = std::filesystem;
 
+// Each thread's OpenImageIO state for this cache (its tile microcache, its
+// map of file names) is created here and destroyed with the cache, never left
+// to OpenImageIO's thread-specific pointer: in OpenImageIO 2.4 that pointer is
+// a member of the cache keyed by the cache's address, and the entries of
+// threads other than the destroying one outlive the cache. A thread pool's
+// worker then handed its stale state, still holding tiles, to the next cache
+// allocated at the same address, and a later cache's tile accounting went
+// negative (an abort in ImageCacheImpl::decr_tiles; docs/textures.md).
+using Perthread = OIIO::TextureSystem::Perthread;
+
 struct TextureCache::Impl {
   OIIO::ImageCache* images = nullptr;
   OIIO::TextureSystem* textures = nullptr;
+  tbb::enumerable_thread_specific<Perthread*> perthread{nullptr};
+
+  // The calling thread's state, created on its first lookup.
+  Perthread* thread_info() {
+    Perthread*& p = perthread.local();
+    if (p == nullptr) p = textures->create_thread_info();
+    return p;
+  }
 };
 
 namespace {
@@ -109,6 +128,8 @@ TextureCache::TextureCache(uint64_t max_bytes) : impl_(std::make_unique<Impl>())
 }
 
 TextureCache::~TextureCache() {
+  for (Perthread* p : impl_->perthread)
+    if (p != nullptr) impl_->textures->destroy_thread_info(p);
   OIIO::TextureSystem::destroy(impl_->textures);
   OIIO::ImageCache::destroy(impl_->images);
 }
@@ -131,7 +152,8 @@ bool TextureCache::open(const std::string& path, bool raw, TextureFilter filter,
   }
   CachedImage& img = out.image;
   img.cache = this;
-  img.handle = impl_->textures->get_texture_handle(OIIO::ustring(name));
+  Perthread* const thread_info = impl_->thread_info();
+  img.handle = impl_->textures->get_texture_handle(OIIO::ustring(name), thread_info);
   img.channels = spec.nchannels;
   img.alpha_channel = spec.alpha_channel;
   img.filter = filter;
@@ -143,7 +165,7 @@ bool TextureCache::open(const std::string& path, bool raw, TextureFilter filter,
   float probe[4];
   const int n = std::min(img.channels, 4);
   if (img.handle == nullptr ||
-      !impl_->textures->texture(static_cast<OIIO::TextureSystem::TextureHandle*>(img.handle), nullptr, opt, 0.5f,
+      !impl_->textures->texture(static_cast<OIIO::TextureSystem::TextureHandle*>(img.handle), thread_info, opt, 0.5f,
                                 0.5f, 1.0f, 0.0f, 0.0f, 1.0f, n, probe)) {
     error = first_line(impl_->textures->geterror());
     return false;
@@ -154,7 +176,7 @@ bool TextureCache::open(const std::string& path, bool raw, TextureFilter filter,
 void TextureCache::lookup(const CachedImage& image, Vec2f st, Vec2f dstdx, Vec2f dstdy, int first, int n,
                           float* out) const {
   OIIO::TextureOpt opt = options(image, first);
-  if (impl_->textures->texture(static_cast<OIIO::TextureSystem::TextureHandle*>(image.handle), nullptr, opt, st.x,
+  if (impl_->textures->texture(static_cast<OIIO::TextureSystem::TextureHandle*>(image.handle), impl_->thread_info(), opt, st.x,
                                st.y, dstdx.x, dstdx.y, dstdy.x, dstdy.y, n, out))
     return;
   for (int i = 0; i < n; ++i) out[i] = 0.0f;

@@ -65,6 +65,7 @@ def main():
     configs = [("none", None, "source"), ("decode", None, "source"), ("cache", 256, "source"),
                ("cache", 16, "tx"), ("cache", 64, "tx"), ("cache", 256, "tx")]
     results = {c: [] for c in configs}
+    load_start = os.getloadavg()
     with tempfile.TemporaryDirectory() as tmp:
         make_tx(tmp)
         folders = {"source": SPONZA, "tx": tmp}
@@ -77,8 +78,10 @@ def main():
         rows.append({"mode": c[0], "cache_mib": c[1], "files": c[2], "images": r[0]["images"],
                      "peak_rss_mib": statistics.median(x["peak_rss_kib"] for x in r) / 1024.0,
                      "open_seconds": statistics.median(x["open_seconds"] for x in r),
-                     "lookup_seconds": statistics.median(x["lookup_seconds"] for x in r), "runs": r})
-    doc = {"lookups": a.lookups, "runs": a.runs, "machine": lscpu(), "rows": rows}
+                     "lookup_seconds": statistics.median(x["lookup_seconds"] for x in r),
+                     "repeat_seconds": statistics.median(x["repeat_seconds"] for x in r), "runs": r})
+    load = {"start": list(load_start), "end": list(os.getloadavg())}
+    doc = {"lookups": a.lookups, "runs": a.runs, "machine": lscpu(), "load_average": load, "rows": rows}
     if a.quick:
         print(json.dumps(rows, indent=1))
         return
@@ -90,16 +93,23 @@ def main():
              "log-uniform from 1/4096 to the whole image). Peak resident set of one process per row; the textures' "
              "share is the peak minus the baseline (`none`: OpenImageIO loaded, nothing opened, %.1f MiB). "
              "24 images (22 of 1024 x 1024, 23.3 million texels), 16 MB of JPEG and PNG files." % (a.runs, a.lookups, base),
-             "", "| how | files | cache | peak RSS (MiB) | textures (MiB) | open (s) | lookups (s) |",
-             "|---|---|---|---|---|---|---|"]
+             "Lookups: the first pass (reading the tiles it needs), then the same lookups again (`repeat`), in "
+             "thousands of lookups per second.",
+             "", "| how | files | cache | peak RSS (MiB) | textures (MiB) | open (s) | lookups (s) | k lookups/s | "
+             "repeat k lookups/s |",
+             "|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         how = {"none": "nothing opened", "decode": "decoded into memory (before)", "cache": "TextureSystem"}[r["mode"]]
         cache = "%d MiB" % r["cache_mib"] if r["cache_mib"] else "-"
         files = "sources" if r["files"] == "source" else "maketx .tx"
-        lines.append("| %s | %s | %s | %.1f | %.1f | %.2f | %.2f |" % (how, files, cache, r["peak_rss_mib"],
-                                                                      r["peak_rss_mib"] - base, r["open_seconds"],
-                                                                      r["lookup_seconds"]))
-    lines += ["", "Machine:", "", "```", doc["machine"].strip(), "```", ""]
+        rate = lambda seconds: "%.0f" % (a.lookups / seconds / 1000.0) if seconds > 0 and r["mode"] != "none" else "-"
+        lines.append("| %s | %s | %s | %.1f | %.1f | %.2f | %.2f | %s | %s |" % (
+            how, files, cache, r["peak_rss_mib"], r["peak_rss_mib"] - base, r["open_seconds"], r["lookup_seconds"],
+            rate(r["lookup_seconds"]), rate(r["repeat_seconds"])))
+    lines += ["", "Load average (1, 5, 15 min; the machine is shared, so times are comparable within this table "
+              "only): %s at the start, %s at the end." % (", ".join("%.1f" % x for x in load["start"]),
+                                                          ", ".join("%.1f" % x for x in load["end"])),
+              "", "Machine:", "", "```", doc["machine"].strip(), "```", ""]
     with open(os.path.join(REPO, "docs", "bench", "texture-memory.md"), "w") as f:
         f.write("\n".join(lines))
 

@@ -57,6 +57,10 @@ def render(exe, scene, out, spp, sets, threads):
     subprocess.run(cmd, check=True)
 
 
+def load_text(load):
+    return ", ".join("%.1f" % x for x in load)
+
+
 def error(imgerr, test, ref, rect=None):
     cmd = [imgerr, test, ref, "--json"] + (["--rect", rect] if rect else [])
     return json.loads(subprocess.run(cmd, check=True, text=True, capture_output=True).stdout)["rmse"]
@@ -72,6 +76,7 @@ def main():
     a = p.parse_args()
     if a.quick:
         a.reference_spp = 256
+    load_start = os.getloadavg()
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         scene = os.path.join(tmp, "floor.json")
@@ -94,7 +99,8 @@ def main():
     if a.quick:
         print(json.dumps(rows, indent=1))
         return
-    doc = {"reference_spp": a.reference_spp, "rows": rows, "machine": lscpu()}
+    load = {"start": list(load_start), "end": list(os.getloadavg())}
+    doc = {"reference_spp": a.reference_spp, "rows": rows, "machine": lscpu(), "load_average": load}
     with open(os.path.join(REPO, "docs", "bench", "texture-aliasing.json"), "w") as f:
         json.dump(doc, f, indent=1)
     point = rows[0]
@@ -110,8 +116,10 @@ def main():
                                                                  point["rmse_far_1"] / r["rmse_far_1"], r["rmse_16"],
                                                                  r["rmse_far_16"]))
     lines += ["", "1 spp, point lookups: ![point](texture-aliasing-point.png) anisotropic: "
-              "![anisotropic](texture-aliasing-anisotropic.png)", "", "Machine:", "", "```", doc["machine"].strip(),
-              "```", ""]
+              "![anisotropic](texture-aliasing-anisotropic.png)", "",
+              "Load average (1, 5, 15 min; the machine is shared): %s at the start, %s at the end (errors do not depend "
+              "on it)." % (load_text(load["start"]), load_text(load["end"])), "", "Machine:", "", "```",
+              doc["machine"].strip(), "```", ""]
     with open(os.path.join(REPO, "docs", "bench", "texture-aliasing.md"), "w") as f:
         f.write("\n".join(lines))
 
