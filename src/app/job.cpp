@@ -7,6 +7,7 @@
 #include "app/options.h"
 #include "app/outputs.h"
 #include "core/diagnostics.h"
+#include "imagelib/image_library.h"
 #include "io/image_io.h"
 #include "scene/loader.h"
 
@@ -174,6 +175,17 @@ bool checkpoint_job(const Options& o, Job& job, Messages& m) {
   return true;
 }
 
+// The image module (imagelib/image_library.h), loaded before rendering when
+// an output needs it, so that a module that cannot be loaded loses no render.
+// Not earlier: a usage error, a bad scene or a pre-flight refusal never loads it.
+bool load_image_module(const Options& o, Messages& m) {
+  if (o.replaying() || std::none_of(o.outputs.begin(), o.outputs.end(), needs_image_library)) return true;
+  std::string error;
+  if (image_library(error) != nullptr) return true;
+  m.error(error);
+  return false;
+}
+
 }  // namespace
 
 void Messages::add(const Diagnostics& diag, bool quiet) {
@@ -223,7 +235,7 @@ std::optional<Job> prepare_job(const Options& o, Messages& m, int& status) {
   status = kExitUsage;
   if (!plan_shard(o, job, m)) return std::nullopt;
   status = kExitFailure;
-  if (!checkpoint_job(o, job, m)) return std::nullopt;
+  if (!checkpoint_job(o, job, m) || !load_image_module(o, m)) return std::nullopt;
   return job;
 }
 

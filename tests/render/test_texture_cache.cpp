@@ -13,7 +13,7 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include "render/textures/srgb_input.h"
+#include "core/color.h"
 #include "render/textures/texture.h"
 
 namespace pt {
