@@ -28,6 +28,7 @@
 #include <utility>
 #include <vector>
 
+#include "io/exr_settings.h"
 #include "io/image_metadata.h"
 #include "io/layered_image.h"
 

@@ -11,6 +11,7 @@
 
 #include "core/image.h"
 #include "io/display.h"
+#include "io/exr_settings.h"
 #include "io/image_metadata.h"
 #include "io/layered_image.h"
 #include "scene/scene_description.h"

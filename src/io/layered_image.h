@@ -29,12 +29,4 @@ struct LayeredImage {
   std::size_t pixel_count() const { return static_cast<std::size_t>(width) * static_cast<std::size_t>(height); }
 };
 
-// How EXR files are written (--exr-compression, --multipart; docs/output.md).
-struct ExrSettings {
-  // OpenImageIO's name of the OpenEXR compression (exr_compression_names());
-  // "dwaa" and "dwab" may carry a level, "dwaa:45" (the default, 45).
-  std::string compression = "zip";
-  bool multipart = false;  // one part per layer instead of one part for all
-};
-
 }  // namespace pt

@@ -13,7 +13,7 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include "core/color.h"
+#include "core/srgb.h"
 #include "render/textures/texture.h"
 
 namespace pt {

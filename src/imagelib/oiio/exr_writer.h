@@ -6,6 +6,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "io/exr_settings.h"
 #include "io/image_metadata.h"
 #include "io/layered_image.h"
 

@@ -8,7 +8,7 @@
 
 #include <OpenImageIO/half.h>
 
-#include "core/color.h"
+#include "core/srgb.h"
 #include "imagelib/image_library.h"
 
 namespace pt {

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "core/srgb.h"
 #include "render/film/film.h"
 #include "render/integrators/builtin.h"
 #include "render/integrators/render_loop.h"

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/file_access.h"
+#include "core/srgb.h"
 #include "imagelib/image_library.h"
 
 namespace pt {

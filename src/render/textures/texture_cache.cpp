@@ -18,6 +18,16 @@ struct TextureCache::Impl {
   std::once_flag once;
   std::unique_ptr<TextureSystem> textures;
   std::string error;  // why there is none
+
+  // The texture system, made on the first call; nullptr and `why` if the
+  // image module cannot be loaded.
+  TextureSystem* system(uint64_t max_bytes, std::string& why) {
+    std::call_once(once, [&] {
+      if (const ImageLibrary* lib = image_library(error)) textures = lib->texture_system(max_bytes);
+    });
+    if (!textures) why = error;
+    return textures.get();
+  }
 };
 
 namespace {
@@ -87,17 +97,10 @@ TextureCache::TextureCache(uint64_t max_bytes) : impl_(std::make_unique<Impl>())
 
 TextureCache::~TextureCache() = default;
 
-TextureSystem* TextureCache::system(std::string& error) const {
-  std::call_once(impl_->once, [this] {
-    if (const ImageLibrary* lib = image_library(impl_->error)) impl_->textures = lib->texture_system(max_bytes_);
-  });
-  if (!impl_->textures) error = impl_->error;
-  return impl_->textures.get();
-}
-
 bool TextureCache::open(const std::string& path, bool raw, TextureFilter filter, TextureWrap wrap,
                         const TextureLimits& limits, OpenedImage& out, std::string& error) const {
-  TextureSystem* textures = system(error);
+  // Also when the image module cannot be loaded: the error names it.
+  TextureSystem* textures = impl_->system(max_bytes_, error);
   if (textures == nullptr) return false;
   const ImageLibrary& lib = *loaded_image_library();
   ImageHeader spec;
@@ -156,7 +159,7 @@ std::string TextureCache::failure() const {
 
 std::string TextureCache::statistics(int level) const {
   std::string error;
-  const TextureSystem* textures = system(error);
+  const TextureSystem* textures = impl_->system(max_bytes_, error);
   return textures != nullptr ? textures->statistics(level) : error;
 }
 

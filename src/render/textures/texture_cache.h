@@ -1,5 +1,4 @@
-// Image textures through OpenImageIO's TextureSystem (docs/textures.md; in the
-// image module, imagelib/image_library.h, loaded on the first open()): MIP
+// Image textures through OpenImageIO's TextureSystem (docs/textures.md): MIP
 // maps (a file's own, or levels the cache makes from the finest), tiles read
 // when a lookup needs them and kept in a cache of bounded size, filtered
 // lookups over a footprint. One TextureCache per render scene (no shared,
@@ -19,12 +18,11 @@
 namespace pt {
 
 class TextureCache;
-class TextureSystem;
 
 // One image as the cache knows it: what a lookup needs.
 struct CachedImage {
   const TextureCache* cache = nullptr;
-  void* handle = nullptr;  // the image module's TextureSystem::handle
+  void* handle = nullptr;  // OIIO::TextureSystem::TextureHandle
   int channels = 0;        // in the file: 1 grey, 2 grey + alpha, 3 RGB, 4 RGBA, ...
   int alpha_channel = -1;  // -1: none
   TextureFilter filter = TextureFilter::Anisotropic;
@@ -53,8 +51,7 @@ class TextureCache {
   // the file declares is checked against `limits` first (nothing is decoded
   // for a file beyond them), then the coarsest level is read, which for an
   // image without MIP levels reads every texel, so that a truncated or corrupt
-  // image is refused here, not in the middle of a render (also when the image
-  // module cannot be loaded: the error names it). `raw`: texel values
+  // image is refused here, not in the middle of a render. `raw`: texel values
   // as stored; otherwise integer images are sRGB-decoded unless the file says
   // it is linear (float images are linear). Returns false and fills `error`.
   bool open(const std::string& path, bool raw, TextureFilter filter, TextureWrap wrap, const TextureLimits& limits,
@@ -74,9 +71,6 @@ class TextureCache {
 
  private:
   void record_failure(const std::string& what) const;
-  // The texture system, made on the first call; nullptr and `error` if the
-  // image module cannot be loaded.
-  TextureSystem* system(std::string& error) const;
 
   struct Impl;
   std::unique_ptr<Impl> impl_;
