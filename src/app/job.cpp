@@ -7,6 +7,7 @@
 #include "app/options.h"
 #include "app/outputs.h"
 #include "core/diagnostics.h"
+#include "imagelib/image_library.h"
 #include "io/image_io.h"
 #include "scene/loader.h"
 
@@ -174,6 +175,19 @@ bool checkpoint_job(const Options& o, Job& job, Messages& m) {
   return true;
 }
 
+// The image module (imagelib/image_library.h), loaded before rendering when
+// an output needs it, so that a module that cannot be loaded loses no render,
+// and before the memory pre-flight, which measures what is resident (the
+// module's libraries are ~125 MiB of it). Not earlier: usage errors, bad
+// scenes and refused outputs never load it.
+bool load_image_module(const Options& o, Messages& m) {
+  if (o.replaying() || std::none_of(o.outputs.begin(), o.outputs.end(), needs_image_library)) return true;
+  std::string error;
+  if (image_library(error) != nullptr) return true;
+  m.error(error);
+  return false;
+}
+
 }  // namespace
 
 void Messages::add(const Diagnostics& diag, bool quiet) {
@@ -219,7 +233,7 @@ std::optional<Job> prepare_job(const Options& o, Messages& m, int& status) {
     status = kExitUsage;
     return std::nullopt;
   }
-  if (!check_job_memory(o, job, m, status)) return std::nullopt;
+  if (!load_image_module(o, m) || !check_job_memory(o, job, m, status)) return std::nullopt;
   status = kExitUsage;
   if (!plan_shard(o, job, m)) return std::nullopt;
   status = kExitFailure;

@@ -13,10 +13,9 @@
 #include <variant>
 #include <vector>
 
-#include <OpenImageIO/imageio.h>
-
 #include "accel/embree/compact.h"
 #include "core/file_access.h"
+#include "imagelib/image_library.h"
 #include "render/textures/texture.h"
 #include "scene/scene_description.h"
 
@@ -108,12 +107,14 @@ uint64_t texture_bytes(const SceneDescription& scene, const TextureLimits& limit
   // into memory at `bytes_per_texel`.
   const auto add = [&](const std::string& path, uint64_t bytes_per_texel, bool cache) {
     if (!why_unreadable(path).empty()) return;  // no FIFO or device is opened; the build reports it
-    const std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);  // the header only
-    if (!in) {
-      (void)OIIO::geterror();  // the build reports the file
-      return;
-    }
-    const OIIO::ImageSpec& spec = in->spec();
+    // The header only, through the image module (loaded here: the render
+    // reads these images anyway). If it cannot be loaded, or the file read,
+    // the build reports it.
+    std::string error;
+    const ImageLibrary* lib = image_library(error);
+    const std::unique_ptr<ImageReader> in = lib != nullptr ? lib->open(path, false, error) : nullptr;
+    if (!in) return;
+    const ImageHeader& spec = in->header();
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) return;
     const uint64_t texels = static_cast<uint64_t>(spec.width) * static_cast<uint64_t>(spec.height);
     // An image the loader would refuse (a volume, or beyond the texture

@@ -65,7 +65,8 @@ std::string version_text() {
   os << "pathtracer " << v.pathtracer << '\n'
      << "  Embree " << v.embree << " (tasking: " << v.embree_tasking << ", native packets: "
      << v.embree_native_packets << ")\n"
-     << "  OpenImageIO " << v.openimageio << '\n'
+     << "  OpenImageIO " << v.openimageio << " (image module " << v.image_module << ", " << v.image_module_origin
+     << "; loaded on the first image read or written)\n"
      << "  OpenEXR " << v.openexr << '\n'
      << "  OpenColorIO " << v.opencolorio << '\n'
      << "  oneTBB " << v.tbb << '\n'

@@ -4,9 +4,10 @@
 
 #include <OpenColorIO/OpenColorIO.h>
 #include <OpenEXR/OpenEXRConfig.h>
-#include <OpenImageIO/imageio.h>
 #include <embree3/rtcore.h>
 #include <oneapi/tbb/version.h>
+
+#include "imagelib/image_library.h"
 
 namespace pt {
 namespace {
@@ -36,7 +37,10 @@ std::string embree_packets(RTCDevice device) {
                                                              {RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED, "8"},
                                                              {RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED, "16"}};
   for (const auto& [property, name] : sizes)
-    if (rtcGetDeviceProperty(device, property) != 0) s += (s.empty() ? "" : " ") + std::string(name);
+    if (rtcGetDeviceProperty(device, property) != 0) {
+      if (!s.empty()) s += ' ';
+      s += name;
+    }
   return s.empty() ? "none" : s;
 }
 
@@ -60,9 +64,12 @@ SoftwareVersions software_versions() {
   v.embree_tasking = embree_tasking(device);
   v.embree_native_packets = embree_packets(device);
   if (device != nullptr) rtcReleaseDevice(device);
-  const int oiio = OIIO::openimageio_version();
-  v.openimageio = std::to_string(oiio / 10000) + "." + std::to_string(oiio / 100 % 100) + "." +
-                  std::to_string(oiio % 100);
+  // OpenImageIO's own answer once the image module is loaded (a render that
+  // wrote an image); before that, and in --version, which loads nothing, the
+  // version the module was built with.
+  const ImageLibrary* images = loaded_image_library();
+  v.openimageio = images != nullptr ? images->version() : PT_OIIO_BUILD_VERSION;
+  v.image_module = image_module_path(&v.image_module_origin);
   v.openexr = OPENEXR_VERSION_STRING;
   v.opencolorio = OCIO_NAMESPACE::GetVersion();
   v.tbb = TBB_runtime_version();

@@ -10,11 +10,8 @@
 #include <limits>
 #include <memory>
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
-
+#include "imagelib/image_library.h"
 #include "io/atomic_file.h"
-#include "io/exr_layers.h"
 
 namespace pt {
 
@@ -84,78 +81,64 @@ bool write_ppm(const std::string& path, const Image& image, const DisplayEncoder
   return write_bytes(path, file.data(), file.size(), error);
 }
 
+// The image module, loaded on the first image written or read (nullptr and
+// `error` if it cannot be).
+const ImageLibrary* library(std::string& error) { return image_library(error); }
+
 // The metadata of a PNG or JPEG, as text: PNG keeps every string attribute
 // as a tEXt chunk but drops numbers, so numbers are written as text too
 // ("pathtracer:partial" = "1"). OpenImageIO's JPEG writer keeps only the
 // attributes it maps to EXIF/IPTC, so a JPEG gets them all as lines of its
 // comment (ImageDescription, the JPEG COM marker), after the display line.
-void add_display_metadata(OIIO::ImageSpec& spec, const ImageMetadata& metadata, bool jpeg,
-                          const std::string& description) {
-  std::vector<std::pair<std::string, std::string>> text = metadata.strings;
-  for (const auto& [name, value] : metadata.ints) text.emplace_back(name, std::to_string(value));
+void add_display_metadata(DisplayImageFile& file, const ImageMetadata& metadata, const std::string& description) {
+  file.text = metadata.strings;
+  for (const auto& [name, value] : metadata.ints) file.text.emplace_back(name, std::to_string(value));
   for (const auto& [name, value] : metadata.floats) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.9g", static_cast<double>(value));
-    text.emplace_back(name, buf);
+    file.text.emplace_back(name, buf);
   }
   std::string comment = description;
-  for (const auto& [name, value] : text) {
-    spec.attribute(name, value);
-    comment += "\n" + name + ": " + value;
-  }
-  spec.attribute("ImageDescription", jpeg ? comment : description);
+  for (const auto& [name, value] : file.text) comment += "\n" + name + ": " + value;
+  file.description = file.format == "jpeg" ? comment : description;
 }
 
-// Writes through OpenImageIO with an explicit format name (the temporary file's
-// name does not end in the real extension). The file is encoded in memory and
-// then written with write_bytes: OpenImageIO's PNG writer does not check its
-// writes (a full disk left a truncated file and reported success) and libjpeg
-// ends the process on a failed write, so neither touches the disk itself.
-// `alpha` (8-bit formats only): empty, or one straight alpha per pixel.
-bool write_oiio(const std::string& path, const char* format, const Image& image, const DisplaySettings& settings,
-                const DisplayEncoder* display, const ImageMetadata& metadata, std::string& error,
-                const std::vector<float>& alpha = {}) {
-  auto out = OIIO::ImageOutput::create(format);
-  if (!out) {
-    error = OIIO::geterror();
-    return false;
-  }
-  const bool is_float = std::strcmp(format, "openexr") == 0;
-  const int channels = alpha.empty() || is_float ? 3 : 4;
-  OIIO::ImageSpec spec(image.width, image.height, channels, is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-  if (channels == 4) spec.alpha_channel = 3;
-  spec.attribute("Software", "pathtracer " PT_VERSION);
-  if (is_float) {
-    spec.attribute("compression", "zip");
-    spec.attribute("oiio:ColorSpace", "Linear");
-    add_image_metadata(spec, metadata, true);
-  } else {
-    if (settings.transform == DisplayTransform::Srgb && settings.ocio_config.empty()) spec.attribute("oiio:ColorSpace", "sRGB");
-    const bool jpeg = std::strcmp(format, "jpeg") == 0;
-    if (jpeg) spec.attribute("Compression", "jpeg:95");
-    add_display_metadata(spec, metadata, jpeg, "display: " + display->description());
-  }
+// A PNG or JPEG (`format`: "png", "jpeg"), encoded in memory by the image
+// module and written with write_bytes: OpenImageIO's PNG writer does not check
+// its writes (a full disk left a truncated file and reported success) and
+// libjpeg ends the process on a failed write, so neither touches the disk.
+// `alpha`: empty, or one straight alpha per pixel (PNG).
+bool write_display_file(const std::string& path, const char* format, const Image& image,
+                        const DisplaySettings& settings, const DisplayEncoder& display, const ImageMetadata& metadata,
+                        std::string& error, const std::vector<float>& alpha = {}) {
+  const ImageLibrary* lib = library(error);
+  if (lib == nullptr) return false;
+  DisplayImageFile file;
+  file.format = format;
+  file.width = image.width;
+  file.height = image.height;
+  file.channels = alpha.empty() ? 3 : 4;
+  const std::vector<unsigned char> bytes = encode_8bit(image, display, alpha);
+  file.pixels = bytes.data();
+  file.srgb = settings.transform == DisplayTransform::Srgb && settings.ocio_config.empty();
+  add_display_metadata(file, metadata, "display: " + display.description());
   std::vector<unsigned char> encoded;
-  OIIO::Filesystem::IOVecOutput memory(encoded);
-  OIIO::Filesystem::IOProxy* proxy = &memory;
-  spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-  if (!out->open(path, spec)) {
-    error = out->geterror();
-    return false;
-  }
-  bool ok;
-  if (is_float) {
-    ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data());
-  } else {
-    const std::vector<unsigned char> bytes = encode_8bit(image, *display, channels == 4 ? alpha : std::vector<float>{});
-    ok = out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
-  }
-  if (!ok) error = out->geterror();
-  if (!out->close() && ok) {
-    error = out->geterror();
-    ok = false;
-  }
-  return ok && write_bytes(path, encoded.data(), encoded.size(), error);
+  return lib->encode(file, encoded, error) && write_bytes(path, encoded.data(), encoded.size(), error);
+}
+
+// An RGB image as the one float layer of an EXR (R, G, B).
+bool write_exr_rgb(const std::string& path, const Image& image, const ImageMetadata& metadata, std::string& error) {
+  const ImageLibrary* lib = library(error);
+  if (lib == nullptr) return false;
+  LayeredImage layered;
+  layered.full_width = layered.width = image.width;
+  layered.full_height = layered.height = image.height;
+  ImageLayer rgb;
+  rgb.channels = {"R", "G", "B"};
+  rgb.values.reserve(image.pixels.size() * 3);
+  for (const RGB& p : image.pixels) rgb.values.insert(rgb.values.end(), {p.r, p.g, p.b});
+  layered.layers.push_back(std::move(rgb));
+  return lib->write_exr(path, layered, metadata, ExrSettings{}, error);
 }
 
 }  // namespace
@@ -165,6 +148,11 @@ std::vector<std::string> supported_image_extensions() { return {".exr", ".png", 
 bool is_supported_image_path(const std::string& path) { return file_kind(path) != FileKind::Unsupported; }
 
 bool is_exr_path(const std::string& path) { return file_kind(path) == FileKind::Exr; }
+
+bool needs_image_library(const std::string& path) {
+  const FileKind kind = file_kind(path);
+  return kind == FileKind::Exr || kind == FileKind::Png || kind == FileKind::Jpeg;
+}
 
 std::vector<std::string> exr_compression_names() {
   return {"none", "rle", "zips", "zip", "piz", "pxr24", "b44", "b44a", "dwaa", "dwab"};
@@ -225,9 +213,9 @@ bool write_image_with_alpha(const std::string& path, const Image& image, const s
       path,
       [&](const std::string& tmp, std::string& why) {
         switch (kind) {
-          case FileKind::Exr: return write_oiio(tmp, "openexr", image, settings, nullptr, metadata, why);
-          case FileKind::Png: return write_oiio(tmp, "png", image, settings, display.get(), metadata, why, alpha);
-          case FileKind::Jpeg: return write_oiio(tmp, "jpeg", image, settings, display.get(), metadata, why);
+          case FileKind::Exr: return write_exr_rgb(tmp, image, metadata, why);
+          case FileKind::Png: return write_display_file(tmp, "png", image, settings, *display, metadata, why, alpha);
+          case FileKind::Jpeg: return write_display_file(tmp, "jpeg", image, settings, *display, metadata, why);
           case FileKind::Ppm: return write_ppm(tmp, image, *display, why);
           case FileKind::Unsupported: break;
         }
@@ -261,28 +249,34 @@ bool write_layered_image(const std::string& path, const LayeredImage& image, con
     return false;
   }
   return write_atomically(
-      path, [&](const std::string& tmp, std::string& why) { return write_exr_layers(tmp, image, metadata, exr, why); },
+      path,
+      [&](const std::string& tmp, std::string& why) {
+        const ImageLibrary* lib = library(why);
+        return lib != nullptr && lib->write_exr(tmp, image, metadata, exr, why);
+      },
       error);
 }
 
 bool read_image(const std::string& path, Image& out, std::string& error) {
-  auto in = OIIO::ImageInput::open(path);
+  std::string why;
+  const ImageLibrary* lib = library(why);
+  const std::unique_ptr<ImageReader> in = lib != nullptr ? lib->open(path, false, why) : nullptr;
   if (!in) {
-    error = "cannot read '" + path + "': " + OIIO::geterror();
+    error = "cannot read '" + path + "': " + why;
     return false;
   }
-  const OIIO::ImageSpec& spec = in->spec();
-  const int w = spec.width, h = spec.height, nc = spec.nchannels;
-  if (w <= 0 || h <= 0 || nc <= 0 || spec.depth > 1) {
+  const ImageHeader& h = in->header();
+  const int w = h.width, ht = h.height, nc = h.nchannels;
+  if (w <= 0 || ht <= 0 || nc <= 0 || h.depth > 1) {
     error = "cannot read '" + path + "': unsupported image layout";
     return false;
   }
-  std::vector<float> data(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * static_cast<std::size_t>(nc));
-  if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, data.data())) {
-    error = "cannot read '" + path + "': " + in->geterror();
+  std::vector<float> data(static_cast<std::size_t>(w) * static_cast<std::size_t>(ht) * static_cast<std::size_t>(nc));
+  if (!in->read(nc, data.data(), why)) {
+    error = "cannot read '" + path + "': " + why;
     return false;
   }
-  out = Image(w, h);
+  out = Image(w, ht);
   for (std::size_t i = 0; i < out.pixels.size(); ++i) {
     const float* p = &data[i * static_cast<std::size_t>(nc)];
     out.pixels[i] = nc >= 3 ? RGB(p[0], p[1], p[2]) : RGB(p[0]);

@@ -11,6 +11,7 @@
 
 #include "core/image.h"
 #include "io/display.h"
+#include "io/exr_settings.h"
 #include "io/image_metadata.h"
 #include "io/layered_image.h"
 #include "scene/scene_description.h"
@@ -20,17 +21,12 @@ namespace pt {
 // Extensions write_image accepts (".exr", ".png", ".jpg", ".jpeg", ".ppm").
 std::vector<std::string> supported_image_extensions();
 bool is_supported_image_path(const std::string& path);
+// True if writing `path` needs the image module (imagelib/image_library.h):
+// EXR, PNG and JPEG; PPM is written without it.
+bool needs_image_library(const std::string& path);
 // True if write_image / write_layered_image write `path` as OpenEXR (every
 // layer, float or half); false for the 8-bit formats and unsupported names.
 bool is_exr_path(const std::string& path);
-
-// How EXR files are written (--exr-compression, --multipart; docs/output.md).
-struct ExrSettings {
-  // OpenImageIO's name of the OpenEXR compression (exr_compression_names());
-  // "dwaa" and "dwab" may carry a level, "dwaa:45" (the default, 45).
-  std::string compression = "zip";
-  bool multipart = false;  // one part per layer instead of one part for all
-};
 
 // none, rle, zips, zip, piz, pxr24, b44, b44a, dwaa, dwab.
 std::vector<std::string> exr_compression_names();
@@ -48,7 +44,7 @@ bool exr_compression_rounds_floats(const std::string& compression);
 bool write_image(const std::string& path, const Image& image, const DisplaySettings& settings,
                  std::string& error, const ImageMetadata& metadata = {});
 
-// Writes a multi-layer image: EXR gets every layer (io/exr_layers.h) with the
+// Writes a multi-layer image: EXR gets every layer (imagelib/oiio/exr_writer.h, in the image module) with the
 // image's data window inside its frame, written as `exr` says; PNG/JPEG/PPM
 // get the beauty's RGB of the data window only (a crop is written as a
 // smaller image), and a PNG with settings.alpha also its alpha (the colour

@@ -29,7 +29,9 @@ struct SoftwareVersions {
   std::string embree;                 // rtcGetDeviceProperty(RTC_DEVICE_PROPERTY_VERSION)
   std::string embree_tasking;         // RTC_DEVICE_PROPERTY_TASKING_SYSTEM: "internal", "TBB" or "PPL"
   std::string embree_native_packets;  // RTC_DEVICE_PROPERTY_NATIVE_RAY{4,8,16}_SUPPORTED, e.g. "4 8"
-  std::string openimageio;
+  std::string openimageio;           // the image module's once loaded, else the one it was built with
+  std::string image_module;           // where the image module is (imagelib/image_library.h)
+  std::string image_module_origin;    // why there ("beside the executable", ...)
   std::string openexr;                // the headers' OPENEXR_VERSION_STRING
   std::string opencolorio;
   std::string tbb;

@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "io/image_io.h"
 #include "scratch_dir_test.h"
 
 namespace pt::test {
@@ -57,14 +57,12 @@ class AppTest : public ScratchDirTest {
   AppTest() : ScratchDirTest("pt_app_test_") {}
 
   void write(const std::string& name, const std::string& text) const { std::ofstream(path(name)) << text; }
-  // Writes a w x h RGB float image file of `value`.
+  // Writes a w x h RGB float EXR of `value` (pt::write_image, through the image module).
   void write_image(const std::string& name, int w, int h, float value) const {
-    auto out = OIIO::ImageOutput::create(path(name));
-    ASSERT_TRUE(out);
-    ASSERT_TRUE(out->open(path(name), OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::FLOAT)));
-    const std::vector<float> pixels(static_cast<std::size_t>(w) * h * 3, value);
-    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
-    ASSERT_TRUE(out->close());
+    Image image(w, h);
+    for (RGB& p : image.pixels) p = RGB(value);
+    std::string error;
+    ASSERT_TRUE(pt::write_image(path(name), image, DisplaySettings{}, error)) << error;
   }
   nlohmann::json read_json(const std::string& name) const {
     return nlohmann::json::parse(slurp(path(name)), nullptr, false);

@@ -8,9 +8,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <OpenImageIO/imageio.h>
-
 #include "core/parallel.h"
+#include "io/image_io.h"
 #include "test_scenes.h"
 
 namespace pt {
@@ -35,11 +34,10 @@ class RenderSceneBuild : public ::testing::Test {
 
   std::string write_png(const std::string& name) {
     const std::string path = (dir_ / name).string();
-    const unsigned char px[] = {255, 0, 0, 0, 255, 0};
-    auto out = OIIO::ImageOutput::create(path);
-    out->open(path, OIIO::ImageSpec(2, 1, 3, OIIO::TypeDesc::UINT8));
-    out->write_image(OIIO::TypeDesc::UINT8, px);
-    out->close();
+    Image image(2, 1);  // red, green (through the image module, as any PNG we write)
+    image.pixels = {RGB(1.0f, 0.0f, 0.0f), RGB(0.0f, 1.0f, 0.0f)};
+    std::string error;
+    EXPECT_TRUE(write_image(path, image, DisplaySettings{}, error)) << error;
     return path;
   }
 

@@ -19,7 +19,7 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include "render/textures/srgb_input.h"
+#include "core/srgb.h"
 #include "render/textures/texture.h"
 
 namespace pt {

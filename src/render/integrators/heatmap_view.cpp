@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "core/srgb.h"
 #include "render/film/film.h"
 #include "render/integrators/builtin.h"
 #include "render/integrators/render_loop.h"
@@ -34,8 +35,6 @@ constexpr std::array<std::array<float, 3>, 17> kViridis{{
     {0.369214f, 0.788888f, 0.382914f}, {0.515992f, 0.831158f, 0.294279f}, {0.678489f, 0.863742f, 0.189503f},
     {0.845561f, 0.887322f, 0.099702f}, {0.993248f, 0.906157f, 0.143936f},
 }};
-
-float srgb_to_linear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
 
 // 3x5 glyphs for '0'..'9' and '+', row-major from the top, bit 14 = top-left.
 constexpr std::array<uint16_t, 11> kGlyphs{{0x7B6F, 0x2C97, 0x73E7, 0x73CF, 0x5BC9, 0x79CF, 0x79EF, 0x7249, 0x7BEF,

@@ -3,13 +3,12 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <memory>
 #include <utility>
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
-
 #include "core/file_access.h"
-#include "render/textures/srgb_input.h"
+#include "core/srgb.h"
+#include "imagelib/image_library.h"
 
 namespace pt {
 
@@ -113,20 +112,16 @@ float Texture::alpha(const TexCoord& tc) const {
 namespace {
 
 // Decodes the image `in` opened into linear RGB texels (see Texture::load).
-bool decode(OIIO::ImageInput& in, Texture& out, std::string& error, const TextureLimits& limits, bool raw) {
-  const OIIO::ImageSpec& spec = in.spec();
+bool decode(ImageReader& in, Texture& out, std::string& error, const TextureLimits& limits, bool raw) {
+  const ImageHeader& spec = in.header();
   if (!limits.check(spec.width, spec.height, spec.nchannels, spec.depth, error)) return false;
   const int w = spec.width, h = spec.height, nc = spec.nchannels;
   // Grey (and grey + alpha) images need one channel, the rest three.
   const int channels = nc >= 3 ? 3 : 1;
   const std::size_t count = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
   std::vector<float> data(count * static_cast<std::size_t>(channels));
-  if (!in.read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data())) {
-    error = in.geterror();
-    if (error.empty()) error = "cannot decode image";
-    return false;
-  }
-  const bool srgb = !raw && srgb_encoded(spec);
+  if (!in.read(channels, data.data(), error)) return false;
+  const bool srgb = !raw && spec.srgb_encoded;
 
   std::vector<RGB> pixels(count);
   for (std::size_t i = 0; i < pixels.size(); ++i) {
@@ -146,32 +141,19 @@ bool Texture::load(const std::string& path, Texture& out, std::string& error, co
     error = "cannot open the file: " + why;
     return false;
   }
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);  // do not premultiply colour by alpha
-  auto in = OIIO::ImageInput::open(path, &config);
-  if (!in) {
-    error = OIIO::geterror();
-    if (error.empty()) error = "cannot open image";
-    return false;
-  }
-  return decode(*in, out, error, limits, raw);
+  const ImageLibrary* lib = image_library(error);
+  if (lib == nullptr) return false;
+  // Colour as stored, not premultiplied by alpha.
+  const std::unique_ptr<ImageReader> in = lib->open(path, /*unassociated_alpha=*/true, error);
+  return in != nullptr && decode(*in, out, error, limits, raw);
 }
 
 bool Texture::load_memory(const std::vector<unsigned char>& bytes, const std::string& format, Texture& out,
                           std::string& error, const TextureLimits& limits, bool raw) {
-  // OpenImageIO reads from memory through an IOProxy, for the formats that
-  // support one (PNG, JPEG, ...); the name only chooses the reader.
-  OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
-  const std::string name = "embedded." + (format.empty() ? std::string("png") : format);
-  auto in = OIIO::ImageInput::create(name, false, nullptr, &memory);
-  OIIO::ImageSpec config, spec;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  if (!in || !in->supports("ioproxy") || !in->set_ioproxy(&memory) || !in->open(name, spec, config)) {
-    error = in ? in->geterror() : OIIO::geterror();
-    if (error.empty()) error = "cannot decode the embedded '" + format + "' image";
-    return false;
-  }
-  return decode(*in, out, error, limits, raw);
+  const ImageLibrary* lib = image_library(error);
+  if (lib == nullptr) return false;
+  const std::unique_ptr<ImageReader> in = lib->open_memory(bytes.data(), bytes.size(), format, error);
+  return in != nullptr && decode(*in, out, error, limits, raw);
 }
 
 }  // namespace pt

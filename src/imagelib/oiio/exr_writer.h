@@ -1,12 +1,12 @@
-// Writing multi-layer EXR files through OpenImageIO (internal to pt_io; the
-// public entry point is write_layered_image in io/image_io.h).
+// Writing multi-layer EXR files through OpenImageIO (internal to the pt_oiio
+// module; the public entry point is write_layered_image in io/image_io.h).
 #pragma once
 
 #include <string>
 
 #include <OpenImageIO/imageio.h>
 
-#include "io/image_io.h"
+#include "io/exr_settings.h"
 #include "io/image_metadata.h"
 #include "io/layered_image.h"
 

@@ -1,4 +1,4 @@
-#include "render/textures/srgb_input.h"
+#include "imagelib/oiio/srgb_input.h"
 
 #include <cmath>
 #include <cstdint>
@@ -9,9 +9,10 @@
 
 #include <OpenImageIO/half.h>
 
-namespace pt {
+#include "core/srgb.h"
+#include "imagelib/image_library.h"
 
-float srgb_to_linear(float v) { return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f); }
+namespace pt {
 
 bool srgb_encoded(const OIIO::ImageSpec& spec) {
   if (spec.format.is_floating_point()) return false;
@@ -34,7 +35,7 @@ class SrgbDecodingInput final : public OIIO::ImageInput {
     return open(name, newspec, config);
   }
   bool open(const std::string& name, OIIO::ImageSpec& newspec, const OIIO::ImageSpec& config) override {
-    const std::size_t n = std::strlen(kSrgbSuffix);
+    const std::size_t n = std::strlen(kSrgbDecodedSuffix);
     const std::string file = name.size() > n ? name.substr(0, name.size() - n) : name;
     inner_ = OIIO::ImageInput::open(file, &config);
     if (!inner_) {

@@ -1,4 +1,4 @@
-#include "io/exr_layers.h"
+#include "imagelib/oiio/exr_writer.h"
 
 #include <vector>
 
@@ -28,7 +28,7 @@ OIIO::ImageSpec part_spec(const LayeredImage& image, const std::vector<const Ima
       any_half = any_half || half;
       spec.channelformats.push_back(half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
     }
-  spec.alpha_channel = layers.front()->name.empty() ? 3 : -1;  // the beauty's A
+  spec.alpha_channel = layers.front()->name.empty() && layers.front()->channels.size() >= 4 ? 3 : -1;  // the beauty's A
   if (!any_half) spec.channelformats.clear();  // one format for all: the plain case
   spec.attribute("Software", "pathtracer " PT_VERSION);
   spec.attribute("compression", exr.compression);

@@ -7,16 +7,14 @@
 // filtering must: an average of encoded values decoded afterwards is too dark
 // (a black and white checker would filter to 0.21 instead of 0.5).
 //
-// The cache knows such a file under its path followed by kSrgbSuffix, so that
-// the same file can also be used undecoded (a texture with "encoding": "linear").
-// Internal to src/render/textures (it includes OpenImageIO).
+// The cache knows such a file under its path followed by kSrgbDecodedSuffix, so
+// that the same file can also be used undecoded (a texture with "encoding":
+// "linear"). Internal to the pt_oiio module (src/imagelib/oiio).
 #pragma once
 
 #include <OpenImageIO/imageio.h>
 
 namespace pt {
-
-inline constexpr const char* kSrgbSuffix = "#pt-srgb-decoded";
 
 // The ImageInput::Creator of the proxy.
 OIIO::ImageInput* create_srgb_decoding_input();
@@ -25,8 +23,5 @@ OIIO::ImageInput* create_srgb_decoding_input();
 // PNG, JPEG, ...) unless the file says it is linear; float images (EXR, HDR)
 // are linear as they are.
 bool srgb_encoded(const OIIO::ImageSpec& spec);
-
-// The sRGB decoding curve (IEC 61966-2-1), on values in [0, 1].
-float srgb_to_linear(float v);
 
 }  // namespace pt
