@@ -13,6 +13,7 @@
 #include <variant>
 #include <vector>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include "core/file_access.h"
@@ -97,19 +98,28 @@ uint64_t peak_resident_bytes() {
   return static_cast<uint64_t>(usage.ru_maxrss) * 1024;  // KiB on Linux
 }
 
+namespace {
+
+// The header of an image held in memory (a model file's embedded PNG or
+// JPEG), through an IOProxy; false if OpenImageIO cannot read it (the build
+// reports it).
+bool embedded_header(const std::vector<unsigned char>& bytes, const std::string& format, OIIO::ImageSpec& spec) {
+  OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
+  const std::string name = "embedded." + (format.empty() ? std::string("png") : format);
+  auto in = OIIO::ImageInput::create(name, false, nullptr, &memory);
+  const bool ok = in && in->supports("ioproxy") && in->set_ioproxy(&memory) && in->open(name, spec);
+  if (!ok) (void)OIIO::geterror();
+  return ok;
+}
+
+}  // namespace
+
 uint64_t texture_bytes(const SceneDescription& scene, const TextureLimits& limits, uint64_t cache_bytes) {
   uint64_t total = 0, cached = 0, largest_decode = 0;
   // `cache`: a material's image, read through the texture cache (its tiles and
   // MIP levels, 4/3 of the finest, at most 4 bytes a channel); else decoded
   // into memory at `bytes_per_texel`.
-  const auto add = [&](const std::string& path, uint64_t bytes_per_texel, bool cache) {
-    if (!why_unreadable(path).empty()) return;  // no FIFO or device is opened; the build reports it
-    const std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);  // the header only
-    if (!in) {
-      (void)OIIO::geterror();  // the build reports the file
-      return;
-    }
-    const OIIO::ImageSpec& spec = in->spec();
+  const auto add_spec = [&](const OIIO::ImageSpec& spec, uint64_t bytes_per_texel, bool cache) {
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) return;
     const uint64_t texels = static_cast<uint64_t>(spec.width) * static_cast<uint64_t>(spec.height);
     // An image the loader would refuse (a volume, or beyond the texture
@@ -124,6 +134,21 @@ uint64_t texture_bytes(const SceneDescription& scene, const TextureLimits& limit
     }
     largest_decode = std::max(largest_decode, channel_bytes);
   };
+  const auto add = [&](const std::string& path, uint64_t bytes_per_texel, bool cache) {
+    if (!why_unreadable(path).empty()) return;  // no FIFO or device is opened; the build reports it
+    const std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);  // the header only
+    if (!in) {
+      (void)OIIO::geterror();  // the build reports the file
+      return;
+    }
+    add_spec(in->spec(), bytes_per_texel, cache);
+  };
+  // An image embedded in a model file: the build writes it to a file the
+  // cache reads like any other (render/textures/scratch_folder.h).
+  const auto add_embedded = [&](const TextureDesc& t) {
+    OIIO::ImageSpec spec;
+    if (embedded_header(*t.embedded, t.embedded_format, spec)) add_spec(spec, 0, true);
+  };
   std::vector<bool> used(scene.textures.size(), false);
   for (const MaterialDesc& m : scene.materials) {
     m.for_each_texture([&](int t) {
@@ -131,7 +156,10 @@ uint64_t texture_bytes(const SceneDescription& scene, const TextureLimits& limit
     });
   }
   for (std::size_t i = 0; i < scene.textures.size(); ++i)
-    if (used[i] && scene.textures[i].type == TextureType::Image) add(scene.textures[i].resolved, 0, true);
+    if (used[i] && scene.textures[i].type == TextureType::Image) {
+      if (scene.textures[i].embedded) add_embedded(scene.textures[i]);
+      else add(scene.textures[i].resolved, 0, true);
+    }
   if (scene.environment) add(scene.environment->resolved, kTextureBytesPerTexel + kDistributionBytesPerTexel, false);
   if (scene.render.background_image) add(scene.render.background_image->resolved, kTextureBytesPerTexel, false);
   return saturating_add(saturating_add(total, std::min(cached, cache_bytes)), largest_decode);

@@ -5,7 +5,6 @@
 #include <limits>
 #include <utility>
 
-#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include "core/file_access.h"
@@ -152,23 +151,6 @@ bool Texture::load(const std::string& path, Texture& out, std::string& error, co
   if (!in) {
     error = OIIO::geterror();
     if (error.empty()) error = "cannot open image";
-    return false;
-  }
-  return decode(*in, out, error, limits, raw);
-}
-
-bool Texture::load_memory(const std::vector<unsigned char>& bytes, const std::string& format, Texture& out,
-                          std::string& error, const TextureLimits& limits, bool raw) {
-  // OpenImageIO reads from memory through an IOProxy, for the formats that
-  // support one (PNG, JPEG, ...); the name only chooses the reader.
-  OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
-  const std::string name = "embedded." + (format.empty() ? std::string("png") : format);
-  auto in = OIIO::ImageInput::create(name, false, nullptr, &memory);
-  OIIO::ImageSpec config, spec;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  if (!in || !in->supports("ioproxy") || !in->set_ioproxy(&memory) || !in->open(name, spec, config)) {
-    error = in ? in->geterror() : OIIO::geterror();
-    if (error.empty()) error = "cannot decode the embedded '" + format + "' image";
     return false;
   }
   return decode(*in, out, error, limits, raw);
