@@ -135,10 +135,10 @@ TEST_F(CliOutputs, AnOutputThatAnImportReadsIsRefused) {
   const std::string mtl = slurp(path("obj/features.mtl"));
   for (const auto& [scene, output, what] :
        {std::tuple<std::string, std::string, std::string>{"obj/features.obj", "obj/features.mtl", "'features.mtl', which the import of"},
-        {"obj/features.obj", "obj/stripes.png", "'stripes.png', which the import of"},
+        {"obj/features.obj", "obj/stripes.png", "the texture 'stripes.png' of the scene"},
         {"gltf/pbr.gltf", "gltf/pbr.bin", "'pbr.bin', which the import of"},
-        {"gltf/pbr.gltf", "gltf/base.png", "'base.png', which the import of"}}) {
-    const RunResult r = run(scene + " --spp 1 --set film.width=8 --set film.height=4 -o a.exr --report " + output);
+        {"gltf/pbr.gltf", "gltf/base.png", "the texture 'base.png' of the scene"}}) {
+    const RunResult r = run(scene + " --spp 1 --width 8 -o a.exr --report " + output);
     EXPECT_EQ(r.status, 2) << scene << " " << output;
     EXPECT_NE(r.err.find("refusing to write --report '" + output + "': it is " + what), std::string::npos) << r.err;
   }

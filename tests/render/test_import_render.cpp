@@ -171,8 +171,8 @@ TEST(ImportRender, GltfMaskBlendAndMetallicRoughness) {
   std::unique_ptr<RenderScene> a, b;
   SceneDescription da = load(kAssets + "gltf/pbr.gltf"), db = load(kAssets + "gltf/pbr.glb");
   for (SceneDescription* d : {&da, &db}) {
-    d->film.width = 160;
-    d->film.height = 40;
+    d->film.width = 240;
+    d->film.height = 120;  // the framed camera fits the model's bounding sphere in the height: 12 pixels a unit
   }
   const Image ia = render(da, "path", 8, pool, a), ib = render(db, "path", 8, pool, b);
   ASSERT_TRUE(a && b);
