@@ -105,16 +105,7 @@ uint64_t texture_bytes(const SceneDescription& scene, const TextureLimits& limit
   // `cache`: a material's image, read through the texture cache (its tiles and
   // MIP levels, 4/3 of the finest, at most 4 bytes a channel); else decoded
   // into memory at `bytes_per_texel`.
-  const auto add = [&](const std::string& path, uint64_t bytes_per_texel, bool cache) {
-    if (!why_unreadable(path).empty()) return;  // no FIFO or device is opened; the build reports it
-    // The header only, through the image module (loaded here: the render
-    // reads these images anyway). If it cannot be loaded, or the file read,
-    // the build reports it.
-    std::string error;
-    const ImageLibrary* lib = image_library(error);
-    const std::unique_ptr<ImageReader> in = lib != nullptr ? lib->open(path, false, error) : nullptr;
-    if (!in) return;
-    const ImageHeader& spec = in->header();
+  const auto add_spec = [&](const ImageHeader& spec, uint64_t bytes_per_texel, bool cache) {
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) return;
     const uint64_t texels = static_cast<uint64_t>(spec.width) * static_cast<uint64_t>(spec.height);
     // An image the loader would refuse (a volume, or beyond the texture
@@ -129,6 +120,25 @@ uint64_t texture_bytes(const SceneDescription& scene, const TextureLimits& limit
     }
     largest_decode = std::max(largest_decode, channel_bytes);
   };
+  const auto add = [&](const std::string& path, uint64_t bytes_per_texel, bool cache) {
+    if (!why_unreadable(path).empty()) return;  // no FIFO or device is opened; the build reports it
+    // The header only, through the image module (loaded here: the render
+    // reads these images anyway). If it cannot be loaded, or the file read,
+    // the build reports it.
+    std::string error;
+    const ImageLibrary* lib = image_library(error);
+    const std::unique_ptr<ImageReader> in = lib != nullptr ? lib->open(path, false, error) : nullptr;
+    if (in) add_spec(in->header(), bytes_per_texel, cache);
+  };
+  // An image embedded in a model file: the build writes it to a file the
+  // cache reads like any other (render/textures/scratch_folder.h).
+  const auto add_embedded = [&](const TextureDesc& t) {
+    std::string error;
+    const ImageLibrary* lib = image_library(error);
+    const std::unique_ptr<ImageReader> in =
+        lib != nullptr ? lib->open_memory(t.embedded->data(), t.embedded->size(), t.embedded_format, error) : nullptr;
+    if (in) add_spec(in->header(), 0, true);
+  };
   std::vector<bool> used(scene.textures.size(), false);
   for (const MaterialDesc& m : scene.materials) {
     m.for_each_texture([&](int t) {
@@ -136,7 +146,10 @@ uint64_t texture_bytes(const SceneDescription& scene, const TextureLimits& limit
     });
   }
   for (std::size_t i = 0; i < scene.textures.size(); ++i)
-    if (used[i] && scene.textures[i].type == TextureType::Image) add(scene.textures[i].resolved, 0, true);
+    if (used[i] && scene.textures[i].type == TextureType::Image) {
+      if (scene.textures[i].embedded) add_embedded(scene.textures[i]);
+      else add(scene.textures[i].resolved, 0, true);
+    }
   if (scene.environment) add(scene.environment->resolved, kTextureBytesPerTexel + kDistributionBytesPerTexel, false);
   if (scene.render.background_image) add(scene.render.background_image->resolved, kTextureBytesPerTexel, false);
   return saturating_add(saturating_add(total, std::min(cached, cache_bytes)), largest_decode);

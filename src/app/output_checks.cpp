@@ -70,6 +70,11 @@ std::vector<std::pair<std::string, std::string>> input_files(const Options& o, c
   if (desc.environment)
     in.emplace_back("the environment map '" + desc.environment->file.value + "' of the scene",
                     desc.environment->resolved);
+  for (const ImportSummary& import : desc.imports)
+    for (const std::string& file : import.files_read)
+      in.emplace_back(std::string("'").append(fs::path(file).filename().string()) + "', which the import of '" +
+                          import.file + "' reads",
+                      file);  // append: GCC 12's -Wrestrict false positive on "'" + string
   if (!o.ocio_config.empty()) in.emplace_back("--ocio-config '" + o.ocio_config + "'", o.ocio_config);
   for (auto& [what, path] : in) path = canonical(path);
   return in;

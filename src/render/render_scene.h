@@ -21,6 +21,7 @@
 #include "render/materials/material.h"
 #include "render/textures/footprint.h"
 #include "render/textures/texture.h"
+#include "render/textures/scratch_folder.h"
 #include "render/textures/texture_cache.h"
 #include "scene/resolution_limits.h"
 #include "scene/scene_description.h"
@@ -73,6 +74,9 @@ struct RenderScene {
   std::vector<int> instance_material;  // per instance: index into materials, or -1 for its shapes' own
   std::vector<Material> materials;
   SceneNames names;  // Cryptomatte's
+  // Embedded images written out for the texture cache; declared before the
+  // cache, so destroyed (its files removed) after it.
+  ScratchFolder embedded_images;
   // The image textures' cache (OpenImageIO's TextureSystem), if the scene has any.
   std::unique_ptr<TextureCache> texture_cache;
   std::vector<std::unique_ptr<Texture>> textures;  // stable addresses (materials point in)
@@ -90,9 +94,10 @@ struct RenderScene {
   struct Cutout {
     float alpha = 1.0f;
     const Texture* texture = nullptr;
-    bool active() const { return texture != nullptr || !(alpha >= kAlphaCutoff); }
+    float cutoff = kAlphaCutoff;  // the surface is there where alpha >= cutoff
+    bool active() const { return texture != nullptr || !(alpha >= cutoff); }
   };
-  static constexpr float kAlphaCutoff = 0.5f;  // a surface is there where alpha >= 0.5
+  static constexpr float kAlphaCutoff = 0.5f;  // the native format's cutoff (importers set others)
   std::vector<Cutout> cutouts;
   CutoutTest cutout_test;
   // Whether intersect() computes texture footprints (geo.duvdx, ...): some

@@ -50,21 +50,14 @@ bool needs_footprint(const TextureDesc& t) {
   return t.filter.value == TextureFilter::Trilinear || t.filter.value == TextureFilter::Anisotropic;
 }
 
-// An image embedded in a model file (glTF): decoded into memory once (the
-// texture cache reads files only) and looked up bilinearly, without the
-// footprint filter of cached images.
-std::unique_ptr<Texture> embedded_texture(const TextureDesc& t, RenderScene& scene, const TextureLimits& limits,
-                                          Diagnostics& diag) {
-  auto tex = std::make_unique<Texture>();
+// An image embedded in a model file (glTF): written once to the scene's
+// scratch folder, then read through the texture cache as every image file is.
+std::string embedded_file(const TextureDesc& t, RenderScene& scene, Diagnostics& diag) {
   std::string error;
-  const auto start = Clock::now();
-  const bool loaded = Texture::load_memory(*t.embedded, t.embedded_format, *tex, error, limits, t.raw);
-  scene.texture_load_seconds += seconds_since(start);
-  if (!loaded) {
-    diag.error(t.where, "cannot read texture '" + t.written + "': " + error);
-    return nullptr;
-  }
-  return std::make_unique<Texture>(tex->source(), mapping_of(t));
+  const std::string ext = t.embedded_format.empty() ? std::string("png") : t.embedded_format;
+  const std::string path = scene.embedded_images.write(*t.embedded, ext, error);
+  if (path.empty()) diag.error(t.where, "cannot read texture '" + t.written + "': " + error);
+  return path;
 }
 
 // One texture: an image through the cache, or a procedural one.
@@ -77,12 +70,13 @@ std::unique_ptr<Texture> make_texture(const TextureDesc& t, RenderScene& scene, 
       return std::make_unique<Texture>(NoiseTexture{t.color0, t.color1, t.octaves, t.roughness}, mapping_of(t));
     case TextureType::Image: break;
   }
-  if (t.embedded) return embedded_texture(t, scene, options.textures, diag);
+  const auto start = Clock::now();
+  const std::string file = t.embedded ? embedded_file(t, scene, diag) : t.resolved;
+  if (file.empty()) return nullptr;
   if (!scene.texture_cache) scene.texture_cache = std::make_unique<TextureCache>(options.texture_cache_bytes);
   OpenedImage opened;
   std::string error;
-  const auto start = Clock::now();
-  const bool ok = scene.texture_cache->open(t.resolved, t.raw, t.filter, t.wrap, options.textures, opened, error);
+  const bool ok = scene.texture_cache->open(file, t.raw, t.filter, t.wrap, options.textures, opened, error);
   scene.texture_load_seconds += seconds_since(start);
   if (!ok) {
     diag.error(t.where, "cannot read texture '" + t.written + "': " + error);
@@ -150,6 +144,7 @@ const CutoutTest* prepare_cutouts(const SceneDescription& desc, RenderScene& sce
     RenderScene::Cutout& c = scene.cutouts[i];
     c.alpha = desc.materials[i].alpha;
     c.texture = texture_at(desc.materials[i].alpha_texture, scene);
+    c.cutoff = desc.materials[i].alpha_cutoff;
     any = any || c.active();
   }
   if (!any) return nullptr;
@@ -171,10 +166,10 @@ const CutoutTest* prepare_cutouts(const SceneDescription& desc, RenderScene& sce
 
 bool RenderScene::keeps(const Ray& ray, uint32_t object, uint32_t prim, const PrimHit& hit, uint32_t inst) const {
   const Cutout& c = cutouts[static_cast<std::size_t>(material_of(object, inst))];
-  if (c.texture == nullptr) return c.alpha >= kAlphaCutoff;
+  if (c.texture == nullptr) return c.alpha >= c.cutoff;
   // A point lookup at the hit, in the shape's own space (ray and hit are there).
   const SurfaceGeometry g = surface(geometry.shapes[object], prim, ray, hit);
-  return c.texture->alpha(TexCoord(g.uv, {}, {}, g.p)) >= kAlphaCutoff;
+  return c.texture->alpha(TexCoord(g.uv, {}, {}, g.p)) >= c.cutoff;
 }
 
 void RenderScene::texture_frame(const RayDifferential* differential, Intersection& out) const {

@@ -44,6 +44,7 @@ struct AssetTextureRef {
   int uv_set = 0;
   SourceLocation where;  // the statement or key that names it
   bool transformed = false;  // an offset/scale/rotation of its coordinates (MTL -o/-s, KHR_texture_transform)
+  float scale = 1.0f;        // MTL -bm (a bump map's multiplier), glTF normalTexture.scale
   explicit operator bool() const { return texture >= 0; }
 };
 
@@ -168,6 +169,9 @@ struct ImportedAsset {
   std::vector<AssetCamera> cameras;
   std::vector<AssetLight> lights;
   ImportCounts counts;
+  // Every file the import read or names: the model, its MTL files and
+  // buffers, every texture found (used or not). Outputs may not be any of them.
+  std::vector<std::string> files_read;
 };
 
 }  // namespace pt

@@ -99,7 +99,7 @@ bool convert_meshes(const aiScene& scene, const std::vector<int>& uv_set, Import
     if (m.mNumBones > 0) out.counts.skipped_n("skins (meshes kept in their bind pose)", 1);
     if (m.mNumAnimMeshes > 0) out.counts.skipped_n("morph targets", m.mNumAnimMeshes);
     // Read, but nothing renders them yet: a scene mesh has no tangents until normal maps exist.
-    if (!mesh.tangents.empty()) out.counts.skipped_n("mesh tangents (unused until normal maps exist)", 1);
+    if (!mesh.tangents.empty()) out.counts.skipped_n("mesh tangents (normal maps take tangents from the texture coordinates)", 1);
   }
   if (scene.mNumAnimations > 0) out.counts.skipped_n("animations", scene.mNumAnimations);
   return true;

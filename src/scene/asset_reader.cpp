@@ -38,10 +38,12 @@ class RecordingIOSystem : public Assimp::DefaultIOSystem {
     bool opened = false;
   };
   std::vector<Attempt> mtl;
+  std::vector<std::string> opened;  // every file opened (the model, MTL files, glTF buffers, ...)
 
   Assimp::IOStream* Open(const char* file, const char* mode) override {
     Assimp::IOStream* s = Assimp::DefaultIOSystem::Open(file, mode);
     if (lower(fs::path(file).extension().string()) == ".mtl") mtl.push_back({file, s != nullptr});
+    if (s != nullptr && std::find(opened.begin(), opened.end(), file) == opened.end()) opened.emplace_back(file);
     return s;
   }
 };
@@ -128,6 +130,7 @@ void merge_gltf_info(ImportedAsset& out, Diagnostics& diag) {
       if (*ref) ref->where = g.where;
       if (*ref && g.texture_transform) ref->transformed = true;
     }
+    if (g.normal_scale) m.normal_map.scale = *g.normal_scale;
     if (g.emissive_strength) m.emission = m.emission * *g.emissive_strength;
     if (g.transmission) m.transmission = *g.transmission;
     if (g.ior) m.ior = *g.ior;
@@ -180,6 +183,9 @@ bool convert(const aiScene& scene, const RecordingIOSystem& io, const SourceLoca
                                 "' (as written, and by its file name alone)");
   }
   count(out);
+  out.files_read = io.opened;
+  for (const AssetTexture& t : out.textures)
+    if (!t.resolved.empty()) out.files_read.push_back(t.resolved);
   return true;
 }
 

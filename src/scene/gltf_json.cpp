@@ -69,6 +69,7 @@ GltfMaterialInfo read_material(const JsonDocument& doc, const JsonValue& m) {
   if (!m.is_object()) return info;
   if (const JsonValue* name = m.find("name"); name && name->is_string()) info.name = name->as_string();
   if (const JsonValue* t = find_texture_transform(m)) info.texture_transform = doc.location(*t);
+  info.normal_scale = number_at(m.find("normalTexture"), "scale");
   const JsonValue* ext = m.find("extensions");
   if (!ext || !ext->is_object()) return info;
   for (const JsonMember& e : ext->as_object()) {

@@ -20,6 +20,7 @@ struct GltfMaterialInfo {
   std::string name;
   SourceLocation where;
   std::optional<float> emissive_strength, transmission, ior;
+  std::optional<float> normal_scale;  // normalTexture.scale
   bool unlit = false;
   std::optional<SourceLocation> texture_transform;  // the first KHR_texture_transform in it
   std::vector<std::pair<std::string, SourceLocation>> unsupported;  // extensions we do not read

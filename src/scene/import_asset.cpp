@@ -4,6 +4,7 @@
 #include "scene/import_asset.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <map>
 
@@ -18,23 +19,32 @@ namespace fs = std::filesystem;
 namespace pt {
 namespace {
 
-// The scene's index of an asset texture (each file or embedded image once).
-int register_texture(ImportContext& ctx, const ImportedAsset& asset, int index) {
+// The scene's index of an asset texture (each file or embedded image once
+// as colour, once as data).
+int register_texture(ImportContext& ctx, const ImportedAsset& asset, int index, bool data) {
   const AssetTexture& t = asset.textures[static_cast<std::size_t>(index)];
   std::error_code ec;
-  const std::string key = t.embedded ? "embedded:" + asset.path + "#" + t.name
-                                     : fs::weakly_canonical(t.resolved, ec).string();
+  const std::string key = (data ? "data:" : "") + (t.embedded ? "embedded:" + asset.path + "#" + t.name
+                                                             : fs::weakly_canonical(t.resolved, ec).string());
   if (const auto it = ctx.texture_ids.find(key); it != ctx.texture_ids.end()) return it->second;
   TextureDesc desc;
   desc.where = t.where;
   desc.written = t.name;
   desc.resolved = t.resolved;
+  desc.raw = data;
   desc.embedded = t.embedded;
   desc.embedded_format = t.format_hint;
   const int id = static_cast<int>(ctx.scene.textures.size());
   ctx.scene.textures.push_back(std::move(desc));
   ctx.texture_ids.emplace(key, id);
   return id;
+}
+
+// Scene units per unit of the file: the cube root of the import transform's
+// volume scale (bump heights are in the file's units).
+float length_scale(const Affine& a) {
+  const double s = std::cbrt(std::abs(a.determinant()));
+  return std::isfinite(s) && s > 0.0 ? static_cast<float>(s) : 1.0f;
 }
 
 // One warning per kind of note, at its first place, naming the materials.
@@ -76,12 +86,11 @@ std::vector<int> place_materials(ImportContext& ctx, const ImportedAsset& asset,
   std::vector<int> textures;
   for (std::size_t i = 0; i < asset.materials.size(); ++i) {
     if (!used[i]) continue;
-    MappedMaterial mapped = map_asset_material(asset.materials[i], asset.textures);
+    MappedMaterial mapped = map_asset_material(asset.materials[i], asset.textures, length_scale(req.transform));
     for (MaterialNote& n : mapped.notes) notes.emplace_back(std::move(n), asset.materials[i].name);
-    if (mapped.texture >= 0) {
-      mapped.desc.texture = register_texture(ctx, asset, mapped.texture);
-      if (std::find(textures.begin(), textures.end(), *mapped.desc.texture) == textures.end())
-        textures.push_back(*mapped.desc.texture);
+    for (const TextureUse& use : mapped.textures) {
+      set_texture(mapped.desc, use.slot, register_texture(ctx, asset, use.texture, use.data));
+      if (std::find(textures.begin(), textures.end(), use.texture) == textures.end()) textures.push_back(use.texture);
     }
     // "file.gltf:name": unique across imports, and Cryptomatte's material name.
     mapped.desc.name = fs::path(req.file.value).filename().string() + ":" + mapped.desc.name;
@@ -236,6 +245,7 @@ void read_native_import(ImportContext& ctx, const JsonValue& v, std::vector<Nati
   summary.seconds = seconds_since(start);
   summary.imported = std::move(counts.imported);
   summary.skipped = std::move(counts.skipped);
+  summary.files_read = std::move(asset.files_read);
   ctx.scene.mesh_load_seconds += summary.seconds;
   ctx.scene.imports.push_back(std::move(summary));
 }

@@ -6,26 +6,6 @@
 namespace pt {
 namespace {
 
-// Notes shared by both models: what no material of ours can show yet.
-void note_common(const AssetMaterial& m, bool glass, std::vector<MaterialNote>& notes) {
-  const bool alpha = m.opacity_map || m.alpha_mode != AlphaMode::Opaque ||
-                     (m.opacity < 1.0f && !glass && m.model == AssetMaterial::Model::Phong);
-  if (alpha)
-    notes.push_back({"alpha (map_d, d/Tr, glTF alphaMode MASK/BLEND) is not supported yet: the surfaces render opaque",
-                     m.opacity_map ? m.opacity_map.where : (m.opacity_where.file ? m.opacity_where : m.where)});
-  if (m.normal_map) notes.push_back({"normal maps (norm, glTF normalTexture) are not supported yet: ignored", m.normal_map.where});
-  if (m.bump_map) notes.push_back({"bump maps (map_bump, bump) are not supported yet: ignored", m.bump_map.where});
-  if (m.emission_map && !m.emission.is_black())
-    notes.push_back({"emission textures (map_Ke, emissiveTexture) are not supported yet: those surfaces do not emit "
-                     "(an untextured emission colour would make the whole surface a light)",
-                     m.emission_map.where});
-  if (m.occlusion_map)
-    notes.push_back({"occlusion maps are not used (the path tracer computes occlusion itself)", m.occlusion_map.where,
-                     false});
-  for (const auto& [name, where] : m.unsupported)
-    notes.push_back({"material extension '" + name + "' is not supported: what it adds is left out", where});
-}
-
 float max_of(RGB c) { return std::max(c.r, std::max(c.g, c.b)); }
 
 // Colours as validation accepts them (finite, not negative); true if one had to change.
@@ -36,124 +16,235 @@ bool clamp_colour(Sourced<RGB>& c) {
   return !(c.value == v);
 }
 
-// MTL and COLLADA: the illumination model chooses the type (docs/importing.md).
-void map_phong(const AssetMaterial& m, MappedMaterial& out) {
+float unit(float x) { return std::isfinite(x) ? std::clamp(x, 0.0f, 1.0f) : 0.0f; }
+
+// Reads the texture of `ref` at `slot` if the file has it (found or embedded).
+class Textures {
+ public:
+  // `uv_set`: the set the mesh's texture coordinates are (the diffuse or base colour texture's).
+  Textures(const std::vector<AssetTexture>& all, int uv_set, MappedMaterial& out)
+      : all_(all), uv_set_(uv_set), out_(out) {}
+  bool usable(const AssetTextureRef& ref) const {
+    return ref && static_cast<std::size_t>(ref.texture) < all_.size() &&
+           !all_[static_cast<std::size_t>(ref.texture)].missing;
+  }
+  bool use(TextureSlot slot, const AssetTextureRef& ref, bool data) {
+    if (!usable(ref)) return false;
+    out_.textures.push_back({slot, ref.texture, data});
+    if (ref.transformed)
+      out_.notes.push_back(
+          {"texture coordinate transforms (MTL -o/-s, KHR_texture_transform) are not supported: ignored", ref.where});
+    if (ref.uv_set != uv_set_)
+      out_.notes.push_back({"textures reading a texture-coordinate set other than the base colour's read the base "
+                            "colour's set",
+                            ref.where});
+    return true;
+  }
+
+ private:
+  const std::vector<AssetTexture>& all_;
+  int uv_set_;
+  MappedMaterial& out_;
+};
+
+// GGX roughness given as alpha (remaproughness false), isotropic.
+void set_alpha(MaterialDesc& d, float alpha) {
+  d.remap_roughness = false;
+  d.uroughness.value = d.vroughness.value = unit(alpha);
+}
+
+// Alpha cutouts, normal and bump maps: the same for both models.
+void map_surface(const AssetMaterial& m, bool glass, float length_scale, Textures& tex, MappedMaterial& out) {
   MaterialDesc& d = out.desc;
-  int illum = m.illum;
-  if (illum < 0) illum = m.lambert_only || m.specular.is_black() ? 1 : (m.reflectivity > 0.0f ? 3 : 2);
+  if (m.model == AssetMaterial::Model::Phong && !glass) {
+    // MTL: alpha = d x map_d; the surface is there where it is at least 0.5.
+    const float opacity = unit(m.opacity);
+    d.alpha = opacity;
+    if (tex.use(TextureSlot::Alpha, m.opacity_map, true) && opacity > 0.0f) d.alpha_cutoff = 0.5f / opacity;
+    if (opacity > 0.0f && opacity < 1.0f && !tex.usable(m.opacity_map))
+      out.notes.push_back({"partial dissolve (d, Tr between 0 and 1) is not supported: alpha cutouts are binary "
+                           "(the surface is there where d >= 0.5)",
+                           m.opacity_where.file ? m.opacity_where : m.where});
+  } else if (m.model == AssetMaterial::Model::MetallicRoughness && m.alpha_mode != AlphaMode::Opaque) {
+    // glTF: alpha = baseColorFactor.a x the base colour texture's alpha, against alphaCutoff (0.5 for BLEND).
+    const float factor = unit(m.opacity);
+    const float cutoff = m.alpha_mode == AlphaMode::Mask ? m.alpha_cutoff : 0.5f;
+    d.alpha = factor;
+    d.alpha_cutoff = cutoff;
+    if (tex.use(TextureSlot::Alpha, m.base_color_map, false)) d.alpha_cutoff = factor > 0.0f ? cutoff / factor : 2.0f;
+    if (m.alpha_mode == AlphaMode::Blend && (factor < 1.0f || tex.usable(m.base_color_map)))
+      out.notes.push_back({"alphaMode BLEND is rendered as a cutout at alpha 0.5 (no partial transparency)", m.where});
+  }
+  if (tex.use(TextureSlot::NormalMap, m.normal_map, true)) d.normal_scale = m.normal_map.scale;
+  if (tex.use(TextureSlot::Displacement, m.bump_map, true)) {
+    TexturedParam<float> h;
+    h.value = m.bump_map.scale * length_scale;
+    d.displacement = h;
+  }
+  if (m.emission_map && !m.emission.is_black())
+    out.notes.push_back({"emission textures (map_Ke, emissiveTexture) are not supported yet: those surfaces do not emit "
+                         "(an untextured emission colour would make the whole surface a light)",
+                         m.emission_map.where});
+  if (m.occlusion_map)
+    out.notes.push_back({"occlusion maps are not used (the path tracer computes occlusion itself)", m.occlusion_map.where,
+                         false});
+  for (const auto& [name, where] : m.unsupported)
+    out.notes.push_back({"material extension '" + name + "' is not supported: what it adds is left out", where});
+}
+
+// MTL's illumination model, or the one a COLLADA material implies.
+int illum_of(const AssetMaterial& m) {
+  if (m.illum >= 0) return m.illum;
+  return m.lambert_only || m.specular.is_black() ? 1 : (m.reflectivity > 0.0f ? 3 : 2);
+}
+
+// A metal: Schlick's Fresnel with F0 = Ks (x map_Ks), roughness from Ns (x map_Ns).
+void map_mtl_conductor(const AssetMaterial& m, Textures& tex, MappedMaterial& out) {
+  MaterialDesc& d = out.desc;
+  d.type = MaterialType::Conductor;
+  d.schlick = true;
+  d.reflectance.value = m.specular.is_black() ? RGB(1.0f) : m.specular;  // black Ks: a white mirror (map_Ks colours it)
+  tex.use(TextureSlot::Reflectance, m.specular_map, false);
+  set_alpha(d, m.shininess > 0.0f ? alpha_for_exponent(m.shininess) : 0.0f);  // no Ns: the spec's ideal mirror
+  if (tex.use(TextureSlot::Roughness, m.shininess_map, true)) {
+    // map_Ns: a roughness texture as Blender writes and reads it (alpha = t^2); Ns is not used.
+    d.uroughness.value = d.vroughness.value = 1.0f;
+    d.uroughness.squared = d.vroughness.squared = true;
+  }
+}
+
+// MTL and COLLADA: the illumination model chooses the type (docs/importing.md).
+void map_phong(const AssetMaterial& m, float length_scale, MappedMaterial& out, Textures& tex) {
+  MaterialDesc& d = out.desc;
+  const int illum = illum_of(m);
   const bool glassy = illum == 4 || illum == 6 || illum == 7 || illum == 9;
   const bool glass = glassy && (m.opacity < 1.0f || !(m.transmission_filter == RGB(1.0f)));
+  const bool no_diffuse = m.diffuse.is_black() && !tex.usable(m.diffuse_map);
+  const bool metal = illum == 5 || illum == 8 || ((illum == 3 || glassy) && !glass && no_diffuse);
   d.diffuse = m.diffuse;
   if (glass) {
-    d.type = MaterialType::Glass;
+    d.type = MaterialType::Dielectric;  // roughness 0: exactly glass (the MTL's ray-traced refraction)
     d.ior = m.ior && *m.ior > 0.0f ? *m.ior : 1.5f;
     if (!(m.transmission_filter == RGB(1.0f)))
       out.notes.push_back({"tinted glass (Tf) is not supported: clear glass", m.where});
-  } else if (illum == 5 || illum == 8) {
-    d.type = MaterialType::Mirror;
-    d.specular = m.specular.is_black() ? RGB(1.0f) : m.specular;
-    if (illum == 5) out.notes.push_back({"Fresnel reflection (illum 5) approximated by a mirror tinted Ks", m.where});
-  } else if (illum <= 1 || m.specular.is_black()) {
+  } else if (metal) {
+    map_mtl_conductor(m, tex, out);
+    if ((illum == 5 || illum == 8) && !no_diffuse)
+      out.notes.push_back({"the diffuse colour of illum 5 and 8 (mirrors) is not used", m.where});
+  } else if (illum <= 1 || (m.specular.is_black() && !tex.usable(m.specular_map))) {
     d.type = MaterialType::Lambert;
-    out.texture = m.diffuse_map.texture;
+    tex.use(TextureSlot::Diffuse, m.diffuse_map, false);
   } else {
-    d.type = MaterialType::Phong;
+    d.type = MaterialType::Phong;  // Kd Lambert + Ks normalised Blinn-Phong of exponent Ns (+ Ks mirror for illum 3)
     d.ks = 1.0f;
     d.specular = m.specular;
     d.exponent = std::isfinite(m.shininess) ? std::max(m.shininess, 1.0f) : 1.0f;
     if (illum == 3 || glassy) d.reflectivity = std::clamp(std::max(m.reflectivity, max_of(m.specular)), 0.0f, 1.0f);
-    out.texture = m.diffuse_map.texture;
+    tex.use(TextureSlot::Diffuse, m.diffuse_map, false);
+    if (tex.usable(m.specular_map))
+      out.notes.push_back({"specular textures (map_Ks) of Blinn-Phong materials (illum 2, or 3 with a diffuse colour) "
+                           "are not supported: Ks used",
+                           m.specular_map.where});
+    if (tex.usable(m.shininess_map))
+      out.notes.push_back({"specular exponent textures (map_Ns) of Blinn-Phong materials (illum 2, or 3 with a diffuse "
+                           "colour) are not supported: Ns used",
+                           m.shininess_map.where});
   }
   if (illum == 0 || illum == 10)
     out.notes.push_back({"illumination models 0 (constant colour) and 10 (shadow matte) are rendered as lit surfaces",
                          m.where});
-  if (m.specular_map && d.type == MaterialType::Phong)
-    out.notes.push_back({"specular textures (map_Ks) are not supported yet: Ks used", m.specular_map.where});
-  if (m.shininess_map && d.type == MaterialType::Phong)
-    out.notes.push_back({"specular exponent textures (map_Ns) are not supported yet: Ns used", m.shininess_map.where});
-  note_common(m, glass, out.notes);
+  map_surface(m, glass, length_scale, tex, out);
 }
 
-// glTF's metallic-roughness onto today's materials: the nearest, noted.
-void map_metallic_roughness(const AssetMaterial& m, MappedMaterial& out) {
+// glTF roughness r (x the green channel of metallicRoughnessTexture): GGX alpha = r^2.
+void gltf_roughness(const AssetMaterial& m, Textures& tex, MaterialDesc& d) {
+  const float r = unit(m.roughness);
+  set_alpha(d, r * r);
+  if (tex.use(TextureSlot::Roughness, m.metallic_roughness_map, true)) {
+    d.uroughness.channel = d.vroughness.channel = 1;
+    d.uroughness.squared = d.vroughness.squared = true;
+  }
+}
+
+// glTF's metallic-roughness (docs/importing.md): metals are conductors with
+// Schlick's F0 = base colour, dielectrics coated diffuse of index 1.5 (F0
+// 0.04), transmission rough dielectrics; all with GGX alpha = roughness^2.
+void map_metallic_roughness(const AssetMaterial& m, float length_scale, MappedMaterial& out, Textures& tex) {
   MaterialDesc& d = out.desc;
-  const bool metal = m.metallic >= 0.5f;
+  const float metallic = unit(m.metallic);
+  const bool metal = metallic >= 0.5f;
   if (m.unlit) {
     d.type = MaterialType::Lambert;
     d.diffuse = RGB(0.0f);
     d.emission = m.base_color;
     out.notes.push_back({"unlit materials (KHR_materials_unlit) emit their base colour (and light the scene)", m.where});
   } else if (m.transmission > 0.0f) {
-    d.type = MaterialType::Glass;
+    d.type = MaterialType::Dielectric;
     d.ior = m.ior && *m.ior > 0.0f ? *m.ior : 1.5f;
-    if (m.roughness > 0.1f || m.transmission < 1.0f || !(m.base_color == RGB(1.0f)))
-      out.notes.push_back({"transmission approximated by smooth, clear, fully transmissive glass", m.where});
-  } else if (metal && m.roughness <= 0.1f) {
-    d.type = MaterialType::Mirror;
-    d.specular = m.base_color;
-    if (m.roughness > 0.0f) out.notes.push_back({"metals of roughness up to 0.1 approximated by a perfect mirror", m.where});
-  } else if (metal) {
-    d.type = MaterialType::Phong;
-    d.kd = 0.0f;
-    d.ks = 1.0f;
-    d.specular = m.base_color;
-    d.exponent = blinn_exponent_for_roughness(m.roughness);
-    out.notes.push_back({"rough metals approximated by normalised Blinn-Phong (exponent 2/alpha^2 - 2, alpha = roughness^2)",
-                         m.where});
+    gltf_roughness(m, tex, d);
+    if (m.transmission < 1.0f || !(m.base_color == RGB(1.0f)) || tex.usable(m.base_color_map))
+      out.notes.push_back({"partial or tinted transmission (KHR_materials_transmission below 1, a base colour) is "
+                           "rendered as clear, fully transmissive glass",
+                           m.where});
   } else {
-    d.type = MaterialType::Phong;
-    d.diffuse = m.base_color;
-    d.kd = 0.96f;  // what a dielectric of F0 = 0.04 leaves to its diffuse base
-    d.ks = 0.04f;
-    d.specular = RGB(1.0f);
-    d.exponent = blinn_exponent_for_roughness(m.roughness);
-    out.texture = m.base_color_map.texture;
-    out.notes.push_back({"dielectric metallic-roughness materials approximated by Lambert base colour (kd 0.96) plus "
-                         "normalised Blinn-Phong (ks 0.04, exponent from roughness)",
-                         m.where});
+    d.type = metal ? MaterialType::Conductor : MaterialType::CoatedDiffuse;
+    d.schlick = metal;
+    d.ior = m.ior && *m.ior > 0.0f ? *m.ior : 1.5f;
+    d.reflectance.value = m.base_color;
+    tex.use(TextureSlot::Reflectance, m.base_color_map, false);
+    gltf_roughness(m, tex, d);
+    if (metallic > 0.0f && metallic < 1.0f)
+      out.notes.push_back({"metallic factors between 0 and 1 are rounded (below 0.5: dielectric, else metal)", m.where});
+    if (tex.usable(m.metallic_roughness_map) && metallic > 0.0f)
+      out.notes.push_back({"the metalness of metallicRoughnessTexture (blue) is not read per texel: metallicFactor "
+                           "decides between metal and dielectric",
+                           m.metallic_roughness_map.where});
   }
-  if (m.metallic > 0.0f && m.metallic < 1.0f)
-    out.notes.push_back({"metallic factors between 0 and 1 rounded to dielectric (< 0.5) or metal", m.where});
-  if (m.metallic_roughness_map)
-    out.notes.push_back({"metallic-roughness textures are not supported yet: the factors are used",
-                         m.metallic_roughness_map.where});
-  if (m.base_color_map && out.texture < 0)
-    out.notes.push_back({"base colour textures of metals, glass and unlit materials are not supported yet: the "
-                         "factor is used",
-                         m.base_color_map.where});
-  note_common(m, d.type == MaterialType::Glass, out.notes);
+  map_surface(m, d.type == MaterialType::Dielectric, length_scale, tex, out);
 }
 
 }  // namespace
 
-float blinn_exponent_for_roughness(float roughness) {
-  const float alpha = std::max(roughness * roughness, 1e-4f);
-  return std::clamp(2.0f / (alpha * alpha) - 2.0f, 1.0f, 10000.0f);
+float alpha_for_exponent(float exponent) {
+  if (!std::isfinite(exponent)) return exponent > 0.0f ? 0.0f : 1.0f;
+  return std::sqrt(2.0f / (std::max(exponent, 0.0f) + 2.0f));
 }
 
-MappedMaterial map_asset_material(const AssetMaterial& m, const std::vector<AssetTexture>& textures) {
+void set_texture(MaterialDesc& d, TextureSlot slot, int index) {
+  switch (slot) {
+    case TextureSlot::Diffuse: d.texture = index; break;
+    case TextureSlot::Reflectance: d.reflectance.texture = index; break;
+    case TextureSlot::Roughness: d.uroughness.texture = d.vroughness.texture = index; break;
+    case TextureSlot::Alpha: d.alpha_texture = index; break;
+    case TextureSlot::NormalMap: d.normal_map = index; break;
+    case TextureSlot::Displacement:
+      if (d.displacement) d.displacement->texture = index;
+      break;
+  }
+}
+
+MappedMaterial map_asset_material(const AssetMaterial& m, const std::vector<AssetTexture>& textures,
+                                  float length_scale) {
   MappedMaterial out;
   MaterialDesc& d = out.desc;
   d.name = m.name;
   d.where = m.where;
+  const AssetTextureRef& base = m.model == AssetMaterial::Model::Phong ? m.diffuse_map : m.base_color_map;
+  Textures tex(textures, base ? base.uv_set : 0, out);
   if (m.model == AssetMaterial::Model::Phong) {
-    map_phong(m, out);
+    map_phong(m, length_scale, out, tex);
   } else {
-    map_metallic_roughness(m, out);
+    map_metallic_roughness(m, length_scale, out, tex);
   }
   if (!(m.emission_map && !m.emission.is_black())) d.emission = d.emission.value + m.emission;
   d.two_sided = m.double_sided;
   bool clamped = false;
   for (Sourced<RGB>* c : {&d.diffuse, &d.specular, &d.emission}) clamped = clamp_colour(*c) || clamped;
-  if (clamped) out.notes.push_back({"negative or non-finite colours set to 0", m.where});
-  // A texture that was not found is reported by read_asset; the material keeps its colour.
-  if (out.texture >= 0 && (static_cast<std::size_t>(out.texture) >= textures.size() ||
-                           textures[static_cast<std::size_t>(out.texture)].missing))
-    out.texture = -1;
-  const AssetTextureRef& used = m.model == AssetMaterial::Model::Phong ? m.diffuse_map : m.base_color_map;
-  if (out.texture >= 0 && used.transformed)
-    out.notes.push_back({"texture coordinate transforms (MTL -o/-s, KHR_texture_transform) are not supported: ignored",
-                         used.where});
+  RGB r = d.reflectance.value.value;
+  Sourced<RGB> reflectance(RGB(unit(r.r), unit(r.g), unit(r.b)));
+  clamped = clamped || !(reflectance.value == r);
+  d.reflectance.value = reflectance;
+  if (clamped) out.notes.push_back({"negative, non-finite or (reflectance) above 1 colours clamped", m.where});
   return out;
 }
 

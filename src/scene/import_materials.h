@@ -1,11 +1,10 @@
 // The one place where a model file's materials (AssetMaterial, asset.h:
 // MTL, COLLADA's Phong family, glTF's metallic-roughness) become ours
-// (MaterialDesc). Today's materials are Lambert, the normalised Blinn-Phong
-// of "phong", mirror and glass with one diffuse texture and emission, so
-// most file materials are approximated; each approximation is returned as a
-// note, which the importer turns into one warning per kind and file. When
-// rough conductors and dielectrics, textured parameters, alpha and normal
-// maps exist, they plug in here (docs/importing.md has the tables).
+// (MaterialDesc): Lambert, the normalised Blinn-Phong of "phong", conductor,
+// dielectric and coated diffuse, with textured colours and roughness, alpha
+// cutouts, normal and bump maps (docs/importing.md has the tables). What the
+// result does not show as the file means it is returned as a note, which the
+// importer turns into one warning per kind and file.
 #pragma once
 
 #include <string>
@@ -24,17 +23,31 @@ struct MaterialNote {
   bool warning = true;   // false: a remark (what a path tracer has no use for)
 };
 
+// Where a mapped material reads a texture of the file.
+enum class TextureSlot { Diffuse, Reflectance, Roughness, Alpha, NormalMap, Displacement };
+
+struct TextureUse {
+  TextureSlot slot;
+  int texture;  // index into ImportedAsset::textures (found or embedded)
+  bool data;    // read as stored (roughness, masks, normal and bump maps), else sRGB-decoded colour
+};
+
 struct MappedMaterial {
-  MaterialDesc desc;      // desc.texture is left empty: the caller registers `texture`
-  int texture = -1;       // the asset texture (index into ImportedAsset::textures) the result reads, or -1
+  MaterialDesc desc;  // its texture indices are set by the caller from `textures`
+  std::vector<TextureUse> textures;
   std::vector<MaterialNote> notes;
 };
 
-MappedMaterial map_asset_material(const AssetMaterial& m, const std::vector<AssetTexture>& textures);
+// `length_scale`: scene units per unit of the model file (the import's
+// transform's scale), for bump heights (MTL -bm is in the file's units).
+MappedMaterial map_asset_material(const AssetMaterial& m, const std::vector<AssetTexture>& textures,
+                                  float length_scale = 1.0f);
 
-// The normalised Blinn-Phong exponent whose lobe is closest to a microfacet
-// lobe of roughness `roughness` (alpha = roughness^2): 2 / alpha^2 - 2,
-// clamped to [1, 10000].
-float blinn_exponent_for_roughness(float roughness);
+// Sets the texture `index` (into SceneDescription::textures) at `slot` of `d`.
+void set_texture(MaterialDesc& d, TextureSlot slot, int index);
+
+// GGX alpha for a Blinn-Phong exponent (Walter et al. 2007: the lobes of
+// exponent e and alpha sqrt(2 / (e + 2)) have the same width), in (0, 1].
+float alpha_for_exponent(float exponent);
 
 }  // namespace pt

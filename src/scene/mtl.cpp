@@ -249,11 +249,15 @@ void MtlReader::number(const Statement& s, const std::vector<Token>& t, AssetMat
 void MtlReader::map(const Statement& s, const std::vector<Token>& t, std::string_view line, AssetMaterial& m) {
   std::size_t i = 1;
   bool transformed = false;
+  float bm = 1.0f;
   while (i < t.size() && t[i].text.size() > 1 && t[i].text[0] == '-') {
     const int n = option_arguments(t[i].text);
     const std::string option(t[i].text);
     if (n < 0) break;  // a file name that starts with '-'
     if (option == "-o" || option == "-s") transformed = true;
+    const bool bump = s.name == std::string_view("map_bump") || s.name == std::string_view("bump");
+    if (option == "-bm" && (!bump || i + 1 >= t.size() || !parse_float(t[i + 1].text, bm)))
+      warn_once("option -bm", t[i].offset, "texture option '-bm' takes a number and applies to bump maps only; ignored");
     if (option != "-bm" && option != "-o" && option != "-s")
       warn_once("option " + option, t[i].offset, "texture option '" + option + "' is not supported; ignored");
     ++i;
@@ -271,6 +275,7 @@ void MtlReader::map(const Statement& s, const std::vector<Token>& t, std::string
   AssetTextureRef ref;
   ref.where = at(t[i].offset);
   ref.transformed = transformed;
+  ref.scale = bm;
   ref.texture = textures_.file(name, ref.where, dir_);
   const std::string_view n = s.name;
   if (n == "map_Kd") m.diffuse_map = ref;

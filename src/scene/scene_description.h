@@ -173,10 +173,16 @@ enum class MaterialType { Phong, Lambert, Mirror, Glass, Conductor, Dielectric, 
 // A material parameter that may be textured (docs/scene-format.md, "Textured
 // parameters"): the constant `value`, times the texture's value where
 // `texture` is set (an index into SceneDescription::textures).
+// The model-file importers also read one channel of a texture and square it
+// (glTF's roughness is the green channel of its metallic-roughness texture,
+// and its GGX alpha the square of the roughness); the native format writes
+// neither (docs/importing.md).
 template <class T>
 struct TexturedParam {
   Sourced<T> value;
   std::optional<int> texture;
+  int channel = -1;      // a float parameter: the texel's channel 0, 1 or 2; -1: the mean of the three
+  bool squared = false;  // a float parameter: value * t^2 instead of value * t
 };
 
 struct MaterialDesc {
@@ -203,6 +209,9 @@ struct MaterialDesc {
   // for every ray elsewhere.
   Sourced<float> alpha{1.0f};
   std::optional<int> alpha_texture;     // index into SceneDescription::textures; replaces `alpha`
+  // The alpha from which the surface is there: 0.5 in the native format; the
+  // importers set it (glTF's alphaCutoff, MTL's d times map_d; docs/importing.md).
+  float alpha_cutoff = 0.5f;
 
   // Microfacet materials: GGX roughness along the shading frame's two tangent
   // axes ("roughness" sets both; "uroughness", "vroughness" each), in [0, 1];
@@ -221,6 +230,7 @@ struct MaterialDesc {
   // Any type: a tangent-space normal map and a bump map (displacement along
   // the normal, in scene units; docs/path-tracing.md, "Normal and bump maps").
   std::optional<int> normal_map;
+  float normal_scale = 1.0f;  // the tangent-space x and y scaled by it (glTF's normalTexture.scale); 1 natively
   std::optional<TexturedParam<float>> displacement;
 
   // Calls f(texture index) for every texture the material reads.
@@ -353,6 +363,7 @@ struct ImportSummary {
   std::string format;  // "OBJ", "glTF", "glTF binary", "COLLADA"
   double seconds = 0;  // reading and converting the file (in mesh_load_seconds too)
   std::vector<std::pair<std::string, uint64_t>> imported, skipped;
+  std::vector<std::string> files_read;  // ImportedAsset::files_read: inputs no output may overwrite
 };
 
 // ---------------------------------------------------------------- the scene

@@ -5,7 +5,9 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <iterator>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -441,6 +443,15 @@ TEST(MemoryEstimate, TexturesFromTheirFileHeaders) {
   EXPECT_EQ(texture_bytes(scene, TextureLimits{kPixels, kBytes}), kCached + kDecode);
   EXPECT_EQ(texture_bytes(scene, TextureLimits{kPixels - 1, kBytes}), 0u);
   EXPECT_EQ(texture_bytes(scene, TextureLimits{kPixels, kBytes - 1}), 0u);
+  // An image embedded in a model file (a .glb's PNG) counts as the same file would.
+  write_image("embedded.png", 64, 32, 3);
+  std::ifstream png(dir / "embedded.png", std::ios::binary);
+  auto bytes = std::make_shared<const std::vector<unsigned char>>(std::istreambuf_iterator<char>(png),
+                                                                  std::istreambuf_iterator<char>());
+  scene.textures[1].resolved.clear();
+  scene.textures[1].embedded = bytes;
+  scene.textures[1].embedded_format = "png";
+  EXPECT_EQ(texture_bytes(scene), kCached + kDecode);
   std::filesystem::remove_all(dir);
 }
 

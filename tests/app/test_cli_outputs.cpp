@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <OpenImageIO/imageio.h>
@@ -120,6 +121,29 @@ TEST_F(CliOutputs, AnOutputThatIsAnInputIsRefused) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("it is the mesh 'tri.obj' of the scene"), std::string::npos) << r.err;
   EXPECT_EQ(slurp(path("tri.obj")), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+}
+
+// The files an imported model reads are inputs too: an OBJ's MTL file and
+// the textures it names, a glTF file's buffer and images.
+TEST_F(CliOutputs, AnOutputThatAnImportReadsIsRefused) {
+  const fs::path assets = fs::path(PT_TEST_DATA_DIR) / "data" / "assets";
+  for (const char* f : {"obj/features.obj", "obj/features.mtl", "obj/mask.png", "obj/stripes.png", "gltf/pbr.gltf",
+                        "gltf/pbr.bin", "gltf/base.png"}) {
+    fs::create_directories(path(fs::path(f).parent_path().string()));
+    fs::copy_file(assets / f, path(f), fs::copy_options::overwrite_existing);
+  }
+  const std::string mtl = slurp(path("obj/features.mtl"));
+  for (const auto& [scene, output, what] :
+       {std::tuple<std::string, std::string, std::string>{"obj/features.obj", "obj/features.mtl", "'features.mtl', which the import of"},
+        {"obj/features.obj", "obj/stripes.png", "the texture 'stripes.png' of the scene"},
+        {"gltf/pbr.gltf", "gltf/pbr.bin", "'pbr.bin', which the import of"},
+        {"gltf/pbr.gltf", "gltf/base.png", "the texture 'base.png' of the scene"}}) {
+    const RunResult r = run(scene + " --spp 1 --width 8 -o a.exr --report " + output);
+    EXPECT_EQ(r.status, 2) << scene << " " << output;
+    EXPECT_NE(r.err.find("refusing to write --report '" + output + "': it is " + what), std::string::npos) << r.err;
+  }
+  EXPECT_EQ(slurp(path("obj/features.mtl")), mtl);
+  EXPECT_FALSE(fs::exists(path("a.exr")));
 }
 
 TEST_F(CliOutputs, AnOutputThatIsAnotherOutputIsRefused) {

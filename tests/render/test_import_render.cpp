@@ -82,10 +82,9 @@ TEST(ImportRender, ObjMaterialsAndTextureOrientation) {
 }
 
 // The .gltf (external image) and .glb (embedded image) files hold the same
-// scene: the same image, lit, its texture both red and blue. Not the same
-// bits: the external image goes through the texture cache, filtered over the
-// footprint, the embedded one is decoded into memory and read bilinearly
-// (docs/importing.md); the mean difference stays within 3% of the mean.
+// scene, and render the same image: the embedded image is written to the
+// render scene's scratch folder and read through the texture cache, filtered
+// over the footprint exactly as the external file (docs/importing.md).
 TEST(ImportRender, GltfAndGlbGiveTheSameTexturedImage) {
   WorkerPool pool(2);
   std::unique_ptr<RenderScene> a, b;
@@ -96,12 +95,13 @@ TEST(ImportRender, GltfAndGlbGiveTheSameTexturedImage) {
   }
   const Image ia = render(da, "path", 4, pool, a), ib = render(db, "path", 4, pool, b);
   ASSERT_TRUE(a && b);
+  const std::string scratch = b->embedded_images.path();
+  EXPECT_FALSE(scratch.empty());
   int red = 0, blue = 0;
-  double luminance = 0, luminance_b = 0, difference = 0;
+  double luminance = 0, difference = 0;
   for (int y = 0; y < ia.height; ++y)
     for (int x = 0; x < ia.width; ++x) {
       const RGB c = ia.at(x, y), d = ib.at(x, y);
-      luminance_b += d.luminance();
       difference += std::abs(c.luminance() - d.luminance());
       red += c.r > 2.0f * (c.g + c.b) ? 1 : 0;
       blue += c.b > 2.0f * (c.r + c.g) ? 1 : 0;
@@ -111,8 +111,85 @@ TEST(ImportRender, GltfAndGlbGiveTheSameTexturedImage) {
   EXPECT_GT(red, n / 30);
   EXPECT_GT(blue, n / 30);
   EXPECT_GT(luminance / n, 0.05);
-  EXPECT_NEAR(luminance_b, luminance, 0.03 * luminance);
-  EXPECT_LT(difference / n, 0.25 * luminance / n);  // per pixel: texture detail at 72x48, 4 spp
+  EXPECT_LT(difference / n, 1e-6 * luminance / n);  // the same lookups: the same image
+  b.reset();
+  EXPECT_FALSE(fs::exists(scratch));  // the scratch folder goes with the render scene
+}
+
+// tests/data/assets/obj/features.obj: six quads in a row (centres x = -5, -3,
+// ..., 5) under a dim sky (0.2) and a sun from +x+z (irradiance 2, 45 degrees
+// from the quads' normal), each showing one MTL mapping (docs/importing.md).
+TEST(ImportRender, MtlCutoutBumpMirrorGlassMetalAndNormalMap) {
+  const fs::path dir = temp_dir("features");
+  std::ofstream(dir / "s.json") << R"({ "format": "pathtracer-scene", "version": 1,
+    "camera": { "position": [0, 0, 14], "look_at": [0, 0, 0], "fov": 30 },
+    "film": { "width": 192, "height": 48 }, "render": { "background": [0.2, 0.2, 0.2] },
+    "lights": [ { "type": "directional", "direction": [-1, 0, -1], "irradiance": [2, 2, 2] } ],
+    "shapes": [ { "type": "import", "file": ")" + kAssets + R"(obj/features.obj" } ] })";
+  const SceneDescription d = load((dir / "s.json").string());
+  WorkerPool pool(2);
+  std::unique_ptr<RenderScene> scene;
+  const Image img = render(d, "path", 16, pool, scene);
+  ASSERT_TRUE(scene);
+  // A flat white-ish Lambert (0.8): 0.8 x 0.2 from the sky + 0.8 / pi x 2 cos 45 from the sun.
+  const float flat = 0.8f * 0.2f + 0.8f / 3.14159265f * 2.0f * 0.70710678f;
+  const RGB kept = around(img, *scene, {-5.45f, 0, 0}), cut = around(img, *scene, {-4.55f, 0, 0});
+  EXPECT_NEAR(kept.g, flat, 0.03f);    // map_d white: the surface
+  EXPECT_NEAR(cut.g, 0.2f, 0.01f);     // map_d black: the sky behind
+  // bump -bm 0.05 on vertical stripes: the ridges' slopes face the sun or turn from it.
+  float lo = 1e9f, hi = 0;
+  for (float x = -3.8f; x <= -2.2f; x += 0.05f) {
+    const float v = around(img, *scene, {x, 0, 0}).g;
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  EXPECT_GT(hi - lo, 0.25f * flat);
+  // illum 3, Kd 0, Ks (0.9, 0.6, 0.3): a mirror of F0 Ks showing the sky.
+  const RGB mirror = around(img, *scene, {-1, 0, 0});
+  EXPECT_NEAR(mirror.r / 0.2f, 0.9f, 0.05f);
+  EXPECT_NEAR(mirror.g / 0.2f, 0.6f, 0.05f);
+  EXPECT_NEAR(mirror.b / 0.2f, 0.3f, 0.05f);
+  // illum 7, d 0.5: clear glass, grey, neither black nor opaque-lit.
+  const RGB glass = around(img, *scene, {1, 0, 0});
+  EXPECT_NEAR(glass.r, glass.b, 0.02f);
+  EXPECT_GT(glass.g, 0.02f);
+  EXPECT_LT(glass.g, 0.2f);
+  // The rough metal tinted by map_Ks (255, 200, 120): red above green above blue.
+  const RGB metal = around(img, *scene, {3, 0, 0});
+  EXPECT_GT(metal.r, 1.3f * metal.g);
+  EXPECT_GT(metal.g, 1.3f * metal.b);
+  // norm tilts the normal 30 degrees towards +x (the sun): brighter than flat.
+  const RGB tilted = around(img, *scene, {5, 0, 0});
+  EXPECT_GT(tilted.g, 1.12f * flat);
+}
+
+// tests/data/assets/gltf/pbr.gltf and .glb as the scene (a white sky, a
+// framed camera): MASK cuts the base colour texture's transparent half, BLEND
+// at alpha 0.3 cuts the whole quad, and both files give the same image.
+TEST(ImportRender, GltfMaskBlendAndMetallicRoughness) {
+  WorkerPool pool(2);
+  std::unique_ptr<RenderScene> a, b;
+  SceneDescription da = load(kAssets + "gltf/pbr.gltf"), db = load(kAssets + "gltf/pbr.glb");
+  for (SceneDescription* d : {&da, &db}) {
+    d->film.width = 240;
+    d->film.height = 120;  // the framed camera fits the model's bounding sphere in the height: 12 pixels a unit
+  }
+  const Image ia = render(da, "path", 8, pool, a), ib = render(db, "path", 8, pool, b);
+  ASSERT_TRUE(a && b);
+  const RGB opaque = around(ia, *a, {-4.45f, 0, 0}), masked = around(ia, *a, {-3.55f, 0, 0});
+  EXPECT_GT(opaque.g, 2.0f * opaque.r);  // the green base colour
+  EXPECT_NEAR(masked.r, 1.0f, 0.02f);    // the sky through the cut half
+  EXPECT_NEAR(masked.g, 1.0f, 0.02f);
+  const RGB blend = around(ia, *a, {4, 0, 0});
+  EXPECT_NEAR(blend.r, 1.0f, 0.02f);
+  EXPECT_NEAR(blend.g, 1.0f, 0.02f);
+  const RGB metal = around(ia, *a, {-2, 0, 0}), plastic = around(ia, *a, {0, 0, 0});
+  EXPECT_GT(metal.r, 1.3f * metal.b);     // F0 (0.9, 0.6, 0.3)
+  EXPECT_GT(plastic.b, 1.5f * plastic.r);  // base (0.2, 0.4, 0.8) under a white coating
+  double difference = 0;
+  for (int y = 0; y < ia.height; ++y)
+    for (int x = 0; x < ia.width; ++x) difference += std::abs(ia.at(x, y).luminance() - ib.at(x, y).luminance());
+  EXPECT_LT(difference, 1e-6);
 }
 
 // Two red panels (one mesh, two nodes) on a grey ground, lit by the file's

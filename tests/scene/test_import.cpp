@@ -69,9 +69,7 @@ TEST(ImportObj, TwoMaterialsMappedWithTheirStatementsReported) {
   const std::string text = messages(diag);
   EXPECT_NE(text.find("two_materials.mtl:3:1: warning: 'Ka' (ambient colour) is not supported; ignored (2 statements)"),
             std::string::npos) << text;
-  EXPECT_NE(text.find("two_materials.mtl:17:1: warning: 'sharpness'"), std::string::npos) << text;
-  EXPECT_NE(text.find("two_materials.mtl:15:7: warning: alpha"), std::string::npos) << text;
-  EXPECT_NE(text.find("two_materials.mtl:16:14: warning: bump maps"), std::string::npos) << text;
+  EXPECT_NE(text.find("two_materials.mtl:15:1: warning: 'sharpness'"), std::string::npos) << text;
   EXPECT_NE(text.find("no camera"), std::string::npos) << text;  // framed, with a note
   // Counted: what was read and what was left out.
   ASSERT_EQ(s->imports.size(), 1u);
@@ -113,10 +111,14 @@ void expect_hierarchy(const SceneDescription& s) {
   const TriangleMesh& ground = test::geometry_of<TriangleMesh>(s, 0);
   EXPECT_EQ(ground.uvs[0], Vec2f(0, 1));
   const MaterialDesc& tiles = material_named(s, ":tiles");
-  ASSERT_TRUE(tiles.texture);
-  const MaterialDesc& gold = material_named(s, ":gold");
-  EXPECT_EQ(gold.type.value, MaterialType::Mirror);
-  EXPECT_TRUE(test::near(gold.specular.value, RGB(1.0f, 0.77f, 0.33f)));
+  EXPECT_EQ(tiles.type.value, MaterialType::CoatedDiffuse);
+  ASSERT_TRUE(tiles.reflectance.texture);
+  const MaterialDesc& gold = material_named(s, ":gold");  // metallic 1, roughness 0.02: alpha 0.0004
+  EXPECT_EQ(gold.type.value, MaterialType::Conductor);
+  EXPECT_TRUE(gold.schlick);
+  EXPECT_TRUE(test::near(gold.reflectance.value.value, RGB(1.0f, 0.77f, 0.33f)));
+  EXPECT_NEAR(gold.uroughness.value.value, 0.0004f, 1e-7f);
+  EXPECT_FALSE(gold.remap_roughness.value);
   // KHR_materials_emissive_strength (read from the JSON: Assimp 5.2 drops it).
   EXPECT_TRUE(test::near(material_named(s, ":glow").emission.value, RGB(8.0f, 7.2f, 6.4f), 1e-4f));
   // Lights: candela / pi, lux as irradiance; the sun points along the node's -z.
@@ -145,12 +147,12 @@ TEST(ImportGltf, HierarchyInstancesCameraLightsAndMaterials) {
   ASSERT_TRUE(s) << messages(diag);
   expect_hierarchy(*s);
   const std::string text = messages(diag);
-  EXPECT_NE(text.find("warning: alpha"), std::string::npos) << text;
-  EXPECT_NE(text.find("warning: normal maps"), std::string::npos) << text;
-  EXPECT_NE(text.find("perfect mirror (material 'gold')"), std::string::npos) << text;
+  // The mapping is exact now: no approximation is reported for these materials.
+  EXPECT_EQ(text.find("approximated"), std::string::npos) << text;
+  EXPECT_EQ(text.find("not supported"), std::string::npos) << text;
   const ImportSummary& sum = s->imports.at(0);
   EXPECT_EQ(count_of(sum.imported, "instances"), 3u);
-  EXPECT_EQ(count_of(sum.skipped, "mesh tangents (unused until normal maps exist)"), 1u);
+  EXPECT_EQ(count_of(sum.skipped, "mesh tangents (normal maps take tangents from the texture coordinates)"), 1u);
   EXPECT_EQ(count_of(sum.skipped, "cameras (not chosen)"), 1u);
 }
 
@@ -160,7 +162,7 @@ TEST(ImportGltf, BinaryFileWithAnEmbeddedImage) {
   ASSERT_TRUE(s) << messages(diag);
   expect_hierarchy(*s);
   const MaterialDesc& tiles = material_named(*s, ":tiles");  // names come from the JSON chunk
-  const TextureDesc& t = s->textures.at(static_cast<std::size_t>(*tiles.texture));
+  const TextureDesc& t = s->textures.at(static_cast<std::size_t>(*tiles.reflectance.texture));
   ASSERT_TRUE(t.embedded);
   EXPECT_EQ(t.embedded_format, "png");
   EXPECT_TRUE(t.resolved.empty());
@@ -265,10 +267,11 @@ TEST(ImportErrors, AnObjectCannotImport) {
   EXPECT_NE(messages(diag).find("an object cannot import a model file"), std::string::npos) << messages(diag);
 }
 
-TEST(ImportMaterials, RoughnessToBlinnExponent) {
-  EXPECT_FLOAT_EQ(blinn_exponent_for_roughness(1.0f), 1.0f);  // 2 / 1 - 2 = 0, clamped
-  EXPECT_NEAR(blinn_exponent_for_roughness(0.5f), 30.0f, 1e-3f);  // alpha 0.25: 2 / 0.0625 - 2
-  EXPECT_FLOAT_EQ(blinn_exponent_for_roughness(0.0f), 10000.0f);
+TEST(ImportMaterials, BlinnExponentToGgxAlpha) {
+  EXPECT_FLOAT_EQ(alpha_for_exponent(0.0f), 1.0f);  // sqrt(2 / 2)
+  EXPECT_NEAR(alpha_for_exponent(30.0f), 0.25f, 1e-6f);  // sqrt(2 / 32)
+  EXPECT_NEAR(alpha_for_exponent(998.0f), std::sqrt(0.002f), 1e-6f);
+  EXPECT_FLOAT_EQ(alpha_for_exponent(-5.0f), 1.0f);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "render/materials/fresnel.h"
 #include "render/materials/microfacet.h"
@@ -14,6 +15,10 @@ namespace {
 template <class Param, class T>
 void resolve(Param& out, const TexturedParam<T>& in, const std::vector<const Texture*>& textures) {
   out.value = in.value.value;
+  if constexpr (std::is_same_v<Param, FloatParam>) {
+    out.channel = in.channel >= 0 && in.channel < 3 ? in.channel : -1;
+    out.squared = in.squared;
+  }
   if (in.texture && static_cast<std::size_t>(*in.texture) < textures.size())
     out.texture = textures[static_cast<std::size_t>(*in.texture)];
 }
@@ -100,6 +105,7 @@ Material make_material(const MaterialDesc& d, const std::vector<const Texture*>&
   m.schlick = d.schlick;
   m.coating = coating;
   m.normal_map = texture_of(d.normal_map, textures);
+  m.normal_scale = d.normal_scale;
   if (d.displacement) resolve(m.displacement, *d.displacement, textures);
   // The classic integrator reads only the course fields: give the physical
   // types their closest classic meaning (docs/path-tracing.md).

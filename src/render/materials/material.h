@@ -52,6 +52,7 @@ struct Material {
   const CoatingTable* coating = nullptr;  // a coated diffuse's albedo tables (owned by the render scene)
   // Normal perturbation, any type (docs/path-tracing.md, "Normal and bump maps").
   const Texture* normal_map = nullptr;
+  float normal_scale = 1;   // the map's tangent-space x and y scaled by it
   FloatParam displacement;  // used where textured
 
   // Whether the BSDF refracts (glass and dielectric): the classic integrator

@@ -43,9 +43,10 @@ Vec3f bumped_normal(const FloatParam& h, const UvDerivatives& d, const TexCoord&
   return len > 0.0f && std::isfinite(len) ? c / len : n;
 }
 
-Vec3f mapped_normal(const Texture& map, const UvDerivatives& d, const TexCoord& tc, Vec3f n) {
+// glTF's normalTexture.scale s: (x, y) scaled by s before normalising.
+Vec3f mapped_normal(const Texture& map, float scale, const UvDerivatives& d, const TexCoord& tc, Vec3f n) {
   const RGB c = texture_rgb(map, tc);
-  const Vec3f t(2.0f * c.r - 1.0f, 2.0f * c.g - 1.0f, 2.0f * c.b - 1.0f);
+  const Vec3f t((2.0f * c.r - 1.0f) * scale, (2.0f * c.g - 1.0f) * scale, 2.0f * c.b - 1.0f);
   const Vec3f tu = tangent_along(d.dpdu, n);
   // The image's up is -v: B points against dp/dv (or is n x T if dp/dv is degenerate).
   Vec3f b = cross(n, tu);
@@ -61,7 +62,7 @@ void perturb_shading_normal(const Material& m, const UvDerivatives& d, SurfaceGe
   const TexCoord tc = tex_coord(geo);
   Vec3f n = geo.ns;
   if (m.displacement.textured()) n = bumped_normal(m.displacement, d, tc, n);
-  if (m.normal_map) n = mapped_normal(*m.normal_map, d, tc, n);
+  if (m.normal_map) n = mapped_normal(*m.normal_map, m.normal_scale, d, tc, n);
   // Never below (or too close to) the geometric tangent plane.
   const float e = dot(n, geo.ng);
   if (e < kMinElevation) n = normalize(n + geo.ng * (kMinElevation - e));

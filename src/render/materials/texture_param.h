@@ -7,7 +7,8 @@
 // FloatParam and RGBParam are the material parameters that may be textured
 // (docs/scene-format.md, "Textured parameters"): a constant, or the constant
 // times the texture's value (for a float parameter, the mean of the texel's
-// three channels, which is the value itself for a grey image).
+// three channels, which is the value itself for a grey image, or the one
+// channel an importer chose, squared where it asked: docs/importing.md).
 #pragma once
 
 #include "core/color.h"
@@ -24,11 +25,14 @@ inline RGB texture_rgb(const Texture& t, const TexCoord& tc) { return t.eval(tc)
 struct FloatParam {
   float value = 0.0f;
   const Texture* texture = nullptr;
+  int channel = -1;      // 0, 1, 2: that channel of the texel; -1: the mean of the three
+  bool squared = false;  // value * t^2
 
   float at(const TexCoord& tc) const {
     if (!texture) return value;
     const RGB c = texture_rgb(*texture, tc);
-    return value * ((c.r + c.g + c.b) * (1.0f / 3.0f));
+    const float t = channel < 0 ? (c.r + c.g + c.b) * (1.0f / 3.0f) : c[channel];
+    return value * (squared ? t * t : t);
   }
   bool textured() const { return texture != nullptr; }
 };

@@ -148,12 +148,4 @@ bool Texture::load(const std::string& path, Texture& out, std::string& error, co
   return in != nullptr && decode(*in, out, error, limits, raw);
 }
 
-bool Texture::load_memory(const std::vector<unsigned char>& bytes, const std::string& format, Texture& out,
-                          std::string& error, const TextureLimits& limits, bool raw) {
-  const ImageLibrary* lib = image_library(error);
-  if (lib == nullptr) return false;
-  const std::unique_ptr<ImageReader> in = lib->open_memory(bytes.data(), bytes.size(), format, error);
-  return in != nullptr && decode(*in, out, error, limits, raw);
-}
-
 }  // namespace pt

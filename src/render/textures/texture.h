@@ -56,10 +56,6 @@ class Texture {
   // `error` if the file cannot be read or declares a size beyond `limits`.
   static bool load(const std::string& path, Texture& out, std::string& error, const TextureLimits& limits = {},
                    bool raw = false);
-  // The same for an image held in memory (a model file's embedded PNG or
-  // JPEG); `format` is its kind as a file extension without the dot ("png").
-  static bool load_memory(const std::vector<unsigned char>& bytes, const std::string& format, Texture& out,
-                          std::string& error, const TextureLimits& limits = {}, bool raw = false);
 
   // The colour over the footprint of `tc` (a point lookup where it has none).
   RGB eval(const TexCoord& tc) const;

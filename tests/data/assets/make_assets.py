@@ -3,6 +3,15 @@
 
   obj/two_materials.{obj,mtl}  two quads, a red Lambert one and a textured Blinn-Phong one
                                (plus statements we do not support, for the warnings)
+  obj/features.{obj,mtl}       six quads in a row: a map_d cutout, a bump map (-bm), an illum 3
+                               mirror, an illum 7 glass, a rough metal with map_Ks and map_Ns, a
+                               normal map (norm); with mask.png, stripes.png, tint.png, rough.png,
+                               normal.png
+  gltf/pbr.gltf + .bin         five quads in a row: alphaMode MASK on the base colour texture's
+                               alpha, a metal with metallicRoughnessTexture and a normal map
+                               (scale 0.5), a dielectric, metallic 0.3, alphaMode BLEND; with
+                               base.png (RGBA), mr.png, normal.png
+  gltf/pbr.glb                 the same, its images embedded
   obj/halves.png               the texture: top half red, bottom half blue (uv orientation)
   gltf/hierarchy.gltf + .bin   a node hierarchy: one box mesh placed three times, a ground whose
                                texture uses TEXCOORD_1, a two-primitive lamp (emissive + metal),
@@ -23,13 +32,15 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 
 
 def png_bytes(width, height, pixel):
+    """pixel(x, y): a tuple of 1 (grey), 3 (RGB) or 4 (RGBA) 8-bit values."""
     rows = b"".join(b"\x00" + bytes(c for x in range(width) for c in pixel(x, y)) for y in range(height))
+    colour_type = {1: 0, 3: 2, 4: 6}[len(pixel(0, 0))]
 
     def chunk(kind, data):
         body = kind + data
         return struct.pack(">I", len(data)) + body + struct.pack(">I", zlib.crc32(body) & 0xFFFFFFFF)
 
-    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0))
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, colour_type, 0, 0, 0))
             + chunk(b"IDAT", zlib.compress(rows, 9)) + chunk(b"IEND", b""))
 
 
@@ -84,8 +95,6 @@ Ks 0.1 0.1 0.1
 Ns 50
 illum 2
 map_Kd halves.png
-map_d halves.png
-bump -bm 0.5 halves.png
 sharpness 60
 
 newmtl unused_glass
@@ -273,6 +282,169 @@ def glb(doc, binary):
     return struct.pack("<III", 0x46546C67, 2, 12 + len(body)) + body
 
 
+# ---------------------------------------------------------------- OBJ + MTL features and glTF PBR
+def row_of_quads(n, spacing=2.0, size=1.8):
+    """n quads in the z = 0 plane facing +z, centred at x = (i - (n - 1) / 2) * spacing; uv (0, 0) at the
+    bottom left (OBJ's convention; the importer flips v)."""
+    pos, uv = [], []
+    h = size / 2
+    for i in range(n):
+        cx = (i - (n - 1) / 2) * spacing
+        pos += [(cx - h, -h, 0.0), (cx + h, -h, 0.0), (cx + h, h, 0.0), (cx - h, h, 0.0)]
+        uv += [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]
+    return pos, uv
+
+
+FEATURES = ["cutout", "bumpy", "mirror", "glass", "rough_metal", "normal_mapped"]
+
+FEATURES_MTL = """# Materials of features.obj: what issue 16 maps onto the microfacet materials
+newmtl cutout
+Kd 0.8 0.8 0.8
+illum 1
+map_d mask.png
+
+newmtl bumpy
+Kd 0.8 0.8 0.8
+illum 1
+bump -bm 0.05 stripes.png
+
+newmtl mirror
+Kd 0 0 0
+Ks 0.9 0.6 0.3
+illum 3
+
+newmtl glass
+Kd 0 0 0
+Ks 1 1 1
+Ni 1.5
+d 0.5
+illum 7
+
+newmtl rough_metal
+Kd 0 0 0
+Ks 1 1 1
+Ns 50
+map_Ks tint.png
+map_Ns rough.png
+illum 3
+
+newmtl normal_mapped
+Kd 0.8 0.8 0.8
+illum 1
+norm normal.png
+"""
+
+
+def features_obj():
+    pos, uv = row_of_quads(len(FEATURES))
+    lines = ["# Six quads in a row (x = -5 .. 5), facing +z, one per material of features.mtl", "mtllib features.mtl"]
+    lines += ["v %g %g %g" % p for p in pos] + ["vt %g %g" % t for t in uv] + ["vn 0 0 1"]
+    for i, name in enumerate(FEATURES):
+        k = 4 * i
+        lines += ["o %s" % name, "usemtl %s" % name,
+                  "f %d/%d/1 %d/%d/1 %d/%d/1 %d/%d/1" % (k + 1, k + 1, k + 2, k + 2, k + 3, k + 3, k + 4, k + 4)]
+    return "\n".join(lines) + "\n"
+
+
+def mask(x, y):
+    """Grey: white on the left half, black on the right half."""
+    return (255,) if x < 8 else (0,)
+
+
+def stripes(x, y):
+    """Grey vertical bands, 4 texels wide (a height field of ridges along v)."""
+    return (255,) if (x // 4) % 2 == 0 else (0,)
+
+
+def tint(x, y):
+    return (255, 200, 120)
+
+
+def rough(x, y):
+    return (128,)
+
+
+def normal_tilted(x, y):
+    """Tangent-space normal tilted towards +u: (0.5, 0, 0.866) encoded as (c + 1) / 2."""
+    return (191, 128, 238)
+
+
+def base_rgba(x, y):
+    """Green, opaque on the left half, transparent on the right half."""
+    return (40, 200, 40, 255) if x < 8 else (40, 200, 40, 0)
+
+
+def metal_roughness(x, y):
+    """glTF: G = roughness 0.5 (128), B = metalness 1."""
+    return (0, 128, 255)
+
+
+def pbr_scene(embed):
+    buf = Buffer()
+    n = 5
+    pos, uv = row_of_quads(n)
+    uv = [(u, 1.0 - v) for (u, v) in uv]  # glTF: v = 0 at the image's top
+    images = [("base", png_bytes(16, 16, base_rgba)), ("mr", png_bytes(16, 16, metal_roughness)),
+              ("normal", png_bytes(16, 16, normal_tilted))]
+    meshes, nodes = [], []
+    for i in range(n):
+        q = pos[4 * i:4 * i + 4]
+        prim = {"attributes": {"POSITION": buf.accessor(q, "VEC3"), "NORMAL": buf.accessor([(0.0, 0.0, 1.0)] * 4, "VEC3"),
+                               "TEXCOORD_0": buf.accessor(uv[4 * i:4 * i + 4], "VEC2")},
+                "indices": buf.accessor([0, 1, 2, 0, 2, 3], "SCALAR"), "material": i}
+        meshes.append({"name": "quad%d" % i, "primitives": [prim]})
+        nodes.append({"name": "quad%d" % i, "mesh": i})
+    if embed:
+        image_list = [{"bufferView": buf.view(data), "mimeType": "image/png", "name": name} for name, data in images]
+    else:
+        image_list = [{"uri": name + ".png", "name": name} for name, _ in images]
+    doc = {
+        "asset": {"version": "2.0", "generator": "tests/data/assets/make_assets.py"},
+        "scene": 0,
+        "scenes": [{"name": "scene", "nodes": list(range(n))}],
+        "nodes": nodes,
+        "meshes": meshes,
+        "materials": [
+            {"name": "masked", "alphaMode": "MASK", "alphaCutoff": 0.5,
+             "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0, "roughnessFactor": 1}},
+            {"name": "metal_rough", "normalTexture": {"index": 2, "scale": 0.5},
+             "pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.6, 0.3, 1], "metallicFactor": 1,
+                                      "roughnessFactor": 0.8, "metallicRoughnessTexture": {"index": 1}}},
+            {"name": "plastic", "pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.4, 0.8, 1], "metallicFactor": 0,
+                                                         "roughnessFactor": 0.5}},
+            {"name": "half_metal", "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.8, 0.8, 1],
+                                                            "metallicFactor": 0.3, "roughnessFactor": 0.3}},
+            {"name": "blend", "alphaMode": "BLEND",
+             "pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0, 0.3], "metallicFactor": 0}},
+        ],
+        "textures": [{"source": 0}, {"source": 1}, {"source": 2}],
+        "images": image_list,
+        "buffers": [{"byteLength": 0}],
+        "bufferViews": buf.views,
+        "accessors": buf.accessors,
+    }
+    while len(buf.data) % 4:
+        buf.data.append(0)
+    doc["buffers"][0]["byteLength"] = len(buf.data)
+    return doc, bytes(buf.data), images
+
+
+def write_features():
+    write("obj/features.obj", features_obj())
+    write("obj/features.mtl", FEATURES_MTL)
+    for name, pixel in (("mask", mask), ("stripes", stripes), ("tint", tint), ("rough", rough),
+                        ("normal", normal_tilted)):
+        write("obj/%s.png" % name, png_bytes(16, 16, pixel))
+    doc, binary, images = pbr_scene(embed=False)
+    doc["buffers"][0]["uri"] = "pbr.bin"
+    write("gltf/pbr.gltf", json.dumps(doc, indent=1) + "\n")
+    write("gltf/pbr.bin", binary)
+    for name, data in images:
+        write("gltf/%s.png" % name, data)
+    doc, binary, _ = pbr_scene(embed=True)
+    write("gltf/pbr.glb", glb(doc, binary))
+
+
 def main():
     write("obj/two_materials.obj", OBJ)
     write("obj/two_materials.mtl", MTL)
@@ -285,6 +457,7 @@ def main():
     write("gltf/halves.png", image)
     doc, binary, _ = gltf_scene(embed_image=True)
     write("gltf/hierarchy.glb", glb(doc, binary))
+    write_features()
 
 
 if __name__ == "__main__":
