@@ -21,12 +21,6 @@ float angle_between(Vec3f a, Vec3f b) {
 }
 float sin_from_cos(float c) { return std::sqrt(std::max(0.0f, 1.0f - c * c)); }
 
-// cos(max(0, a - b)) from the cosines and sines of angles a, b in [0, pi].
-float cos_sub_clamped(float cos_a, float sin_a, float cos_b, float sin_b) {
-  if (cos_a >= cos_b) return 1.0f;  // a <= b
-  return cos_a * cos_b + sin_a * sin_b;
-}
-
 }  // namespace
 
 DirectionCone cone_union(const DirectionCone& a, const DirectionCone& b) {
@@ -63,30 +57,46 @@ LightBounds bounds_union(const LightBounds& a, const LightBounds& b) {
   return out;
 }
 
-float LightBounds::importance(Vec3f p, Vec3f n) const {
+float LightBounds::importance(Vec3f p, Vec3f n) const { return ImportanceBounds(*this).importance(p, n); }
+
+ImportanceBounds::ImportanceBounds(const LightBounds& b)
+    : centre(b.bounds.centre()),
+      r2(0.25f * length_squared(b.bounds.extent())),
+      r(std::sqrt(r2)),
+      axis(b.normals.w),
+      cos_o(std::clamp(b.normals.cos_theta, -1.0f, 1.0f)),
+      sin_o(sin_from_cos(cos_o)),
+      cos_e(b.cos_theta_e),
+      intensity(b.intensity),
+      two_sided(b.two_sided) {}
+
+float ImportanceBounds::importance(Vec3f p, Vec3f n) const {
   if (!(intensity > 0.0f)) return 0.0f;
-  const Vec3f d = p - bounds.centre();
+  const Vec3f d = p - centre;
   const float d2 = length_squared(d);
-  const float r2 = 0.25f * length_squared(bounds.extent());  // the bounding sphere's radius^2
-  const float d2_clamped = std::max(d2, r2);
-  if (!(d2_clamped > 0.0f)) return 0.0f;  // p on a point light: it sends p nothing
   // Inside the bounding sphere every direction may be lit: no cone or normal factor.
-  if (d2 <= r2) return std::min(kMaxImportance, intensity / d2_clamped);
-  const Vec3f wi = d / std::sqrt(d2);  // from the lights towards p
-  const float sin2_b = r2 / d2;        // the half-angle theta_b the bounds subtend from p
-  const float cos_b = std::sqrt(std::max(0.0f, 1.0f - sin2_b));
-  const float sin_b = std::sqrt(sin2_b);
-  // The angle from the emission cone to p, less theta_b: cos(max(0, theta_w - theta_o - theta_b)).
-  float cos_w = dot(normals.w, wi);
+  if (d2 <= r2) return r2 > 0.0f ? std::min(kMaxImportance, intensity / r2) : 0.0f;  // (on a point light: nothing)
+  const float inv_d = 1.0f / std::sqrt(d2);
+  const Vec3f wi = d * inv_d;  // from the lights towards p
+  // The half-angle theta_b the bounds subtend from p.
+  const float sin_b = std::min(1.0f, r * inv_d);
+  const float cos_b = std::sqrt(std::max(0.0f, 1.0f - sin_b * sin_b));
+  // cos and sin of theta_x = max(0, theta_w - theta_o), the angle from the emission cone to p.
+  float cos_w = dot(axis, wi);
   if (two_sided) cos_w = std::fabs(cos_w);
-  const float cos_o = normals.cos_theta;
-  const float cos_x = cos_sub_clamped(cos_w, sin_from_cos(cos_w), cos_o, sin_from_cos(cos_o));
-  const float cos_p = cos_sub_clamped(cos_x, sin_from_cos(cos_x), cos_b, sin_b);
-  if (cos_p <= cos_theta_e) return 0.0f;  // beyond the emission: nothing reaches p
-  float result = intensity * cos_p / d2_clamped;
+  float cos_x = 1.0f, sin_x = 0.0f;
+  if (cos_w < cos_o) {
+    const float sin_w = sin_from_cos(cos_w);
+    cos_x = cos_w * cos_o + sin_w * sin_o;
+    sin_x = sin_w * cos_o - cos_w * sin_o;
+  }
+  // cos(theta') = cos(max(0, theta_x - theta_b)).
+  const float cos_p = cos_x >= cos_b ? 1.0f : cos_x * cos_b + sin_x * sin_b;
+  if (cos_p <= cos_e) return 0.0f;  // beyond the emission: nothing reaches p
+  float result = intensity * cos_p * (inv_d * inv_d);
   if (n.x != 0.0f || n.y != 0.0f || n.z != 0.0f) {  // the receiver's cosine, less theta_b
     const float cos_i = std::fabs(dot(wi, n));
-    result *= cos_sub_clamped(cos_i, sin_from_cos(cos_i), cos_b, sin_b);
+    if (cos_i < cos_b) result *= cos_i * cos_b + sin_from_cos(cos_i) * sin_b;
   }
   return std::min(kMaxImportance, std::max(0.0f, result));
 }

@@ -43,9 +43,24 @@ struct LightBounds {
   // with normal n (n = 0: any orientation). It is 0 only where none of them
   // can send anything: p outside every emission cone, or n turned edge-on to
   // all of them.
-  float importance(Vec3f p, Vec3f n) const;
+  float importance(Vec3f p, Vec3f n) const;  // ImportanceBounds(*this).importance(p, n)
 };
 
 LightBounds bounds_union(const LightBounds& a, const LightBounds& b);
+
+// LightBounds as importance() reads it, computed once (the light BVH's nodes):
+// the same value with a third of the square roots.
+struct ImportanceBounds {
+  Vec3f centre;
+  float r2 = 0.0f, r = 0.0f;  // the bounding sphere's radius, squared and not
+  Vec3f axis{0, 0, 1};
+  float cos_o = -1.0f, sin_o = 0.0f, cos_e = 0.0f;
+  float intensity = 0.0f;
+  bool two_sided = false;
+
+  ImportanceBounds() = default;
+  explicit ImportanceBounds(const LightBounds& b);
+  float importance(Vec3f p, Vec3f n) const;
+};
 
 }  // namespace pt

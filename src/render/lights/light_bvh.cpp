@@ -69,15 +69,29 @@ LightBvh::LightBvh(std::vector<Entry> entries, std::size_t light_count) : leaf_o
   std::erase_if(entries, [](const Entry& e) { return !(e.bounds.intensity > 0.0f); });
   if (entries.empty()) return;
   nodes_.reserve(2 * entries.size() - 1);
-  build(entries, 0, entries.size(), kNone);
+  LightBounds all;
+  build(entries, 0, entries.size(), kNone, all);
 }
 
-uint32_t LightBvh::build(std::vector<Entry>& e, std::size_t begin, std::size_t end, uint32_t parent) {
+int LightBvh::depth() const {
+  int deepest = 0;
+  for (uint32_t leaf : leaf_of_) {
+    if (leaf == kNone) continue;
+    int d = 0;
+    for (uint32_t node = leaf; node != 0; node = nodes_[node].parent) ++d;
+    deepest = std::max(deepest, d);
+  }
+  return deepest;
+}
+
+uint32_t LightBvh::build(std::vector<Entry>& e, std::size_t begin, std::size_t end, uint32_t parent,
+                         LightBounds& out) {
   const auto index = static_cast<uint32_t>(nodes_.size());
   nodes_.push_back(Node{});
   nodes_[index].parent = parent;
   if (end - begin == 1) {
-    nodes_[index].bounds = e[begin].bounds;
+    out = e[begin].bounds;
+    nodes_[index].bounds = ImportanceBounds(out);
     nodes_[index].light = e[begin].light;
     leaf_of_[static_cast<std::size_t>(e[begin].light)] = index;
     return index;
@@ -99,10 +113,12 @@ uint32_t LightBvh::build(std::vector<Entry>& e, std::size_t begin, std::size_t e
     if (mid == begin || mid == end) mid = begin + (end - begin) / 2;
   }
   // Equal centroids (or no better split): halves in the given order.
-  build(e, begin, mid, index);
-  const uint32_t second = build(e, mid, end, index);
+  LightBounds first_bounds, second_bounds;
+  build(e, begin, mid, index, first_bounds);
+  const uint32_t second = build(e, mid, end, index, second_bounds);
   nodes_[index].second = second;
-  nodes_[index].bounds = bounds_union(nodes_[index + 1].bounds, nodes_[second].bounds);
+  out = bounds_union(first_bounds, second_bounds);
+  nodes_[index].bounds = ImportanceBounds(out);
   return index;
 }
 

@@ -39,6 +39,8 @@ class LightBvh {
   std::size_t node_count() const { return nodes_.size(); }
   // The root's importance at (p, n): an estimate of the irradiance all these lights send there.
   float importance(Vec3f p, Vec3f n) const { return nodes_.empty() ? 0.0f : nodes_[0].bounds.importance(p, n); }
+  // The depth of the deepest leaf (the root's is 0).
+  int depth() const;
   // A light picked by importance at (p, n), with its probability; -1 (pmf 0)
   // when the walk meets a node whose children both have importance 0.
   int choose(Vec3f p, Vec3f n, float u, float& pmf) const;
@@ -48,12 +50,13 @@ class LightBvh {
  private:
   static constexpr uint32_t kNone = 0xffffffffu;
   struct Node {
-    LightBounds bounds;
+    ImportanceBounds bounds;
     uint32_t parent = kNone;
     uint32_t second = kNone;  // the second child (the first is the next node); kNone at a leaf
     int light = -1;           // a leaf's light
   };
-  uint32_t build(std::vector<Entry>& entries, std::size_t begin, std::size_t end, uint32_t parent);
+  // Builds the subtree of entries [begin, end); returns its node and, in `out`, its bounds.
+  uint32_t build(std::vector<Entry>& entries, std::size_t begin, std::size_t end, uint32_t parent, LightBounds& out);
   // The probability of taking `child` at its parent, at (p, n).
   float child_probability(uint32_t child, Vec3f p, Vec3f n) const;
 
