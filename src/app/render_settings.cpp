@@ -36,6 +36,7 @@ bool resolve_render_settings(const SceneDescription& desc, const SettingsOverrid
   s.roulette_depth = o.roulette_depth;
   s.roulette_threshold = o.roulette_threshold;
   s.film_transparent = o.film_transparent || desc.render.film_transparent.value;
+  out.light_sampler = desc.render.light_sampler.value;
   BuildOptions size;
   size.width_override = o.width;
   size.height_override = o.height;
@@ -49,6 +50,7 @@ BuildOptions RenderSettings::build_options(AccelKind accel) const {
   // Both sides given: the resolved size exactly (resolve_resolution).
   options.width_override = width;
   options.height_override = height;
+  options.light_sampler = light_sampler;
   return options;
 }
 
@@ -89,6 +91,8 @@ nlohmann::ordered_json RenderSettings::identity() const {
                                 {"clamp", integration.clamp}};
   // Only when set, so that the checkpoints of opaque renders keep their keys.
   if (integration.film_transparent) id["film_transparent"] = true;
+  if (light_sampler != LightSamplerType::Bvh)
+    id["light_sampler"] = kLightSamplerNames[static_cast<int>(light_sampler)];
   return id;
 }
 

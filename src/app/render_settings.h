@@ -44,6 +44,7 @@ struct RenderSettings {
   // its own spp and first_sample on a copy.
   IntegratorSettings integration;
   int width = 0, height = 0;  // the image, after the overrides
+  LightSamplerType light_sampler = LightSamplerType::Bvh;  // the scene's render.light_sampler
 
   std::string integrator_name() const { return integrator->name; }
   // The integrator of one pass (or replay, or the can_render question).
@@ -64,7 +65,7 @@ struct RenderSettings {
   void describe(RunRecord& record) const;
   // The settings a checkpoint must match to be resumed (not the pass size):
   // integrator, width, height, max_depth, seed, sampler, filter, clamp, and
-  // film_transparent when set.
+  // film_transparent and light_sampler when not the default.
   nlohmann::ordered_json identity() const;
 };
 

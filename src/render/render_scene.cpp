@@ -94,7 +94,7 @@ void add_light(std::vector<Light>&, const AmbientLightDesc&) {}
 
 // Every light: the description's, every emissive shape, and the environment
 // (the map, or the background colour if it is not black).
-LightSet build_light_set(const SceneDescription& desc, const RenderScene& scene) {
+LightSet build_light_set(const SceneDescription& desc, const RenderScene& scene, LightSamplerType sampler) {
   std::vector<Light> lights;
   for (const LightDesc& l : desc.lights) std::visit([&](const auto& light) { add_light(lights, light); }, l);
   const SceneGeometry& g = scene.geometry;
@@ -123,7 +123,7 @@ LightSet build_light_set(const SceneDescription& desc, const RenderScene& scene)
   const Bounds3f b = scene.accel->bounds();
   float radius = b.empty() ? 1.0f : 0.5f * length(b.extent());
   if (!(radius > 0.0f) || !std::isfinite(radius)) radius = 1.0f;
-  return LightSet(std::move(lights), scene.geometry.shapes.size(), radius);
+  return LightSet(std::move(lights), scene.geometry.shapes.size(), radius, sampler);
 }
 
 // ---------------------------------------------------------------- geometry
@@ -306,7 +306,7 @@ std::unique_ptr<RenderScene> build(Desc& desc, const BuildOptions& options, Work
   const CutoutTest* cutouts = prepare_cutouts(desc, *scene);
   scene->accel = build_accelerator(options.accel, scene->geometry, pool, diag, cutouts);
   if (!scene->accel) return nullptr;
-  scene->lights = build_light_set(desc, *scene);
+  scene->lights = build_light_set(desc, *scene, options.light_sampler);
   for (const LightDesc& l : desc.lights)
     if (const auto* ambient = std::get_if<AmbientLightDesc>(&l)) scene->ambient += ambient->intensity.value;
   return scene;

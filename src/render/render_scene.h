@@ -157,6 +157,7 @@ struct BuildOptions {
   ResolutionLimits limits;           // the image after the overrides, as LoadOptions
   TextureLimits textures;            // every texture and environment map, checked before decoding
   uint64_t texture_cache_bytes = TextureCache::kDefaultBytes;  // --texture-cache
+  LightSamplerType light_sampler = LightSamplerType::Bvh;  // render.light_sampler (LightSet)
 };
 
 // The image size build_render_scene gives `film` under `options` (an override

@@ -140,6 +140,10 @@ void read_render(ImportContext& ctx, const JsonValue& v) {
   const int filter = read_choice(r, "filter", {std::begin(kPixelFilterNames), std::end(kPixelFilterNames)}, &filter_at);
   if (filter >= 0) render.filter = Sourced<PixelFilterType>(static_cast<PixelFilterType>(filter), filter_at);
   r.read("clamp", render.clamp);
+  SourceLocation sampler_at;
+  const int sampler =
+      read_choice(r, "light_sampler", {std::begin(kLightSamplerNames), std::end(kLightSamplerNames)}, &sampler_at);
+  if (sampler >= 0) render.light_sampler = Sourced<LightSamplerType>(static_cast<LightSamplerType>(sampler), sampler_at);
   r.read("film_transparent", render.film_transparent);
   Sourced<std::string> image;
   if (r.read("background_image", image) && image.where.valid()) {

@@ -141,6 +141,12 @@ enum class PixelFilterType { Box, Gaussian, Mitchell };
 // The names of the filters (scene files, --filter, the EXR header, run records), in enum order.
 inline constexpr const char* kPixelFilterNames[] = {"box", "gaussian", "mitchell"};
 
+// How the path integrator chooses the light of each next-event estimate
+// (docs/path-tracing.md, "Choosing a light"): by importance at the shading
+// point through a light BVH, or in proportion to each light's power.
+enum class LightSamplerType { Bvh, Power };
+inline constexpr const char* kLightSamplerNames[] = {"bvh", "power"};
+
 struct RenderDesc {
   Sourced<std::string> integrator{std::string("whitted")};  // registry name, see render/integrators
   Sourced<int> max_depth{5};     // recursion limit (nbounces in the course files)
@@ -150,6 +156,7 @@ struct RenderDesc {
   Sourced<RGB> background{RGB(0, 0, 0)};
   Sourced<PixelFilterType> filter{PixelFilterType::Box};
   Sourced<float> clamp{0.0f};    // firefly clamp on each sample's radiance; 0 = off
+  Sourced<LightSamplerType> light_sampler{LightSamplerType::Bvh};  // the path integrator's light choice
   // An image behind the scene in screen space, stretched over the frame: what
   // camera rays that leave the scene see instead of `background` or the
   // environment. Bounce rays do not see it and it lights nothing.

@@ -1,6 +1,7 @@
 // Estimators that must converge to the same image: light sampling alone, BSDF
 // sampling alone and MIS; the Embree and BVH backends; a glass sphere of index
-// 1 and no sphere at all.
+// 1 and no sphere at all; the light BVH and power-proportional light choice
+// (render.light_sampler) on scenes with several lights.
 //
 // Method: each image is rendered with S independent seeds; the image is cut
 // into blocks, and each block's mean over the seeds and its standard error
@@ -12,6 +13,7 @@
 // probability below 1%.
 #include <cmath>
 #include <functional>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -19,6 +21,7 @@
 #include <gtest/gtest.h>
 
 #include "path_test_util.h"
+#include "scene/loader.h"
 
 namespace pt {
 namespace {
@@ -200,6 +203,81 @@ TEST(PathAgreement, BothBackendsConvergeToTheSameImage) {
     });
   };
   EXPECT_TRUE(agree(with_backend(AccelKind::Embree), with_backend(AccelKind::Bvh)));
+}
+
+// ---------------------------------------------------------------- light samplers
+BlockEstimate estimate_sampler(const SceneDescription& d, LightSamplerType sampler, int spp, int width, int height) {
+  return estimate([&](uint64_t seed) {
+    BuildOptions options;
+    options.light_sampler = sampler;
+    options.width_override = width;
+    options.height_override = height;
+    return test::render_with(d, "path", test::path_settings(spp, 5, seed), 2, options);
+  });
+}
+
+void expect_samplers_agree(const SceneDescription& d, int spp, int width = 32, int height = 24) {
+  EXPECT_TRUE(agree(estimate_sampler(d, LightSamplerType::Bvh, spp, width, height),
+                    estimate_sampler(d, LightSamplerType::Power, spp, width, height)))
+      << "light BVH vs power";
+}
+
+std::optional<SceneDescription> load_file(const std::string& path) {
+  Diagnostics diag;
+  std::optional<SceneDescription> d = load_scene(path, LoadOptions{}, diag);
+  EXPECT_TRUE(d) << diag.format();
+  return d;
+}
+
+// The MIS scene (quad, sphere light, sky) with a spot and two point lights.
+TEST(PathAgreement, LightSamplersAgreeOnAreaSpotPointLightsAndSky) {
+  SceneDescription d = mis_scene();
+  SpotLightDesc spot;
+  spot.position = Vec3f(-1.0f, 1.8f, 1.0f);
+  spot.direction = Vec3f(0.3f, -1.0f, -0.5f);
+  spot.intensity = RGB(6.0f, 5.0f, 4.0f);
+  spot.cone_angle = 25.0f;
+  spot.cone_delta = 5.0f;
+  d.lights.emplace_back(spot);
+  PointLightDesc point;
+  point.position = Vec3f(1.5f, 1.2f, 1.0f);
+  point.intensity = RGB(0.4f, 0.5f, 0.8f);
+  d.lights.emplace_back(point);
+  point.position = Vec3f(-1.5f, 0.3f, 0.5f);
+  d.lights.emplace_back(point);
+  expect_samplers_agree(d, 16, 32, 32);
+}
+
+TEST(PathAgreement, LightSamplersAgreeOnTheClassicLightsScene) {  // spot, point, directional, sphere lamp
+  const auto d = load_file(std::string(PT_TEST_DATA_DIR) + "/data/scenes/classic-lights.json");
+  if (d) expect_samplers_agree(*d, 8, 24, 18);
+}
+
+TEST(PathAgreement, LightSamplersAgreeOnInstancedMeshLights) {  // an instanced mesh light, a spherical camera
+  const auto d = load_file(std::string(PT_TEST_DATA_DIR) + "/data/scenes/panorama.json");
+  if (d) expect_samplers_agree(*d, 16, 32, 16);
+}
+
+TEST(PathAgreement, LightSamplersAgreeOnTheManyLightsRoom) {  // 248 lamps
+  const auto d = load_file(std::string(PT_SCENES_DIR) + "/many-lights.json");
+  if (d) expect_samplers_agree(*d, 8);
+}
+
+TEST(PathAgreement, LightSamplersRenderTheCornellBoxBitForBit) {
+  // One light: neither sampler spends a sample dimension on the choice.
+  const auto d = load_file(std::string(PT_SCENES_DIR) + "/cornell-box.json");
+  if (!d) return;
+  const auto render = [&](LightSamplerType sampler) {
+    BuildOptions options;
+    options.light_sampler = sampler;
+    options.width_override = 32;
+    options.height_override = 32;
+    return test::render_with(*d, "path", test::path_settings(4, 8, 1), 2, options);
+  };
+  const Image a = render(LightSamplerType::Bvh), b = render(LightSamplerType::Power);
+  ASSERT_EQ(a.pixels.size(), b.pixels.size());
+  for (std::size_t i = 0; i < a.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(a.pixels[i][c], b.pixels[i][c]) << "pixel " << i;
 }
 
 }  // namespace

@@ -2,7 +2,7 @@
 // importance sampling (docs/path-tracing.md).
 //
 // At every vertex: emission found by the ray is added with its MIS weight;
-// one light, chosen by power, is sampled (next-event estimation) and combined
+// one light, chosen for the vertex (LightSet::choose), is sampled (next-event estimation) and combined
 // with BSDF sampling by the power heuristic, except delta lights (only NEE can
 // find them) and delta lobes (only BSDF sampling can); then the BSDF picks the
 // next direction. Russian roulette starts after `roulette_depth` bounces, with
@@ -43,14 +43,14 @@ class PathTracer {
     RGB L, beta(1.0f);
     bool specular = true;  // the camera ray, or a delta lobe: no light sampling could have found this
     float prev_pdf = 0.0f;
-    Vec3f prev_p;
+    Vec3f prev_p, prev_n;  // the previous vertex: where the light choice a BSDF ray competes with was made
     float eta2 = 1.0f;  // product of the refraction radiance scales along the path
     for (int depth = 0;; ++depth) {
       Intersection isect;
       if (!scene_.intersect(ray, isect, depth == 0 ? camera_ray.differential_or_null() : nullptr)) {
         const RGB le = depth == 0 ? scene_.camera_ray_escaped(ray) : scene_.escaped_radiance(ray.dir);
         if (!le.is_black()) {
-          const RGB term = beta * le * escape_weight(ray.dir, specular, prev_pdf);
+          const RGB term = beta * le * escape_weight(ray.dir, specular, prev_pdf, prev_p, prev_n);
           L += term;
           if (rec.active()) rec.found(depth, term);
         }
@@ -62,7 +62,7 @@ class PathTracer {
       if (m.emits()) {
         const RGB le = m.emitted(isect.geo.ng, wo);
         if (!le.is_black()) {
-          const RGB term = beta * le * emitter_weight(isect, ray.dir, specular, prev_pdf, prev_p);
+          const RGB term = beta * le * emitter_weight(isect, ray.dir, specular, prev_pdf, prev_p, prev_n);
           L += term;
           if (rec.active()) rec.found(depth, term);
         }
@@ -90,6 +90,7 @@ class PathTracer {
       specular = bs.delta;
       prev_pdf = bs.pdf;
       prev_p = isect.geo.p;
+      prev_n = isect.geo.ng;
       ray = spawn_ray(isect.geo, bs.wi);
 
       if (depth + 1 >= roulette_depth_) {
@@ -112,27 +113,30 @@ class PathTracer {
 
  private:
   // MIS weight of an environment seen through a BSDF-sampled direction.
-  float escape_weight(Vec3f dir, bool specular, float prev_pdf) const {
+  // The light choice's probability is the one at the previous vertex (prev_p, prev_n).
+  float escape_weight(Vec3f dir, bool specular, float prev_pdf, Vec3f prev_p, Vec3f prev_n) const {
     const int env = lights_.environment();
     if (specular || env < 0 || strategy_ == LightStrategy::BsdfOnly) return 1.0f;
     if (strategy_ == LightStrategy::LightOnly) return 0.0f;
     // An infinite light reads only the direction.
     const Vec3f none;
-    const float pdf = lights_.pmf(env) * light_pdf(lights_[static_cast<std::size_t>(env)], none, dir, none, none);
+    const float pdf =
+        lights_.pmf(prev_p, prev_n, env) * light_pdf(lights_[static_cast<std::size_t>(env)], none, dir, none, none);
     return power_heuristic(prev_pdf, pdf);
   }
 
   // MIS weight of an emitter hit through a BSDF-sampled direction.
-  float emitter_weight(const Intersection& isect, Vec3f dir, bool specular, float prev_pdf, Vec3f prev_p) const {
+  float emitter_weight(const Intersection& isect, Vec3f dir, bool specular, float prev_pdf, Vec3f prev_p,
+                       Vec3f prev_n) const {
     const int index = lights_.shape_light(isect.hit.shape, isect.hit.instance);
     if (specular || index < 0 || strategy_ == LightStrategy::BsdfOnly) return 1.0f;
     if (strategy_ == LightStrategy::LightOnly) return 0.0f;
     const Light& light = lights_[static_cast<std::size_t>(index)];
-    const float pdf = lights_.pmf(index) * light_pdf(light, prev_p, dir, isect.geo.p, isect.geo.ng);
+    const float pdf = lights_.pmf(prev_p, prev_n, index) * light_pdf(light, prev_p, dir, isect.geo.p, isect.geo.ng);
     return power_heuristic(prev_pdf, pdf);
   }
 
-  // Next-event estimation: one light, chosen by power, sampled at one point.
+  // Next-event estimation: one light, chosen for this point and normal, sampled at one point.
   // `wi_out`, when not null, receives the sampled light direction (for the AOV split).
   RGB direct_light(const Intersection& isect, const Bsdf& bsdf, Vec3f wo, Sampler& sampler,
                    Vec3f* wi_out = nullptr) const {
@@ -141,7 +145,7 @@ class PathTracer {
     const float u_light = lights_.needs_choice() ? sampler.get_1d() : 0.0f;
     const Vec2f u = sampler.get_2d();
     float pmf = 0.0f;
-    const int index = lights_.choose(u_light, pmf);
+    const int index = lights_.choose(isect.geo.p, isect.geo.ng, u_light, pmf);
     if (index < 0 || !(pmf > 0.0f)) return {};
     LightSample ls;
     if (!sample_light(lights_[static_cast<std::size_t>(index)], isect.geo.p, u, ls)) return {};

@@ -25,6 +25,15 @@ bool PointLight::sample(Vec3f p, Vec2f, LightSample& s) const {
 
 float PointLight::power(float) const { return 4.0f * kPi * kPi * mean(intensity); }
 
+bool PointLight::bounds(LightBounds& out) const {
+  if (!inverse_square) return false;
+  out.bounds = Bounds3f{position, position};
+  out.intensity = kPi * mean(intensity);
+  out.normals = DirectionCone::all();
+  out.cos_theta_e = std::cos(0.5f * kPi);
+  return out.intensity > 0.0f && std::isfinite(out.intensity);
+}
+
 bool DirectionalLight::sample(Vec3f, Vec2f, LightSample& s) const {
   s.wi = -direction;
   s.L = irradiance;

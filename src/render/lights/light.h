@@ -19,6 +19,8 @@
 //       lights read only wi; delta lights: 0, no ray can find them)
 //   float power(float scene_radius) const;  // for choosing among lights (infinite
 //       lights estimate it from the scene's bounding sphere)
+// Finite lights also give the light BVH their bounds (light_bounds.h):
+//   bool bounds(LightBounds& out) const;  // false: not bounded (chosen as infinite lights are)
 // Lights that rays can find (not delta) also say where: an infinite one its
 //   RGB radiance(Vec3f dir) const;  // seen by a ray escaping along dir
 // a finite one the shape it sits on: uint32_t shape_id() const.
@@ -26,6 +28,7 @@
 
 #include "core/color.h"
 #include "core/math.h"
+#include "render/lights/light_bounds.h"
 
 namespace pt {
 
@@ -58,6 +61,9 @@ struct PointLight {
   float pdf(Vec3f, Vec3f, Vec3f, Vec3f) const { return 0.0f; }
   // Total emitted power: pi I over the sphere.
   float power(float scene_radius) const;
+  // A point of intensity pi I every way; none without falloff (it lights every
+  // distance alike: chosen with the infinite lights).
+  bool bounds(LightBounds& out) const;
 };
 
 struct DirectionalLight {

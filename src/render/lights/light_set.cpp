@@ -1,6 +1,7 @@
 #include "render/lights/light_set.h"
 
 #include <algorithm>
+#include <cmath>
 #include <type_traits>
 #include <utility>
 
@@ -38,8 +39,8 @@ float light_pdf(const Light& light, Vec3f p, Vec3f wi, Vec3f q, Vec3f n) {
   return std::visit([&](const auto& l) { return l.pdf(p, wi, q, n); }, light);
 }
 
-LightSet::LightSet(std::vector<Light> lights, std::size_t shape_count, float scene_radius)
-    : lights_(std::move(lights)) {
+LightSet::LightSet(std::vector<Light> lights, std::size_t shape_count, float scene_radius, LightSamplerType sampler)
+    : lights_(std::move(lights)), sampler_(sampler) {
   std::stable_sort(lights_.begin(), lights_.end(), [](const Light& a, const Light& b) { return order(a) < order(b); });
   std::vector<float> power(lights_.size());
   for (std::size_t i = 0; i < lights_.size(); ++i) {
@@ -65,7 +66,11 @@ LightSet::LightSet(std::vector<Light> lights, std::size_t shape_count, float sce
         lights_[i]);
   }
   std::sort(instance_light_.begin(), instance_light_.end());
-  selection_ = Distribution1D(power);
+  if (sampler_ == LightSamplerType::Power) {
+    selection_ = Distribution1D(power);
+  } else {
+    build_bvh(power, scene_radius);
+  }
   int positive = 0;
   for (std::size_t i = 0; i < power.size(); ++i) {
     if (power[i] > 0.0f) {
@@ -82,7 +87,52 @@ int LightSet::instance_light(uint32_t shape, uint32_t instance) const {
   return it != instance_light_.end() && it->first == key.first ? it->second : -1;
 }
 
-int LightSet::choose(float u, float& pmf) const {
+void LightSet::build_bvh(const std::vector<float>& power, float scene_radius) {
+  std::vector<LightBvh::Entry> bounded;
+  std::vector<float> irradiance;
+  unbounded_slot_.assign(lights_.size(), -1);
+  const float disc_area = kPi * scene_radius * scene_radius;
+  for (std::size_t i = 0; i < lights_.size(); ++i) {
+    if (!(power[i] > 0.0f)) continue;  // never chosen
+    LightBounds b;
+    const bool is_bounded = std::visit(
+        [&](const auto& l) {
+          if constexpr (KindOf<decltype(l)>::infinite) {
+            return false;
+          } else {
+            return l.bounds(b);
+          }
+        },
+        lights_[i]);
+    if (is_bounded) {
+      bounded.push_back({static_cast<int>(i), b});
+      continue;
+    }
+    // An irradiance estimate, comparable with LightBounds::importance: a
+    // directional light's irradiance (its power is that over the scene's disc),
+    // an environment's on a surface facing it, pi times its mean radiance (its
+    // power is 4 pi^2 R^2 times that mean), a point light without falloff pi I.
+    const float e = std::visit(
+        [&](const auto& l) {
+          using L = KindOf<decltype(l)>;
+          if constexpr (L::infinite) {
+            return L::delta ? power[i] / disc_area : power[i] / (4.0f * disc_area);
+          } else {
+            return power[i] / (4.0f * kPi);  // a point light's power is 4 pi^2 I
+          }
+        },
+        lights_[i]);
+    if (!(e > 0.0f) || !std::isfinite(e)) continue;
+    unbounded_slot_[i] = static_cast<int>(unbounded_light_.size());
+    unbounded_light_.push_back(static_cast<int>(i));
+    irradiance.push_back(e);
+    unbounded_total_ += e;
+  }
+  if (!irradiance.empty()) unbounded_ = Distribution1D(irradiance);
+  bvh_ = LightBvh(std::move(bounded), lights_.size());
+}
+
+int LightSet::choose(Vec3f p, Vec3f n, float u, float& pmf) const {
   if (lights_.size() <= 1) {  // the common case of one light: no search
     pmf = lights_.empty() ? 0.0f : 1.0f;
     return lights_.empty() ? -1 : 0;
@@ -91,7 +141,33 @@ int LightSet::choose(float u, float& pmf) const {
     pmf = 1.0f;
     return only_;
   }
-  return static_cast<int>(selection_.sample_discrete(u, &pmf));
+  if (sampler_ == LightSamplerType::Power) return static_cast<int>(selection_.sample_discrete(u, &pmf));
+  pmf = 0.0f;
+  const float bounded = bvh_.importance(p, n);
+  if (!(unbounded_total_ + bounded > 0.0f)) return -1;
+  const float p_unbounded = unbounded_total_ / (unbounded_total_ + bounded);
+  float q = 0.0f;
+  if (u < p_unbounded) {
+    const std::size_t k = unbounded_.sample_discrete(std::min(u / p_unbounded, kOneMinusEpsilon), &q);
+    pmf = p_unbounded * q;
+    return unbounded_light_[k];
+  }
+  const int light = bvh_.choose(p, n, std::min((u - p_unbounded) / (1.0f - p_unbounded), kOneMinusEpsilon), q);
+  pmf = (1.0f - p_unbounded) * q;
+  return light;
+}
+
+float LightSet::pmf(Vec3f p, Vec3f n, int light) const {
+  if (light < 0 || static_cast<std::size_t>(light) >= lights_.size()) return 0.0f;
+  if (only_ >= 0) return light == only_ ? 1.0f : 0.0f;
+  if (lights_.size() == 1) return 1.0f;
+  if (sampler_ == LightSamplerType::Power) return selection_.pmf(static_cast<std::size_t>(light));
+  const float bounded = bvh_.importance(p, n);
+  if (!(unbounded_total_ + bounded > 0.0f)) return 0.0f;
+  const float p_unbounded = unbounded_total_ / (unbounded_total_ + bounded);
+  const int slot = unbounded_slot_[static_cast<std::size_t>(light)];
+  if (slot >= 0) return p_unbounded * unbounded_.pmf(static_cast<std::size_t>(slot));
+  return (1.0f - p_unbounded) * bvh_.pmf(p, n, light);
 }
 
 RGB LightSet::escaped_radiance(Vec3f dir, RGB none) const {

@@ -1,10 +1,13 @@
 // The lights of a render scene, each stored once: point and directional
 // lights, spot lights, area lights (every emissive shape), and the environment (an image
 // map, or the background colour as a uniform environment when it is not
-// black). The path integrator chooses one light per next-event estimate, in
-// proportion to its power (an estimate for infinite lights, from the scene's
-// bounding sphere; docs/path-tracing.md); the classic integrator shades the
-// delta lights and samples every area light (docs/rendering.md).
+// black). The path integrator chooses one light per next-event estimate
+// (docs/path-tracing.md, "Choosing a light"): by default by its importance at
+// the shading point (the bounded lights through a light BVH, light_bvh.h,
+// weighed against the infinite ones' irradiance estimates), or, with
+// render.light_sampler "power", in proportion to its power (an estimate for
+// infinite lights, from the scene's bounding sphere). The classic integrator
+// shades the delta lights and samples every area light (docs/rendering.md).
 #pragma once
 
 #include <concepts>
@@ -15,8 +18,10 @@
 #include <vector>
 
 #include "core/sampling.h"
+#include "scene/scene_description.h"
 #include "render/lights/environment.h"
 #include "render/lights/light.h"
+#include "render/lights/light_bvh.h"
 #include "render/lights/shape_light.h"
 #include "render/lights/spot_light.h"
 
@@ -31,7 +36,8 @@ concept LightKind = requires(const L& light, Vec3f v, Vec2f u, LightSample& s, f
   { light.pdf(v, v, v, v) } -> std::same_as<float>;
   { light.power(r) } -> std::same_as<float>;
 } && (L::delta || (L::infinite ? requires(const L& light, Vec3f d) { { light.radiance(d) } -> std::same_as<RGB>; }
-                                : requires(const L& light) { { light.shape_id() } -> std::same_as<uint32_t>; }));
+                                : requires(const L& light) { { light.shape_id() } -> std::same_as<uint32_t>; }))
+  && (L::infinite || requires(const L& light, LightBounds& b) { { light.bounds(b) } -> std::same_as<bool>; });
 
 // Every light kind. Adding one: its struct (with the members above), this
 // list, and where it comes from (RenderScene's build, from a LightDesc).
@@ -52,7 +58,9 @@ class LightSet {
   // (point and spot, directional, area, environment), each in the order given:
   // the choice among them and the classic integrator's sum over them follow
   // this order, and images depend on it bit for bit.
-  LightSet(std::vector<Light> lights, std::size_t shape_count, float scene_radius);
+  // `sampler` chooses how the path integrator picks a light (see above).
+  LightSet(std::vector<Light> lights, std::size_t shape_count, float scene_radius,
+           LightSamplerType sampler = LightSamplerType::Bvh);
 
   bool empty() const { return lights_.empty(); }
   std::size_t size() const { return lights_.size(); }
@@ -62,18 +70,21 @@ class LightSet {
   // The delta lights (point and spot, then directional): the first ones of the set.
   std::span<const Light> delta_lights() const { return {lights_.data(), delta_count_}; }
 
-  // Picks a light with probability proportional to its power; -1 if there is none.
-  int choose(float u, float& pmf) const;
+  // Picks a light for the shading point p with geometric normal n (n = 0: any
+  // orientation), with its probability; -1 (pmf 0) if there is none, or if
+  // no light can send p anything. With the power sampler p and n are not read.
+  int choose(Vec3f p, Vec3f n, float u, float& pmf) const;
   // False when choose() does not depend on u: one light, or one light with
   // positive power among lights that can never be picked. The integrator then
   // spends no sample dimension on the choice (so adding a powerless light to
   // a scene leaves its image bit for bit as it was).
   bool needs_choice() const { return lights_.size() > 1 && only_ < 0; }
-  float pmf(int light) const {
-    if (light < 0) return 0.0f;
-    if (only_ >= 0) return light == only_ ? 1.0f : 0.0f;
-    return lights_.size() == 1 ? 1.0f : selection_.pmf(static_cast<std::size_t>(light));
-  }
+  // The probability that choose(p, n, ...) returns `light`: what a light found
+  // by a BSDF ray from p is weighed with (multiple importance sampling).
+  float pmf(Vec3f p, Vec3f n, int light) const;
+  LightSamplerType sampler() const { return sampler_; }
+  // The light BVH (empty with the power sampler or without bounded lights).
+  const LightBvh& bvh() const { return bvh_; }
 
   // The area light of shape i placed directly, or of shape i placed by
   // `instance` (Hit::instance), or -1.
@@ -89,8 +100,18 @@ class LightSet {
 
  private:
   std::vector<Light> lights_;
-  Distribution1D selection_;
+  LightSamplerType sampler_ = LightSamplerType::Bvh;
+  Distribution1D selection_;  // the power sampler's
   int instance_light(uint32_t shape, uint32_t instance) const;
+  // The bvh sampler: the bounded lights in `bvh_`; the others (infinite
+  // lights, point lights without falloff) by `unbounded_`, in proportion to
+  // their irradiance estimates, which sum to `unbounded_total_`.
+  void build_bvh(const std::vector<float>& power, float scene_radius);
+  LightBvh bvh_;
+  Distribution1D unbounded_;
+  float unbounded_total_ = 0.0f;
+  std::vector<int> unbounded_light_;  // per entry of unbounded_: the light
+  std::vector<int> unbounded_slot_;   // per light: its entry in unbounded_, or -1
 
   std::vector<int> shape_light_;  // empty when no shape emits
   // (instance << 32 | shape, light) for the area lights placed by instances, sorted.

@@ -139,15 +139,62 @@ void ShapeLight::detect_parallelogram() {
   parallelogram_ = make_parallelogram(a, b, c, d, n, para_) || make_parallelogram(a, d, c, b, n, para_);
 }
 
+float ShapeLight::world_area() const {
+  // A transformed curved shape's world area is estimated (exact for
+  // similarities; triangles are measured in world space): it only sets how
+  // often the light is chosen.
+  return transform_ == nullptr || parallelogram_ || world_triangles_
+             ? area_
+             : area_ * std::cbrt(transform_->det * transform_->det);
+}
+
 float ShapeLight::power() const {
   const RGB& L = material_->emission;
-  // A transformed curved shape's world area is estimated (exact for
-  // similarities; triangles are measured in world space): the power only sets
-  // how often the light is chosen.
-  const float area = transform_ == nullptr || parallelogram_ || world_triangles_
-                         ? area_
-                         : area_ * std::cbrt(transform_->det * transform_->det);
-  return kPi * area * (L.r + L.g + L.b) / 3.0f * (material_->two_sided ? 2.0f : 1.0f);
+  return kPi * world_area() * (L.r + L.g + L.b) / 3.0f * (material_->two_sided ? 2.0f : 1.0f);
+}
+
+DirectionCone ShapeLight::normal_cone() const {
+  if (parallelogram_) return DirectionCone::around(para_.n);  // already in world space
+  const auto world = [&](Vec3f n) { return transform_ ? normalize(transform_->normal(n)) : n; };
+  if (const auto* disc = std::get_if<DiscAreaSampler>(sampler_.get())) return DirectionCone::around(world(disc->disc.normal));
+  const TriangleAreaSampler* tris = triangle_sampler();
+  if (tris == nullptr) return DirectionCone::all();  // curved: normals every way
+  DirectionCone cone;
+  Vec3f first;
+  bool flat = true;
+  for (const Triangle& t : tris->triangles) {
+    if (!(length_squared(cross(t.e1, t.e2)) > 0.0f)) continue;  // never sampled, never hit
+    if (cone.empty) first = t.n;
+    flat = flat && t.n == first;
+    cone = cone_union(cone, DirectionCone::around(t.n));
+  }
+  if (cone.empty) return DirectionCone::all();
+  if (flat) return DirectionCone::around(world(first));
+  if (transform_ == nullptr) return cone;
+  // A transform turns the normals: bound them again in world space.
+  DirectionCone out;
+  for (const Triangle& t : tris->triangles)
+    if (length_squared(cross(t.e1, t.e2)) > 0.0f) out = cone_union(out, DirectionCone::around(world(t.n)));
+  return out;
+}
+
+bool ShapeLight::bounds(LightBounds& out) const {
+  if (!(area_ > 0.0f)) return false;
+  const RGB& L = material_->emission;
+  const float radiance = (L.r + L.g + L.b) / 3.0f;
+  Bounds3f b = pt::bounds(*shape_);
+  if (transform_ != nullptr) b = transform_->bounds(b);
+  if (b.empty() || !is_finite(b.lo) || !is_finite(b.hi) || !(radiance > 0.0f)) return false;
+  out.bounds = b;
+  out.normals = normal_cone();
+  // Radiant intensity along the axis: at most L A for a light whose normals
+  // share a hemisphere; one whose normals point every way shows less of its
+  // area to any direction (a sphere a quarter: Cauchy's mean for convex shapes).
+  const bool one_way = out.normals.cos_theta > 0.0f;
+  out.intensity = radiance * world_area() * (one_way ? 1.0f : 0.25f);
+  out.cos_theta_e = 0.0f;  // surfaces emit over the hemisphere of each normal
+  out.two_sided = material_->two_sided;
+  return std::isfinite(out.intensity) && out.intensity > 0.0f;
 }
 
 void ShapeLight::sample_area(Vec2f u, Vec3f& q, Vec3f& n) const {

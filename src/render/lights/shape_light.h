@@ -37,6 +37,7 @@
 #include "core/sampling.h"
 #include "geometry/shapes.h"
 #include "render/lights/light.h"
+#include "render/lights/light_bounds.h"
 #include "render/materials/material.h"
 
 namespace pt {
@@ -69,6 +70,9 @@ class ShapeLight {
   float pdf(Vec3f p, Vec3f wi, Vec3f q, Vec3f n) const;
   float power() const;
   float power(float /*scene_radius*/) const { return power(); }  // the light interface's signature
+  // Its world bounds, intensity and normal cone for the light BVH (light_bounds.h);
+  // false if it has none (no area, no emission, or unbounded).
+  bool bounds(LightBounds& out) const;
   // Whether the shape is a planar parallelogram sampled as one (see above).
   bool sampled_as_parallelogram() const { return parallelogram_; }
   bool sampled_by_solid_angle_as_rectangle() const { return rectangle_; }
@@ -79,6 +83,10 @@ class ShapeLight {
   // The area of the shape around a point with unit normal n, as the density
   // 1 / that of sample_area() there: area_, scaled for a transformed shape.
   float area_at(Vec3f n) const;
+  // The shape's world area (estimated for a transformed curved shape, see power()).
+  float world_area() const;
+  // A cone holding every emitting normal, in world space (all directions for a curved shape).
+  DirectionCone normal_cone() const;
   // The sphere sampled by solid angle, if any (in world space).
   const Sphere* cone_sphere() const;
   bool sample_sphere_cone(const Sphere& s, Vec3f p, Vec2f u, LightSample& out) const;

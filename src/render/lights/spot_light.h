@@ -52,6 +52,8 @@ struct SpotLight {
   // falloff, 2 pi ((1 - cos_start) + (cos_start - cos_end) / 2) (pbrt-v4; the
   // linear ramp integrates to the same).
   float power(float scene_radius) const;
+  // A point of intensity pi I on the axis, the falloff band as theta_e.
+  bool bounds(LightBounds& out) const;
 };
 
 }  // namespace pt
