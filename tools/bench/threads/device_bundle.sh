@@ -1,0 +1,40 @@
+#!/bin/bash
+# Packs what tools/bench/threads/device_scaling.py needs on a bare machine that
+# lacks the renderer's Debian libraries (e.g. the lent 16-core machine):
+# build/pathtracer with its whole `ldd` closure including the dynamic loader
+# (run through it, so the machine's own glibc does not matter), the Cornell box,
+# and Crytek Sponza's geometry lit by a constant sky and the sun. The image
+# module (OpenImageIO, ~350 MB of libraries) is not packed: the renders write
+# PPM and read no image, so the environment map of sponza-env-sun.json is
+# replaced by a constant sky.
+#
+#   tools/bench/threads/device_bundle.sh [EXE] [OUT_DIR]   -> OUT_DIR/bundle.tar.xz (~21 MB)
+#   on the machine: tar -C /tmp/b -xJf bundle.tar.xz && python3 /tmp/b/device_scaling.py 1,2,4,8,12,16 2
+set -euo pipefail
+REPO=$(cd "$(dirname "$0")/../../.." && pwd)
+EXE=${1:-$REPO/build/pathtracer}
+OUT=${2:-$REPO/devcarry}
+SHARED=${SHARED:-$REPO/../shared}
+B=$(mktemp -d)
+trap 'rm -rf "$B"' EXIT
+mkdir -p "$OUT" "$B/lib" "$B/assets"
+cp "$EXE" "$B/pathtracer.bin"
+for l in $(ldd "$EXE" | awk '/=>/{print $3} /ld-linux/{print $1}'); do cp -L "$l" "$B/lib/"; done
+cp "$SHARED/assets/sponza/sponza.obj" "$B/assets/"
+cat > "$B/pathtracer" <<'EOS'
+#!/bin/sh
+D=$(dirname "$(readlink -f "$0")")
+exec "$D/lib/ld-linux-x86-64.so.2" --library-path "$D/lib" "$D/pathtracer.bin" "$@"
+EOS
+chmod +x "$B/pathtracer"
+python3 - "$REPO/tools/bench/threads/sponza-env-sun.json" "$B/sponza-sky-sun.json" <<'EOP'
+import json, sys
+s = json.load(open(sys.argv[1]))
+s.pop("environment")
+s["render"]["background"] = [0.55, 0.65, 0.85]
+s["shapes"][0]["file"] = "assets/sponza.obj"
+json.dump(s, open(sys.argv[2], "w"), indent=1)
+EOP
+cp "$REPO/tools/bench/threads/device_scaling.py" "$REPO/scenes/cornell-box.json" "$B/"
+tar -C "$B" -cJf "$OUT/bundle.tar.xz" .
+ls -la "$OUT/bundle.tar.xz"
