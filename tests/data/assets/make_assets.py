@@ -269,10 +269,15 @@ def gltf_scene(embed_image):
         "bufferViews": buf.views,
         "accessors": buf.accessors,
     }
+    return doc, close_buffer(doc, buf), image
+
+
+def close_buffer(doc, buf):
+    """Pads the binary buffer to 4 bytes, records its length in `doc` and returns its bytes."""
     while len(buf.data) % 4:
         buf.data.append(0)
     doc["buffers"][0]["byteLength"] = len(buf.data)
-    return doc, bytes(buf.data), image
+    return bytes(buf.data)
 
 
 def glb(doc, binary):
@@ -423,10 +428,7 @@ def pbr_scene(embed):
         "bufferViews": buf.views,
         "accessors": buf.accessors,
     }
-    while len(buf.data) % 4:
-        buf.data.append(0)
-    doc["buffers"][0]["byteLength"] = len(buf.data)
-    return doc, bytes(buf.data), images
+    return doc, close_buffer(doc, buf), images
 
 
 def write_features():
