@@ -17,17 +17,7 @@ import subprocess
 import sys
 import tempfile
 
-SKIP = 77
-
-
-def fail(msg):
-    print("FAIL: " + msg)
-    sys.exit(1)
-
-
-def check(cond, msg):
-    if not cond:
-        fail(msg)
+from checks import SKIP, check, fail  # tests/tools/checks.py, beside this script
 
 
 def compare(build, args):
