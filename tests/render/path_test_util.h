@@ -15,6 +15,18 @@
 
 namespace pt::test {
 
+// A microfacet material (conductor, rough dielectric, coated diffuse) with
+// alpha_x, alpha_y given directly (remaproughness off) and index 1.5.
+inline MaterialDesc microfacet_desc(MaterialType type, float ax, float ay) {
+  MaterialDesc m;
+  m.type = type;
+  m.remap_roughness = false;
+  m.uroughness.value = ax;
+  m.vroughness.value = ay;
+  m.ior = 1.5f;
+  return m;
+}
+
 inline IntegratorSettings path_settings(int spp, int max_depth = 64, uint64_t seed = 0) {
   IntegratorSettings s;
   s.spp = spp;

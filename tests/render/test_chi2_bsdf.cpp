@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "bsdf_test_util.h"
 #include "chi2.h"
 #include "render/materials/bsdf.h"
 
@@ -12,18 +13,8 @@ namespace pt {
 namespace {
 
 using test::DirectionChi2;
-
-// A surface point at the origin with normal +z (world = shading frame).
-SurfaceGeometry flat_surface() {
-  SurfaceGeometry g;
-  g.ng = g.ns = Vec3f(0, 0, 1);
-  return g;
-}
-
-Vec3f direction_at(float theta_deg) {
-  const float t = theta_deg * kPi / 180.0f;
-  return {std::sin(t), 0.0f, std::cos(t)};
-}
+using test::direction_at;
+using test::flat_surface;
 
 // Chi-square test of Bsdf::sample against Bsdf::pdf for one material and wo.
 // Delta samples count as failures (their mass is not in pdf()).

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "bsdf_test_util.h"
 #include "chi2.h"
 #include "render/materials/bsdf.h"
 
@@ -16,17 +17,8 @@ namespace pt {
 namespace {
 
 using test::DirectionChi2;
-
-SurfaceGeometry flat_surface() {
-  SurfaceGeometry g;
-  g.ng = g.ns = Vec3f(0, 0, 1);
-  return g;
-}
-
-Vec3f direction_at(float theta_deg, float phi_deg = 0.0f) {
-  const float t = theta_deg * kPi / 180.0f, p = phi_deg * kPi / 180.0f;
-  return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
-}
+using test::direction_at;
+using test::flat_surface;
 
 // alpha_x, alpha_y given directly (remaproughness off).
 Material microfacet(MaterialType type, float ax, float ay) {

@@ -29,6 +29,7 @@ namespace {
 using test::add_material;
 using test::add_shape;
 using test::add_sphere;
+using test::microfacet_desc;
 
 constexpr int kSeeds = 16;
 constexpr double kSigmas = 5.0;
@@ -132,25 +133,15 @@ TEST(PathAgreement, LightSamplingBsdfSamplingAndMisConvergeToTheSameImage) {
   EXPECT_TRUE(agree(light, bsdf)) << "light vs BSDF sampling";
 }
 
-MaterialDesc microfacet(MaterialType type, float ax, float ay) {
-  MaterialDesc m;
-  m.type = type;
-  m.remap_roughness = false;
-  m.uroughness.value = ax;
-  m.vroughness.value = ay;
-  m.ior = 1.5f;
-  return m;
-}
-
 // The MIS scene with its glossy sphere an anisotropic rough conductor, its
 // diffuse sphere a rough coated diffuse, and a rough dielectric sphere in front.
 SceneDescription microfacet_scene() {
   SceneDescription d = mis_scene();
-  d.materials[2] = microfacet(MaterialType::Conductor, 0.15f, 0.4f);
-  MaterialDesc plastic = microfacet(MaterialType::CoatedDiffuse, 0.2f, 0.2f);
+  d.materials[2] = microfacet_desc(MaterialType::Conductor, 0.15f, 0.4f);
+  MaterialDesc plastic = microfacet_desc(MaterialType::CoatedDiffuse, 0.2f, 0.2f);
   plastic.reflectance.value = RGB(0.3f, 0.6f, 0.4f);
   d.materials[3] = plastic;
-  add_sphere(d, {0.15f, 0.45f, 0.9f}, 0.3f, add_material(d, microfacet(MaterialType::Dielectric, 0.2f, 0.2f)));
+  add_sphere(d, {0.15f, 0.45f, 0.9f}, 0.3f, add_material(d, microfacet_desc(MaterialType::Dielectric, 0.2f, 0.2f)));
   return d;
 }
 

@@ -14,15 +14,7 @@ namespace {
 using test::add_material;
 using test::add_sphere;
 
-MaterialDesc microfacet(MaterialType type, float alpha) {
-  MaterialDesc m;
-  m.type = type;
-  m.remap_roughness = false;
-  m.uroughness.value = alpha;
-  m.vroughness.value = alpha;
-  m.ior = 1.5f;
-  return m;
-}
+MaterialDesc microfacet(MaterialType type, float alpha) { return test::microfacet_desc(type, alpha, alpha); }
 
 MaterialDesc white_conductor(float alpha) {  // F = 1
   MaterialDesc m = microfacet(MaterialType::Conductor, alpha);
