@@ -132,6 +132,13 @@ void LightSet::build_bvh(const std::vector<float>& power, float scene_radius) {
   bvh_ = LightBvh(std::move(bounded), lights_.size());
 }
 
+bool LightSet::unbounded_share(Vec3f p, Vec3f n, float& share) const {
+  const float bounded = bvh_.importance(p, n);
+  if (!(unbounded_total_ + bounded > 0.0f)) return false;
+  share = unbounded_total_ / (unbounded_total_ + bounded);
+  return true;
+}
+
 int LightSet::choose(Vec3f p, Vec3f n, float u, float& pmf) const {
   if (lights_.size() <= 1) {  // the common case of one light: no search
     pmf = lights_.empty() ? 0.0f : 1.0f;
@@ -143,9 +150,8 @@ int LightSet::choose(Vec3f p, Vec3f n, float u, float& pmf) const {
   }
   if (sampler_ == LightSamplerType::Power) return static_cast<int>(selection_.sample_discrete(u, &pmf));
   pmf = 0.0f;
-  const float bounded = bvh_.importance(p, n);
-  if (!(unbounded_total_ + bounded > 0.0f)) return -1;
-  const float p_unbounded = unbounded_total_ / (unbounded_total_ + bounded);
+  float p_unbounded = 0.0f;
+  if (!unbounded_share(p, n, p_unbounded)) return -1;
   float q = 0.0f;
   if (u < p_unbounded) {
     const std::size_t k = unbounded_.sample_discrete(std::min(u / p_unbounded, kOneMinusEpsilon), &q);
@@ -162,9 +168,8 @@ float LightSet::pmf(Vec3f p, Vec3f n, int light) const {
   if (only_ >= 0) return light == only_ ? 1.0f : 0.0f;
   if (lights_.size() == 1) return 1.0f;
   if (sampler_ == LightSamplerType::Power) return selection_.pmf(static_cast<std::size_t>(light));
-  const float bounded = bvh_.importance(p, n);
-  if (!(unbounded_total_ + bounded > 0.0f)) return 0.0f;
-  const float p_unbounded = unbounded_total_ / (unbounded_total_ + bounded);
+  float p_unbounded = 0.0f;
+  if (!unbounded_share(p, n, p_unbounded)) return 0.0f;
   const int slot = unbounded_slot_[static_cast<std::size_t>(light)];
   if (slot >= 0) return p_unbounded * unbounded_.pmf(static_cast<std::size_t>(slot));
   return (1.0f - p_unbounded) * bvh_.pmf(p, n, light);

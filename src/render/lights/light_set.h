@@ -107,6 +107,10 @@ class LightSet {
   // lights, point lights without falloff) by `unbounded_`, in proportion to
   // their irradiance estimates, which sum to `unbounded_total_`.
   void build_bvh(const std::vector<float>& power, float scene_radius);
+  // The share of the choice at (p, n) that goes to the unbounded lights
+  // (against the light BVH's importance there); false if no light can send p
+  // anything. choose() and pmf() both split by it.
+  bool unbounded_share(Vec3f p, Vec3f n, float& share) const;
   LightBvh bvh_;
   Distribution1D unbounded_;
   float unbounded_total_ = 0.0f;
