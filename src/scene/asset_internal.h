@@ -1,6 +1,7 @@
 // Internal to read_asset (asset_reader.h): the pieces its source files share.
-// Only asset_reader.cpp and asset_assimp*.cpp include Assimp's headers; the
-// rest of the renderer sees the neutral record of asset.h.
+// Only asset_reader.cpp and asset_assimp*.cpp include Assimp's headers (glTF,
+// COLLADA; OBJ is read by asset_obj.cpp); the rest of the renderer sees the
+// neutral record of asset.h.
 #pragma once
 
 #include <map>
@@ -43,6 +44,14 @@ class AssetTextureTable {
 // `dir`. Empty if none exists.
 std::string find_asset_file(const std::string& dir, const std::string& name);
 
+// ---------------------------------------------------------------- asset_obj.cpp
+// An OBJ file (out.path; out.format set) and its MTL files, by our own
+// readers (no Assimp). Problems inside the files are reported at their
+// lines; false after an error (the reader's, then one at `where` naming
+// `written`). Appends the model and the MTL files read to `files_opened`.
+bool read_obj_asset(const SourceLocation& where, const std::string& written, ImportedAsset& out, Diagnostics& diag,
+                    std::vector<std::string>& files_opened);
+
 // ---------------------------------------------------------------- asset_assimp.cpp
 // Every triangle mesh of the scene (points and lines are counted and left
 // out), with the texture-coordinate set `uv_set[material]` (0 where the
@@ -57,8 +66,8 @@ void convert_cameras(const aiScene& scene, ImportedAsset& out);
 void convert_lights(const aiScene& scene, ImportedAsset& out);
 
 // ---------------------------------------------------------------- asset_assimp_materials.cpp
-// The materials of a glTF or COLLADA file as Assimp reads them (an OBJ
-// file's come from its MTL files, mtl.h), their textures added to `textures`.
+// The materials of a glTF or COLLADA file as Assimp reads them, their
+// textures added to `textures`.
 void convert_materials(const aiScene& scene, ImportedAsset& out, AssetTextureTable& textures);
 // The texture-coordinate set each material's diffuse (base colour) texture reads.
 std::vector<int> diffuse_uv_sets(const aiScene& scene);

@@ -1,5 +1,6 @@
-// read_asset(): Assimp reads the file; the MTL reader and the glTF JSON add
-// what Assimp does not say; everything ends in the neutral ImportedAsset.
+// read_asset(): our OBJ and MTL readers (asset_obj.cpp) or Assimp (glTF,
+// COLLADA; the glTF JSON adds what Assimp does not say); everything ends in
+// the neutral ImportedAsset.
 #include "scene/asset_reader.h"
 
 #include <assimp/DefaultIOSystem.h>
@@ -11,7 +12,6 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
-#include <set>
 #include <system_error>
 
 #include "core/file_access.h"
@@ -29,20 +29,14 @@ std::string lower(std::string s) {
   return s;
 }
 
-// Assimp's file system, recording the MTL files the OBJ reader opens (and
-// fails to), which Assimp does not otherwise tell.
+// Assimp's file system, recording the files Assimp opens (the model, glTF
+// buffers, ...), which it does not otherwise tell.
 class RecordingIOSystem : public Assimp::DefaultIOSystem {
  public:
-  struct Attempt {
-    std::string path;
-    bool opened = false;
-  };
-  std::vector<Attempt> mtl;
-  std::vector<std::string> opened;  // every file opened (the model, MTL files, glTF buffers, ...)
+  std::vector<std::string> opened;
 
   Assimp::IOStream* Open(const char* file, const char* mode) override {
     Assimp::IOStream* s = Assimp::DefaultIOSystem::Open(file, mode);
-    if (lower(fs::path(file).extension().string()) == ".mtl") mtl.push_back({file, s != nullptr});
     if (s != nullptr && std::find(opened.begin(), opened.end(), file) == opened.end()) opened.emplace_back(file);
     return s;
   }
@@ -79,41 +73,6 @@ bool check_file(const std::string& path, std::string& error) {
     return false;
   }
   return true;
-}
-
-// An OBJ file's materials: each of Assimp's (one per name the file uses, and
-// its default) from the MTL files Assimp opened, read by our MTL reader.
-void read_obj_materials(const aiScene& scene, const RecordingIOSystem& io, ImportedAsset& out,
-                        AssetTextureTable& textures, Diagnostics& diag) {
-  std::vector<AssetMaterial> defined;
-  const SourceLocation file = file_location(out.path);
-  for (const RecordingIOSystem::Attempt& a : io.mtl) {
-    std::string error;
-    if (!a.opened) {
-      diag.warning(file, "material library '" + fs::path(a.path).filename().string() + "' (mtllib) not found at '" +
-                             a.path + "'");
-    } else if (!read_mtl(a.path, defined, textures, diag, error)) {
-      diag.warning(file, "cannot read material library '" + a.path + "': " + error);
-    }
-  }
-  std::set<unsigned> used;
-  for (unsigned i = 0; i < scene.mNumMeshes; ++i) used.insert(scene.mMeshes[i]->mMaterialIndex);
-  const std::vector<std::string> names = material_names(scene);
-  out.materials.resize(names.size());
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    // The last definition of a name wins, as in Assimp.
-    const auto it = std::find_if(defined.rbegin(), defined.rend(), [&](const AssetMaterial& m) { return m.name == names[i]; });
-    if (it != defined.rend()) {
-      out.materials[i] = *it;
-      continue;
-    }
-    AssetMaterial& m = out.materials[i];
-    m.name = names[i];
-    m.where = file;
-    if (used.count(static_cast<unsigned>(i)) && names[i] != AI_DEFAULT_MATERIAL_NAME)
-      diag.warning(file, "material '" + names[i] + "' (usemtl) is defined in no material library; its faces get "
-                                                   "the default material");
-  }
 }
 
 // What the glTF JSON says and Assimp 5.2 does not (gltf_json.h).
@@ -161,21 +120,43 @@ void count(ImportedAsset& out) {
   c.skipped_n("textures not found", missing);
 }
 
-bool convert(const aiScene& scene, const RecordingIOSystem& io, const SourceLocation& where, ImportedAsset& out,
-             Diagnostics& diag) {
+bool convert(const aiScene& scene, const SourceLocation& where, ImportedAsset& out, Diagnostics& diag) {
   AssetTextureTable textures(out, fs::path(out.path).parent_path().string());
-  std::vector<int> uv_sets(scene.mNumMaterials, 0);
-  if (out.format == AssetFormat::Obj) {
-    read_obj_materials(scene, io, out, textures, diag);
-  } else {
-    convert_materials(scene, out, textures);
-    uv_sets = diffuse_uv_sets(scene);
-    if (out.format != AssetFormat::Collada) merge_gltf_info(out, diag);
-  }
+  convert_materials(scene, out, textures);
+  const std::vector<int> uv_sets = diffuse_uv_sets(scene);
+  if (out.format != AssetFormat::Collada) merge_gltf_info(out, diag);
   if (!convert_meshes(scene, uv_sets, out, diag, where)) return false;
   convert_placements(scene, out);
   convert_cameras(scene, out);
   convert_lights(scene, out);
+  return true;
+}
+
+// Glb, glTF and COLLADA through Assimp; the files it opened in `opened`.
+bool read_with_assimp(const std::string& written, const SourceLocation& where, ImportedAsset& out, Diagnostics& diag,
+                      std::vector<std::string>& opened) {
+  Assimp::Importer importer;
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_USE_COLLADA_NAMES, true);
+  auto* io = new RecordingIOSystem;  // owned by the importer
+  importer.SetIOHandler(io);
+  // Triangles only (points and lines sorted into meshes of their own and
+  // counted); uvs with v downwards from the image's top, as our textures.
+  const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
+                         aiProcess_ValidateDataStructure | aiProcess_FlipUVs;
+  const aiScene* scene = importer.ReadFile(out.path, flags);
+  if (scene == nullptr || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || scene->mRootNode == nullptr) {
+    std::string reason = scene == nullptr ? importer.GetErrorString() : "the file describes no complete scene";
+    if (reason.empty()) reason = "Assimp could not read the file";
+    diag.error(where, "cannot read '" + written + "' (" + asset_format_name(out.format) + "): " + reason);
+    return false;
+  }
+  if (!convert(*scene, where, out, diag)) return false;
+  opened = io->opened;
+  return true;
+}
+
+// What every format ends with: the textures not found, the counts, the files read.
+void finish(ImportedAsset& out, Diagnostics& diag, std::vector<std::string> opened) {
   for (const AssetTexture& t : out.textures) {
     if (t.missing)
       diag.warning(t.where, "texture '" + t.name + "' named by '" + fs::path(out.path).filename().string() +
@@ -183,10 +164,9 @@ bool convert(const aiScene& scene, const RecordingIOSystem& io, const SourceLoca
                                 "' (as written, and by its file name alone)");
   }
   count(out);
-  out.files_read = io.opened;
+  out.files_read = std::move(opened);
   for (const AssetTexture& t : out.textures)
     if (!t.resolved.empty()) out.files_read.push_back(t.resolved);
-  return true;
 }
 
 }  // namespace
@@ -265,22 +245,11 @@ bool read_asset(const std::string& resolved, const std::string& written, const S
     return false;
   }
   out.format = *format;
-  Assimp::Importer importer;
-  importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_USE_COLLADA_NAMES, true);
-  auto* io = new RecordingIOSystem;  // owned by the importer
-  importer.SetIOHandler(io);
-  // Triangles only (points and lines sorted into meshes of their own and
-  // counted); uvs with v downwards from the image's top, as our textures.
-  const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
-                         aiProcess_ValidateDataStructure | aiProcess_FlipUVs;
-  const aiScene* scene = importer.ReadFile(resolved, flags);
-  if (scene == nullptr || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || scene->mRootNode == nullptr) {
-    std::string reason = scene == nullptr ? importer.GetErrorString() : "the file describes no complete scene";
-    if (reason.empty()) reason = "Assimp could not read the file";
-    diag.error(where, "cannot read '" + written + "' (" + asset_format_name(*format) + "): " + reason);
-    return false;
-  }
-  if (!convert(*scene, *io, where, out, diag)) return false;
+  std::vector<std::string> opened;
+  const bool read = out.format == AssetFormat::Obj ? read_obj_asset(where, written, out, diag, opened)
+                                                   : read_with_assimp(written, where, out, diag, opened);
+  if (!read) return false;
+  finish(out, diag, std::move(opened));
   if (out.placements.empty()) {
     diag.error(where, "cannot read '" + written + "': the file places no triangles (nothing to render)");
     return false;

@@ -83,7 +83,7 @@ bool load_mesh_file(ImportContext& ctx, const Sourced<std::string>& written, Sha
   bool loaded = false;
   ObjInfo obj;
   if (extension == ".obj") {
-    loaded = load_obj(*resolved, mesh, error, &obj);
+    loaded = load_obj(*resolved, mesh, error, &obj, &ctx.diag());
   } else if (PlyError ply_error; !(loaded = load_ply(*resolved, mesh, ply_error))) {
     error = ply_error.message;
     if (ply_error.line > 0) error += " (header line " + std::to_string(ply_error.line) + ")";
