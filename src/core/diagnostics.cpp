@@ -14,9 +14,9 @@ std::string format_number(double d) {
 
 
 std::string SourceFile::line_text(int line) const {
-  if (line < first_line) return {};
+  if (line < 1) return {};
   std::size_t start = 0;
-  for (int l = first_line; l < line; ++l) {
+  for (int l = 1; l < line; ++l) {
     const std::size_t nl = text.find('\n', start);
     if (nl == std::string::npos) return {};
     start = nl + 1;

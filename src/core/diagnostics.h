@@ -23,9 +23,7 @@ std::string format_number(double d);
 // The text of one input file, kept so that diagnostics can quote lines.
 struct SourceFile {
   std::string path;  // as given by the user (for messages)
-  std::string text;  // whole contents, or the lines from `first_line` on (a
-                     // reader that streams a large file keeps only the lines it quotes)
-  int first_line = 1;  // the line `text` begins with
+  std::string text;  // whole contents
 
   // Returns the text of 1-based line `line`, without its newline.
   std::string line_text(int line) const;

@@ -141,8 +141,11 @@ bool read_with_assimp(const std::string& written, const SourceLocation& where, I
   importer.SetIOHandler(io);
   // Triangles only (points and lines sorted into meshes of their own and
   // counted); uvs with v downwards from the image's top, as our textures.
-  const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
-                         aiProcess_ValidateDataStructure | aiProcess_FlipUVs;
+  // Identical vertices are joined for COLLADA, whose reader makes one vertex
+  // per face corner; a glTF mesh is indexed already, and joining it took
+  // 300 bytes a triangle of peak memory (docs/bench/scale.md).
+  unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure | aiProcess_FlipUVs;
+  if (out.format == AssetFormat::Collada) flags |= aiProcess_JoinIdenticalVertices;
   const aiScene* scene = importer.ReadFile(out.path, flags);
   if (scene == nullptr || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || scene->mRootNode == nullptr) {
     std::string reason = scene == nullptr ? importer.GetErrorString() : "the file describes no complete scene";

@@ -157,13 +157,16 @@ class ObjParser {
   bool finish();
 
  private:
+  // The file is never held whole: a diagnostic's SourceFile holds its one
+  // line, after as many empty lines as precede it (up to kMaxQuotedLine; a
+  // problem further down is reported at its line and column, unquoted).
   SourceLocation at(std::size_t col0) const {
     auto file = std::make_shared<SourceFile>();
     file->path = path_;
-    file->text = std::string(line_);
-    file->first_line = number_;
+    if (number_ <= kMaxQuotedLine) file->text = std::string(static_cast<std::size_t>(number_ - 1), '\n').append(line_);
     return SourceLocation{std::move(file), number_, static_cast<int>(col0) + 1};
   }
+  static constexpr int kMaxQuotedLine = 1 << 20;
   bool fail(std::size_t col0, const std::string& message) {
     diag_.error(at(col0), message);
     return false;
@@ -287,8 +290,8 @@ bool ObjParser::index(std::string_view field, std::size_t col0, std::size_t coun
   const long long resolved = i > 0 ? i - 1 : static_cast<long long>(count) + i;
   if (i == 0) return fail(col0, std::string(what) + " index 0: OBJ indices start at 1 (negative ones count back)");
   if (resolved < 0 || resolved >= static_cast<long long>(count))
-    return fail(col0, std::string(what) + " " + std::string(field) + " does not exist: " + std::to_string(count) +
-                          " are defined before this line");
+    return fail(col0, std::string(what) + " " + std::string(field) + " does not exist (" + std::to_string(count) +
+                          " defined before this line)");
   out = static_cast<uint32_t>(resolved);
   return true;
 }
@@ -536,7 +539,7 @@ bool check_size(const std::string& path, std::uintmax_t max_bytes, std::string& 
 
 SourceLocation whole_file(const std::string& path) {
   SourceLocation loc;
-  loc.file = std::make_shared<const SourceFile>(SourceFile{path, {}, 1});
+  loc.file = std::make_shared<const SourceFile>(SourceFile{path, {}});
   return loc;
 }
 

@@ -13,7 +13,7 @@
 namespace pt::fuzz {
 
 int obj_one_input(const uint8_t* data, std::size_t size) {
-  // load_obj reads a file (Assimp resolves MTL files beside it): one private
+  // load_obj reads a file (the streaming reader never holds it whole): one private
   // file per process, rewritten for every input.
   static const std::string path = (std::filesystem::temp_directory_path() /
                                    ("pt_fuzz_obj_" + std::to_string(::getpid()) + ".obj")).string();

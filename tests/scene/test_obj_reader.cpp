@@ -143,7 +143,7 @@ TEST(ObjReader, MalformedStatementsAreErrorsAtTheirLineAndColumn) {
   const std::pair<const char*, const char*> cases[] = {
       {"v 0 0 0\nv 1 x 0\n", "m.obj:2:5: error: 'x' is not a number"},
       {"v 0 0\n", "m.obj:1:1: error: a vertex (v) has 3 numbers"},
-      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "m.obj:4:7: error: vertex 9 does not exist: 3 are defined before this line"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "m.obj:4:7: error: vertex 9 does not exist (3 defined before this line)"},
       {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -4\n", "m.obj:4:7: error: vertex -4 does not exist"},
       {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 0 3\n", "m.obj:4:5: error: vertex index 0: OBJ indices start at 1"},
       {"v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/2 3/1\n", "m.obj:5:9: error: texture coordinate 2 does not exist"},

@@ -10,10 +10,17 @@ Inputs (made in --work, not committed):
   - bunny-cgr:  the same 69,451 triangles written as CGR "triangle" shapes, each
                 with its inline material, as a course file holds them;
   - sponza-import: Sponza's OBJ with its MTL materials placed by {"type": "import"}
-                (the Assimp asset path, src/scene/asset_assimp.cpp);
+                (src/scene/asset_obj.cpp; textures loaded too);
+  - obj-grid:   a displaced grid of --obj-triangles triangles (1 million) as an
+                OBJ text file with v, vt, vn and v/vt/vn faces, in a native scene;
+  - gltf-grid:  that grid's positions and triangles as a glTF 2.0 file, placed by
+                {"type": "import"};
   - bunny-gltf: the bunny's triangles written as a glTF 2.0 file (.gltf + .bin,
                 float positions, uint32 indices) placed by {"type": "import"};
   - baseline:   one triangle in a native scene: the process's own footprint.
+With --compare OTHER_BUILD, every run is made with both builds back to back
+(OTHER_BUILD first) and an A/B table of the medians is printed (and the runs
+written to --json): the interleaved comparison of two versions.
 Each is rendered by the pathtracer at 16x16, 1 spp, with --report; the run
 record gives the time of each phase (parse, mesh load, scene build, accel
 build: "load and build" is their sum) and the process's peak RSS
@@ -25,6 +32,7 @@ with other jobs, wall-clock times include the waiting.
 
   python3 tools/bench/scale/bench_scale.py [--build build] [--work /tmp/pt-scale] [--runs 3]
           [--threads 2] [--triangles 10000000] [--inputs grid,sponza,sponza-import,bunny-obj,bunny-gltf,bunny-cgr]
+          [--obj-triangles 1000000] [--compare OTHER_BUILD]
           [--json docs/bench/scale.json] [--markdown docs/bench/scale.md] [--note TEXT]
 """
 import argparse
@@ -73,6 +81,28 @@ def obj_triangles(path):
                 for k in range(1, len(idx) - 1):
                     triangles.append((idx[0], idx[k], idx[k + 1]))
     return vertices, triangles
+
+
+def obj_grid(path, triangles):
+    """A displaced grid of about `triangles` triangles as OBJ text: v, vt, vn, f v/vt/vn."""
+    n = max(2, int((triangles / 2) ** 0.5))
+    with open(path, "w") as f:
+        f.write(f"# displaced grid, {n}x{n} quads, {2 * n * n} triangles (bench_scale.py)\n")
+        for j in range(n + 1):
+            f.write("".join(f"v {i / n - 0.5:.6f} {0.05 * ((i * 7 + j * 13) % 17) / 17:.6f} {j / n - 0.5:.6f}\n"
+                            for i in range(n + 1)))
+        for j in range(n + 1):
+            f.write("".join(f"vt {i / n:.6f} {j / n:.6f}\n" for i in range(n + 1)))
+        for j in range(n + 1):
+            f.write("".join(f"vn {0.1 * ((i + j) % 5) / 5:.6f} 0.994987 {0.05:.6f}\n" for i in range(n + 1)))
+        for j in range(n):
+            rows = []
+            for i in range(n):
+                a, b = j * (n + 1) + i + 1, j * (n + 1) + i + 2
+                c, d = b + n + 1, a + n + 1
+                rows.append(f"f {a}/{a}/{a} {d}/{d}/{d} {c}/{c}/{c}\nf {a}/{a}/{a} {c}/{c}/{c} {b}/{b}/{b}\n")
+            f.write("".join(rows))
+    return 2 * n * n
 
 
 def course_file(path, obj):
@@ -138,11 +168,30 @@ def make_inputs(a):
             scene = os.path.join(a.work, name + ".json")
             native_scene(scene, [{"type": "mesh", "material": "white", "file": obj}], far)
             inputs[name] = {"scene": scene, "triangles": None, "source": f"OBJ, {os.path.getsize(obj)} bytes"}
+    if "obj-grid" in a.inputs or "gltf-grid" in a.inputs:
+        obj = os.path.join(a.work, f"grid-{a.obj_triangles}.obj")
+        if not os.path.exists(obj):
+            obj_grid(obj + ".tmp", a.obj_triangles)
+            os.replace(obj + ".tmp", obj)
+        with open(obj) as f:
+            n = int(f.readline().split(" triangles")[0].split()[-1])
+        scene = os.path.join(a.work, "obj-grid.json")
+        native_scene(scene, [{"type": "mesh", "material": "white", "file": obj}], cam)
+        if "obj-grid" in a.inputs:
+            inputs["obj-grid"] = {"scene": scene, "triangles": n,
+                                  "source": f"OBJ v/vt/vn grid, {os.path.getsize(obj)} bytes"}
+        if "gltf-grid" in a.inputs:
+            gltf = os.path.join(a.work, f"grid-{a.obj_triangles}.gltf")
+            n, size = gltf_file(gltf, obj)
+            scene = os.path.join(a.work, "gltf-grid.json")
+            native_scene(scene, [{"type": "import", "file": gltf}], cam)
+            inputs["gltf-grid"] = {"scene": scene, "triangles": n,
+                                   "source": f"glTF 2.0 (import), the obj-grid's {n} triangles, {size} bytes of buffer"}
     if "sponza-import" in a.inputs and os.path.exists(SPONZA_OBJ):
         scene = os.path.join(a.work, "sponza-import.json")
         native_scene(scene, [{"type": "import", "file": SPONZA_OBJ}], far)
         inputs["sponza-import"] = {"scene": scene, "triangles": None,
-                                   "source": f"OBJ + MTL through Assimp (import), {os.path.getsize(SPONZA_OBJ)} bytes"}
+                                   "source": f"OBJ + MTL (import), {os.path.getsize(SPONZA_OBJ)} bytes"}
     if "bunny-gltf" in a.inputs and os.path.exists(BUNNY_OBJ):
         gltf = os.path.join(a.work, "bunny.gltf")
         n, size = gltf_file(gltf, BUNNY_OBJ)
@@ -158,11 +207,11 @@ def make_inputs(a):
     return inputs
 
 
-def run(a, scene, accel):
+def run(a, scene, accel, build=None):
     report = os.path.join(a.work, "report.json")
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.monotonic()
-    p = subprocess.run([os.path.join(a.build, "pathtracer"), scene, "-o", os.path.join(a.work, "out.exr"),
+    p = subprocess.run([os.path.join(build or a.build, "pathtracer"), scene, "-o", os.path.join(a.work, "out.exr"),
                         "--width", "16", "--height", "16", "--spp", "1", "--threads", str(a.threads),
                         "--accel", accel, "--report", report], capture_output=True, text=True)
     wall = time.monotonic() - start
@@ -176,6 +225,8 @@ def run(a, scene, accel):
             "process_wall_seconds": wall,
             "process_cpu_seconds": (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime),
             "peak_rss_bytes": r["memory"]["peak_rss_bytes"], "estimate_bytes": r["memory"].get("estimate_bytes"),
+            # The peak before the acceleration structure is built (the memory pre-flight's reading).
+            "load_peak_bytes": r["memory"].get("estimate_parts", {}).get("peak_so_far"),
             "accel_memory_bytes": r["accel"]["memory_bytes"],
             "primitives": r["accel"]["primitive_count"], "backend": r["accel"]["backend"]}
 
@@ -211,10 +262,14 @@ def main():
     p.add_argument("--json")
     p.add_argument("--markdown")
     p.add_argument("--note", default="")
+    p.add_argument("--obj-triangles", type=int, default=1_000_000)
+    p.add_argument("--compare", help="another build folder: every run is made with it and with --build, back to back")
     a = p.parse_args()
     a.inputs = a.inputs.split(",")
     accels = a.accel.split(",")
     inputs = make_inputs(a)
+    if a.compare:
+        return compare(a, inputs, accels)
     load_before = load_average()
     runs = {(name, accel): [] for name in inputs for accel in accels}
     for _ in range(a.runs):
@@ -263,6 +318,48 @@ def main():
             f.write(md + kept)
     else:
         print(md)
+
+
+def compare(a, inputs, accels):
+    """Each input, backend and round with both builds back to back; the medians side by side."""
+    builds = [("A", a.compare), ("B", a.build)]
+    runs = {(n, acc, b): [] for n in inputs for acc in accels for b, _ in builds}
+    for _ in range(a.runs):
+        for name, spec in inputs.items():
+            for accel in accels:
+                for label, build in builds:
+                    r = run(a, spec["scene"], accel, build)
+                    runs[(name, accel, label)].append(r)
+                    print(f"{label} {name} {accel}: load+build {r['load_build_seconds']:.2f} s (mesh "
+                          f"{r['phases']['mesh_load']:.2f}), cpu {r['process_cpu_seconds']:.2f} s, "
+                          f"peak {r['peak_rss_bytes'] / 2**20:.0f} MiB", flush=True)
+    med = lambda rs, f: statistics.median(f(x) for x in rs)
+    out = [f"A = {a.compare}, B = {a.build}; {a.runs} rounds, each pair back to back; load average "
+           f"{load_average()}", "",
+           "| input | backend | triangles | above baseline (B/triangle) A -> B | loading only (B/triangle) A -> B | "
+           "peak (MiB) A -> B | load + build (s) A -> B | CPU (s) A -> B |", "|---|---|---|---|---|---|---|---|"]
+    for name, spec in inputs.items():
+        if name == "baseline":
+            continue
+        for accel in accels:
+            cells = []
+            for label, _ in builds:
+                rs = runs[(name, accel, label)]
+                base = med(runs[("baseline", accel, label)], lambda x: x["peak_rss_bytes"])
+                tris = spec["triangles"] or rs[0]["primitives"]
+                peak = med(rs, lambda x: x["peak_rss_bytes"])
+                load = med(rs, lambda x: x["load_peak_bytes"]) - med(runs[("baseline", accel, label)],
+                                                                      lambda x: x["load_peak_bytes"])
+                cells.append(((peak - base) / tris, peak / 2**20, med(rs, lambda x: x["load_build_seconds"]),
+                              ", ".join(f"{x['process_cpu_seconds']:.2f}" for x in rs), tris, load / tris))
+            (pa, ma, la, ca, tris, da), (pb, mb, lb, cb, _, db) = cells
+            out.append(f"| {name} | {accel} | {tris:,} | {pa:.0f} -> {pb:.0f} | {da:.0f} -> {db:.0f} | "
+                       f"{ma:.0f} -> {mb:.0f} | {la:.2f} -> {lb:.2f} | {ca} -> {cb} |")
+    print("\n".join(out))
+    if a.json:
+        with open(a.json, "w") as f:
+            json.dump({"command": " ".join(sys.argv), "runs": {"|".join(k): v for k, v in runs.items()},
+                       "machine_lscpu": lscpu()}, f, indent=2)
 
 
 def markdown(rec):
