@@ -5,9 +5,21 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <filesystem>
 #include <system_error>
 
 namespace pt {
+
+std::string why_not_read(const std::string& path, std::uintmax_t max_bytes, const std::string& kind) {
+  if (const std::string why = why_unreadable(path); !why.empty()) return "cannot read the file: " + why;
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) return "cannot read the file: " + ec.message();
+  if (size > max_bytes)
+    return "the file is " + std::to_string(size) + " bytes; " + kind + " files over " + std::to_string(max_bytes) +
+           " bytes are refused";
+  return {};
+}
 
 std::string special_file_kind(const std::string& path) {
   struct stat st {};

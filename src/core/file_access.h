@@ -6,6 +6,7 @@
 // reads a device such as /dev/zero (which never ends).
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 namespace pt {
@@ -16,6 +17,11 @@ namespace pt {
 // file", "it is a character device, not a regular file", "it is a directory, not a
 // file", "it is a symbolic link loop (too many levels of symbolic links)").
 std::string why_unreadable(const std::string& path);
+
+// why_unreadable, or if the file is larger than `max_bytes`, that it is
+// refused ("the file is N bytes; `kind` files over M bytes are refused"); the
+// readable answer is prefixed "cannot read the file: ". Empty if it can be read.
+std::string why_not_read(const std::string& path, std::uintmax_t max_bytes, const std::string& kind);
 
 // What kind of entry `path` is when it exists but is no regular file (the
 // phrases above), or an empty string (a regular file, or nothing there).

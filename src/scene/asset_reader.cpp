@@ -56,25 +56,6 @@ std::string url_decoded(const std::string& s) {
   return out;
 }
 
-bool check_file(const std::string& path, std::string& error) {
-  if (const std::string why = why_unreadable(path); !why.empty()) {
-    error = "cannot read the file: " + why;
-    return false;
-  }
-  std::error_code ec;
-  const std::uintmax_t size = fs::file_size(path, ec);
-  if (ec) {
-    error = "cannot read the file: " + ec.message();
-    return false;
-  }
-  if (size > kMaxAssetFileBytes) {
-    error = "the file is " + std::to_string(size) + " bytes; model files over " + std::to_string(kMaxAssetFileBytes) +
-            " bytes are refused";
-    return false;
-  }
-  return true;
-}
-
 // What the glTF JSON says and Assimp 5.2 does not (gltf_json.h).
 void merge_gltf_info(ImportedAsset& out, Diagnostics& diag) {
   GltfInfo info;
@@ -242,8 +223,8 @@ bool read_asset(const std::string& resolved, const std::string& written, const S
   out = ImportedAsset{};
   out.path = resolved;
   const std::optional<AssetFormat> format = asset_format_of(resolved);
-  std::string error;
-  if (!format || !check_file(resolved, error)) {
+  const std::string error = format ? why_not_read(resolved, kMaxAssetFileBytes, "model") : std::string();
+  if (!format || !error.empty()) {
     diag.error(where, "cannot read '" + written + "': " + (format ? error : "not a model file this build reads"));
     return false;
   }

@@ -10,7 +10,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <limits>
 #include <map>
 #include <memory>
@@ -518,25 +517,6 @@ bool ObjParser::finish() {
   return true;
 }
 
-bool check_size(const std::string& path, std::uintmax_t max_bytes, std::string& error) {
-  if (const std::string why = why_unreadable(path); !why.empty()) {
-    error = "cannot read the file: " + why;
-    return false;
-  }
-  std::error_code ec;
-  const std::uintmax_t size = std::filesystem::file_size(path, ec);
-  if (ec) {
-    error = "cannot read the file: " + ec.message();
-    return false;
-  }
-  if (size > max_bytes) {
-    error = "the file is " + std::to_string(size) + " bytes; OBJ files over " + std::to_string(max_bytes) +
-            " bytes are refused";
-    return false;
-  }
-  return true;
-}
-
 SourceLocation whole_file(const std::string& path) {
   SourceLocation loc;
   loc.file = std::make_shared<const SourceFile>(SourceFile{path, {}});
@@ -546,9 +526,8 @@ SourceLocation whole_file(const std::string& path) {
 }  // namespace
 
 bool read_obj(const std::string& path, const ObjReadOptions& options, ObjModel& out, Diagnostics& diag) {
-  std::string error;
-  if (!check_size(path, options.max_bytes, error)) {
-    diag.error(whole_file(path), error);
+  if (const std::string why = why_not_read(path, options.max_bytes, "OBJ"); !why.empty()) {
+    diag.error(whole_file(path), why);
     return false;
   }
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
