@@ -281,9 +281,10 @@ TEST(Ply, RandomCorruptionNeverCrashesAndNeverYieldsBadIndices) {
 }
 
 // The layout the reader takes at once (float vertex properties, one uchar/int
-// index list, the host's byte order: scene.h's fast path) against the same file
-// in the other byte order, which is read value by value: the same mesh, and
-// the same message for every truncation and every bad value.
+// index list, the host's byte order: read_float_vertices and read_int_faces in
+// src/scene/ply.cpp) against the same file in the other byte order, which is
+// read value by value: the same mesh, and the same message for every
+// truncation and every bad value.
 std::string float_file(bool big_endian, const std::vector<std::array<float, 5>>& vertices,
                        const std::vector<std::vector<int32_t>>& faces, bool with_uvs) {
   std::string header = std::string("ply\nformat ") + (big_endian ? "binary_big_endian" : "binary_little_endian") +
