@@ -18,6 +18,7 @@
 #include <optional>
 #include <sstream>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 
 #include "core/file_access.h"
@@ -251,6 +252,15 @@ class BinaryReader {
   // The most list items that can still follow.
   uint64_t max_items(Type t) const { return remaining() / type_size(t); }
 
+  bool swapped() const { return swap_; }
+  // The next n bytes, consumed; nullptr (nothing consumed) if fewer remain.
+  const char* take(std::size_t n) {
+    if (remaining() < n) return nullptr;
+    const char* p = p_;
+    p_ += n;
+    return p;
+  }
+
  private:
   template <class T>
   static T load(const unsigned char* b) {
@@ -378,6 +388,62 @@ std::vector<int> vertex_roles(const Element& e, bool& has_normals, bool& has_uvs
   return roles;
 }
 
+// Vertex i from its values by role (0..2 position, 3..5 normal, 6..7 uv) into
+// the mesh's arrays (normals and uvs only where the mesh has them); false if
+// the position is not finite.
+inline bool store_vertex(const float v[8], uint64_t i, TriangleMesh& out) {
+  const Vec3f pos{v[0], v[1], v[2]};
+  if (!is_finite(pos)) return false;
+  out.positions[i] = pos;
+  if (!out.normals.empty()) {
+    const Vec3f n{v[3], v[4], v[5]};
+    out.normals[i] = is_finite(n) ? n : Vec3f(0.0f);  // a zero normal falls back to the geometric one
+  }
+  if (!out.uvs.empty()) {
+    const Vec2f uv{v[6], v[7]};
+    out.uvs[i] = (std::isfinite(uv.x) && std::isfinite(uv.y)) ? uv : Vec2f{};
+  }
+  return true;
+}
+
+bool all_float32(const Element& e) {
+  return std::all_of(e.properties.begin(), e.properties.end(),
+                     [](const Property& p) { return !p.is_list && p.type == Type::Float32; });
+}
+
+// The common binary layout (every vertex property a float, the host's byte
+// order: the 10M-triangle benchmark's, docs/bench/scale.md): each vertex read
+// from its fixed-size record at once rather than value by value, with the same
+// results and messages.
+bool read_float_vertices(BinaryReader& r, const Element& e, const std::vector<int>& roles, TriangleMesh& out,
+                         PlyError& error) {
+  const std::size_t stride = 4 * e.properties.size();
+  std::size_t offset[8] = {};
+  bool used[8] = {};
+  for (std::size_t k = 0; k < roles.size(); ++k) {
+    if (roles[k] == kNoRole) continue;
+    offset[roles[k]] = 4 * k;
+    used[roles[k]] = true;
+  }
+  const bool extra = !out.normals.empty() || !out.uvs.empty();
+  const char* records = r.take(stride * e.count);
+  if (records == nullptr) {  // as the value-by-value reader reports it: the first vertex the file cuts
+    return fail(error, read_failure(r, "vertex", r.remaining() / stride, e.count));
+  }
+  float v[8] = {};
+  for (uint64_t i = 0; i < e.count; ++i) {
+    const char* record = records + i * stride;
+    for (int k = 0; k < 3; ++k) std::memcpy(&v[k], record + offset[k], 4);
+    if (extra) {
+      for (int k = 3; k < 8; ++k) {
+        if (used[k]) std::memcpy(&v[k], record + offset[k], 4);
+      }
+    }
+    if (!store_vertex(v, i, out)) return fail(error, "vertex " + std::to_string(i) + " has a non-finite position");
+  }
+  return true;
+}
+
 template <class Reader>
 bool read_vertices(Reader& r, const Element& e, TriangleMesh& out, PlyError& error) {
   bool has_normals = false, has_uvs = false;
@@ -394,6 +460,9 @@ bool read_vertices(Reader& r, const Element& e, TriangleMesh& out, PlyError& err
   out.positions.resize(e.count);
   if (has_normals) out.normals.resize(e.count);
   if (has_uvs) out.uvs.resize(e.count);
+  if constexpr (std::is_same_v<Reader, BinaryReader>) {
+    if (all_float32(e) && !r.swapped()) return read_float_vertices(r, e, roles, out, error);
+  }
   double v[8] = {};
   for (uint64_t i = 0; i < e.count; ++i) {
     for (std::size_t k = 0; k < e.properties.size(); ++k) {
@@ -409,18 +478,73 @@ bool read_vertices(Reader& r, const Element& e, TriangleMesh& out, PlyError& err
       if (!r.read(p.type, value)) return fail(error, read_failure(r, "vertex", i, e.count));
       if (roles[k] != kNoRole) v[roles[k]] = value;
     }
-    const Vec3f pos{static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])};
-    if (!is_finite(pos)) return fail(error, "vertex " + std::to_string(i) + " has a non-finite position" + r.where());
-    out.positions[i] = pos;
-    if (has_normals) {
-      const Vec3f n{static_cast<float>(v[3]), static_cast<float>(v[4]), static_cast<float>(v[5])};
-      out.normals[i] = is_finite(n) ? n : Vec3f(0.0f);  // a zero normal falls back to the geometric one
-    }
-    if (has_uvs) {
-      const Vec2f uv{static_cast<float>(v[6]), static_cast<float>(v[7])};
-      out.uvs[i] = (std::isfinite(uv.x) && std::isfinite(uv.y)) ? uv : Vec2f{};
+    float f[8];
+    for (int k = 0; k < 8; ++k) f[k] = static_cast<float>(v[k]);
+    if (!store_vertex(f, i, out)) {
+      return fail(error, "vertex " + std::to_string(i) + " has a non-finite position" + r.where());
     }
   }
+  return true;
+}
+
+std::string bad_index(uint64_t face, int64_t index, uint64_t vertex_count) {
+  return "face " + std::to_string(face) + " refers to vertex " + std::to_string(index) + " but there are only " +
+         std::to_string(vertex_count) + " vertices";
+}
+
+// Fan triangulation; faces with fewer than three vertices add nothing.
+void add_fan(const uint32_t* polygon, std::size_t n, TriangleMesh& out) {
+  for (std::size_t j = 1; j + 1 < n; ++j) {
+    out.indices.push_back(polygon[0]);
+    out.indices.push_back(polygon[j]);
+    out.indices.push_back(polygon[j + 1]);
+  }
+}
+
+// The common binary face layout (one list property, a uchar count and 32-bit
+// indices, the host's byte order): triangles are read three indices at once
+// and written straight into the index array, other polygons fanned; the same
+// results and messages as the value-by-value reader.
+bool read_int_faces(BinaryReader& r, const Element& e, bool is_signed, uint64_t vertex_count, TriangleMesh& out,
+                    PlyError& error) {
+  std::vector<uint32_t>& indices = out.indices;
+  std::size_t w = indices.size();
+  indices.resize(w + 3 * e.count);  // one triangle a face; grown for larger polygons
+  // A signed index below 0 is, as unsigned, above any vertex count (< 2^32).
+  const uint64_t limit = is_signed ? std::min<uint64_t>(vertex_count, 0x80000000u) : vertex_count;
+  auto check = [&](uint64_t face, const uint32_t* polygon, std::size_t n) {
+    for (std::size_t j = 0; j < n; ++j) {
+      if (polygon[j] >= limit) {
+        const int64_t index = is_signed ? static_cast<int64_t>(static_cast<int32_t>(polygon[j])) : polygon[j];
+        return fail(error, bad_index(face, index, vertex_count));
+      }
+    }
+    return true;
+  };
+  uint32_t polygon[256];
+  for (uint64_t i = 0; i < e.count; ++i) {
+    const char* count = r.take(1);
+    const std::size_t n = count != nullptr ? static_cast<unsigned char>(*count) : 0;
+    const char* items = count != nullptr ? r.take(4 * n) : nullptr;
+    if (items == nullptr) return fail(error, read_failure(r, "face", i, e.count));
+    if (n == 3) {
+      std::memcpy(polygon, items, 12);
+      if (!check(i, polygon, 3)) return false;
+      std::memcpy(&indices[w], polygon, 12);
+      w += 3;
+      continue;
+    }
+    std::memcpy(polygon, items, 4 * n);
+    if (!check(i, polygon, n)) return false;
+    const std::size_t need = n >= 3 ? 3 * (n - 2) : 0;
+    if (w + need > indices.size()) indices.resize(std::max(2 * indices.size(), w + need));
+    for (std::size_t j = 1; j + 1 < n; ++j, w += 3) {
+      indices[w] = polygon[0];
+      indices[w + 1] = polygon[j];
+      indices[w + 2] = polygon[j + 1];
+    }
+  }
+  indices.resize(w);
   return true;
 }
 
@@ -438,6 +562,13 @@ bool read_faces(Reader& r, const Element& e, uint64_t vertex_count, TriangleMesh
   }
   if (list == kNoRole) return fail(error, "the face element has no 'vertex_indices' list", e.line);
   out.indices.reserve(3 * e.count);  // bounded: e.count was checked against the file size
+  if constexpr (std::is_same_v<Reader, BinaryReader>) {
+    const Property& p = e.properties[static_cast<std::size_t>(list)];
+    if (e.properties.size() == 1 && !r.swapped() && p.count_type == Type::UInt8 &&
+        (p.type == Type::Int32 || p.type == Type::UInt32)) {
+      return read_int_faces(r, e, p.type == Type::Int32, vertex_count, out, error);
+    }
+  }
   std::vector<uint32_t> polygon;
   for (uint64_t i = 0; i < e.count; ++i) {
     for (std::size_t k = 0; k < e.properties.size(); ++k) {
@@ -457,18 +588,11 @@ bool read_faces(Reader& r, const Element& e, uint64_t vertex_count, TriangleMesh
         double idx = 0;
         if (!r.read(p.type, idx)) return fail(error, read_failure(r, "face", i, e.count));
         if (idx < 0 || idx >= static_cast<double>(vertex_count)) {
-          return fail(error, "face " + std::to_string(i) + " refers to vertex " +
-                                 std::to_string(static_cast<int64_t>(idx)) + " but there are only " +
-                                 std::to_string(vertex_count) + " vertices" + r.where());
+          return fail(error, bad_index(i, static_cast<int64_t>(idx), vertex_count) + r.where());
         }
         polygon.push_back(static_cast<uint32_t>(idx));
       }
-      // Fan triangulation; faces with fewer than three vertices add nothing.
-      for (std::size_t j = 1; j + 1 < polygon.size(); ++j) {
-        out.indices.push_back(polygon[0]);
-        out.indices.push_back(polygon[j]);
-        out.indices.push_back(polygon[j + 1]);
-      }
+      add_fan(polygon.data(), polygon.size(), out);
     }
   }
   return true;

@@ -8,6 +8,9 @@
 #include <fstream>
 #include <random>
 #include <string>
+#include <array>
+#include <limits>
+#include <vector>
 
 #include "scene/ply.h"
 
@@ -275,6 +278,74 @@ TEST(Ply, RandomCorruptionNeverCrashesAndNeverYieldsBadIndices) {
     }
   }
   EXPECT_GT(accepted, 0);  // some edits (e.g. in comments or values) keep the file valid
+}
+
+// The layout the reader takes at once (float vertex properties, one uchar/int
+// index list, the host's byte order: read_float_vertices and read_int_faces in
+// src/scene/ply.cpp) against the same file in the other byte order, which is
+// read value by value: the same mesh, and the same message for every
+// truncation and every bad value.
+std::string float_file(bool big_endian, const std::vector<std::array<float, 5>>& vertices,
+                       const std::vector<std::vector<int32_t>>& faces, bool with_uvs) {
+  std::string header = std::string("ply\nformat ") + (big_endian ? "binary_big_endian" : "binary_little_endian") +
+                       " 1.0\nelement vertex " + std::to_string(vertices.size()) +
+                       "\nproperty float x\nproperty float y\nproperty float z\n" +
+                       (with_uvs ? "property float u\nproperty float v\n" : "") + "element face " +
+                       std::to_string(faces.size()) + "\nproperty list uchar int vertex_indices\nend_header\n";
+  Bytes b(big_endian);
+  for (const auto& v : vertices) {
+    for (int k = 0; k < (with_uvs ? 5 : 3); ++k) b.put(v[static_cast<std::size_t>(k)]);
+  }
+  for (const auto& f : faces) {
+    b.put(static_cast<uint8_t>(f.size()));
+    for (int32_t i : f) b.put(i);
+  }
+  return header + b.str();
+}
+
+TEST(Ply, HostOrderFloatLayoutReadsAsTheValueByValueReader) {
+  const bool host_big = std::endian::native == std::endian::big;
+  const std::vector<std::array<float, 5>> v = {
+      {0, 0, 0, 0, 0}, {1, 0, 0, 1, 0}, {1, 1, 0, 1, 1}, {0, 1, 0, 0, 1}, {2, 2, -1.5f, 0.5f, 0.5f}};
+  const std::vector<std::vector<int32_t>> good = {{0, 1, 2, 3}, {1, 4, 2}, {0, 1}, {2, 3, 4}};
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  struct Case {
+    std::vector<std::array<float, 5>> vertices;
+    std::vector<std::vector<int32_t>> faces;
+  };
+  const Case cases[] = {{v, good},
+                        {v, {{0, 1, 2}, {1, 5, 2}}},
+                        {v, {{0, 1, 2}, {1, -1, 2}}},
+                        {v, {{0, 1, 2, 3, 7}}},
+                        {{{0, 0, 0}, {1, nan, 0}, {0, 1, 0}}, {{0, 1, 2}}}};
+  int accepted = 0;
+  for (const Case& c : cases) {
+    for (bool uvs : {false, true}) {
+      const std::string fast = float_file(host_big, c.vertices, c.faces, uvs);
+      const std::string slow = float_file(!host_big, c.vertices, c.faces, uvs);
+      // The headers differ in length (the format's name): cut both bodies alike.
+      const std::size_t fast_body = fast.find("end_header\n") + 11, slow_body = slow.find("end_header\n") + 11;
+      for (std::size_t n = 0; fast_body + n <= fast.size(); ++n) {
+        TriangleMesh a, b;
+        PlyError ea, eb;
+        const bool ok = parse(fast.substr(0, fast_body + n), a, ea);
+        ASSERT_EQ(ok, parse(slow.substr(0, slow_body + n), b, eb)) << n;
+        ASSERT_EQ(ea.message, eb.message) << n;
+        if (!ok) continue;
+        ++accepted;
+        EXPECT_EQ(a.indices, b.indices);
+        ASSERT_EQ(a.positions.size(), b.positions.size());
+        EXPECT_EQ(0, std::memcmp(a.positions.data(), b.positions.data(), a.positions.size() * sizeof(Vec3f)));
+        ASSERT_EQ(a.uvs.size(), b.uvs.size());
+        EXPECT_EQ(0, std::memcmp(a.uvs.data(), b.uvs.data(), a.uvs.size() * sizeof(Vec2f)));
+      }
+    }
+  }
+  EXPECT_EQ(accepted, 2);  // the whole good file, with and without uvs; every other case has an error
+  TriangleMesh m;
+  PlyError e;
+  ASSERT_TRUE(parse(float_file(host_big, v, good, false), m, e)) << e.message;
+  EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3, 1, 4, 2, 2, 3, 4}));
 }
 
 // ---------------------------------------------------------------- files

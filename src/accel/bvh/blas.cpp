@@ -154,8 +154,8 @@ Blas build_mesh_blas(const TriangleMesh& mesh, uint32_t object, const BuildSetti
   blas.root = Flattener(tree, blas.nodes, blas.stats, emit).run();
   // The build's nodes and leaves are not needed any more: freed before the
   // blocks (the largest array) are allocated, so they never coexist.
-  std::vector<BuildNode>().swap(tree.nodes);
-  std::vector<BuildLeaf>().swap(tree.leaves);
+  tbb::concurrent_vector<BuildNode>().swap(tree.nodes);
+  tbb::concurrent_vector<BuildLeaf>().swap(tree.leaves);
   blas.blocks.resize(next_block);
   tbb::parallel_for(std::size_t{0}, pending.size(), [&](std::size_t l) {
     const PendingLeaf& leaf = pending[l];

@@ -28,15 +28,13 @@ struct Candidate {
 
 class Builder {
  public:
-  Builder(PrimRef* refs, const BuildSettings& settings) : refs_(refs), s_(settings) {}
+  Builder(PrimRef* refs, const BuildSettings& settings, BuildTree& tree)
+      : refs_(refs), s_(settings), nodes_(tree.nodes), leaves_(tree.leaves) {}
 
   // Decides whether `r`, as a node at level `depth`, is a leaf or how it splits.
   Candidate evaluate(const Range& r, int depth) const;
   // Builds the subtree of `c` at level `depth`; returns its reference.
   uint32_t build(const Candidate& c, int depth);
-
-  std::vector<BuildNode> take_nodes() const { return {nodes_.begin(), nodes_.end()}; }
-  std::vector<BuildLeaf> take_leaves() const { return {leaves_.begin(), leaves_.end()}; }
 
  private:
   uint32_t make_leaf(const Range& r) {
@@ -46,8 +44,8 @@ class Builder {
 
   PrimRef* refs_;
   const BuildSettings& s_;
-  tbb::concurrent_vector<BuildNode> nodes_;
-  tbb::concurrent_vector<BuildLeaf> leaves_;
+  tbb::concurrent_vector<BuildNode>& nodes_;
+  tbb::concurrent_vector<BuildLeaf>& leaves_;
 };
 
 Candidate Builder::evaluate(const Range& r, int depth) const {
@@ -149,12 +147,10 @@ BuildTree build_tree(std::vector<PrimRef> refs, const BuildSettings& settings) {
   BuildTree tree;
   if (refs.empty()) return tree;
   const auto n = static_cast<uint32_t>(refs.size());
-  Builder builder(refs.data(), settings);
+  Builder builder(refs.data(), settings, tree);
   const Range all = whole_range(refs.data(), n);
   tree.bounds = all.box;
   tree.root = builder.build(builder.evaluate(all, 0), 0);
-  tree.nodes = builder.take_nodes();
-  tree.leaves = builder.take_leaves();
   tree.prims.resize(n);
   for (uint32_t i = 0; i < n; ++i) tree.prims[i] = refs[i].id;
   return tree;

@@ -19,6 +19,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <tbb/concurrent_vector.h>
+
 #include "core/math.h"
 
 namespace pt::bvh {
@@ -70,9 +72,11 @@ struct BuildLeaf {
 
 struct BuildTree {
   // Nodes and leaves in creation order (which may vary between runs); walk the
-  // tree from `root` for a deterministic order.
-  std::vector<BuildNode> nodes;
-  std::vector<BuildLeaf> leaves;
+  // tree from `root` for a deterministic order. The builder's own concurrent
+  // arrays, handed over without a copy (a copy of the nodes, 13 bytes a
+  // triangle, was the build's peak on a 10M-triangle mesh: docs/bench/scale.md).
+  tbb::concurrent_vector<BuildNode> nodes;
+  tbb::concurrent_vector<BuildLeaf> leaves;
   std::vector<uint32_t> prims;  // PrimRef ids, each leaf a contiguous range
   uint32_t root = kLeafRef;     // a node, or a leaf for a tiny input
   Bounds3f bounds;              // of all primitives
