@@ -195,8 +195,8 @@ namespace {
 
 void check_triangle(const TriangleMesh& m, ShapeChecker& c) {
   if (m.positions.size() != 3) return;
-  const Vec3f n = cross(m.positions[1] - m.positions[0], m.positions[2] - m.positions[0]);
-  if (length(n) == 0.0f) c.warning("", "triangle is degenerate (zero area, corners in a line); it will not be visible");
+  if (zero_area_triangle(m.positions[0], m.positions[1], m.positions[2]))
+    c.warning("", "triangle is degenerate (zero area, corners in a line); it will not be visible");
 }
 
 // Each mismatch of a per-vertex list.

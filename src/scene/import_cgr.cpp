@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "scene/cgr_triangle_runs.h"
 #include "scene/importers.h"
 #include "scene/legacy_common.h"
 
@@ -162,7 +163,14 @@ void import_cgr(ImportContext& ctx) {
   top.read("nbounces", scene.render.max_depth);
   read_sampling(ctx, top);
   if (const JsonValue* v = top.require("camera")) read_camera(ctx, *v);
-  if (const JsonValue* v = top.require("scene")) read_legacy_scene(ctx, *v, read_light, read_shape);
+  CgrTriangleRuns runs;  // long runs of triangles as one mesh (cgr_triangle_runs.h)
+  auto read_shape_in_run = [&runs](ImportContext& c, const JsonValue& v, std::size_t index) {
+    const std::size_t before = c.scene.shapes.size();
+    read_shape(c, v, index);
+    runs.shape_read(c, index, c.scene.shapes.size() > before);
+  };
+  if (const JsonValue* v = top.require("scene")) read_legacy_scene(ctx, *v, read_light, read_shape_in_run);
+  runs.finish(ctx);
   top.finish();
   warn_if_unlit(ctx);
   add_course_ambient(scene);

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cstddef>
+#include <memory>
 
 namespace pt {
 
@@ -18,89 +20,73 @@ const char* json_type_name(JsonType type) {
   return "a value";
 }
 
-// Defined here, where JsonMember is complete.
-JsonValue::~JsonValue() = default;
-JsonValue::JsonValue(const JsonValue&) = default;
-JsonValue::JsonValue(JsonValue&&) noexcept = default;
-JsonValue& JsonValue::operator=(const JsonValue&) = default;
-JsonValue& JsonValue::operator=(JsonValue&&) noexcept = default;
-
-JsonValue JsonValue::null(std::size_t offset) {
+JsonValue JsonValue::make(JsonType type, std::size_t offset, uint32_t extra) {
+  assert(offset <= kMaxOffset);
   JsonValue v;
-  v.offset_ = offset;
+  v.offset_ = static_cast<uint32_t>(offset);
+  v.meta_ = static_cast<uint32_t>(type) | extra;
   return v;
 }
 
+JsonValue JsonValue::null(std::size_t offset) { return make(JsonType::Null, offset); }
+
 JsonValue JsonValue::boolean(bool b, std::size_t offset) {
-  JsonValue v;
-  v.data_ = b;
-  v.offset_ = offset;
+  JsonValue v = make(JsonType::Bool, offset);
+  v.p_.boolean = b;
   return v;
 }
 
 JsonValue JsonValue::number(double d, bool integer, std::size_t offset) {
-  JsonValue v;
-  v.data_ = Number{d, integer};
-  v.offset_ = offset;
+  JsonValue v = make(JsonType::Number, offset, integer ? kIntegerBit : 0);
+  v.p_.number = d;
   return v;
 }
 
-JsonValue JsonValue::string(std::string s, std::size_t offset) {
-  JsonValue v;
-  v.data_ = std::move(s);
-  v.offset_ = offset;
+JsonValue JsonValue::string(const std::string* s, std::size_t offset) {
+  JsonValue v = make(JsonType::String, offset);
+  v.p_.string = s;
   return v;
 }
 
-JsonValue JsonValue::array(std::size_t offset) {
-  JsonValue v;
-  v.data_ = Array{};
-  v.offset_ = offset;
+JsonValue JsonValue::array(const JsonValue* items, std::size_t count, std::size_t offset) {
+  assert(count <= kMaxCount);
+  JsonValue v = make(JsonType::Array, offset, static_cast<uint32_t>(count) << kCountShift);
+  v.p_.items = items;
   return v;
 }
 
-JsonValue JsonValue::object(std::size_t offset) {
-  JsonValue v;
-  v.data_ = Object{};
-  v.offset_ = offset;
+JsonValue JsonValue::object(const JsonMember* members, std::size_t count, std::size_t offset) {
+  assert(count <= kMaxCount);
+  JsonValue v = make(JsonType::Object, offset, static_cast<uint32_t>(count) << kCountShift);
+  v.p_.members = members;
   return v;
 }
 
 bool JsonValue::as_bool() const {
   assert(is_bool());
-  return std::get<bool>(data_);
+  return p_.boolean;
 }
 
 double JsonValue::as_number() const {
   assert(is_number());
-  return std::get<Number>(data_).value;
+  return p_.number;
 }
 
-bool JsonValue::is_integer() const { return is_number() && std::get<Number>(data_).integer; }
+bool JsonValue::is_integer() const { return is_number() && (meta_ & kIntegerBit) != 0; }
 
 const std::string& JsonValue::as_string() const {
   assert(is_string());
-  return std::get<std::string>(data_);
+  return *p_.string;
 }
 
-const JsonValue::Array& JsonValue::as_array() const {
+JsonValue::Array JsonValue::as_array() const {
   assert(is_array());
-  return std::get<Array>(data_);
+  return Array(p_.items, meta_ >> kCountShift);
 }
 
-JsonValue::Array& JsonValue::as_array() {
-  assert(is_array());
-  return std::get<Array>(data_);
-}
-
-const JsonValue::Object& JsonValue::as_object() const {
+JsonValue::Object JsonValue::as_object() const {
   assert(is_object());
-  return std::get<Object>(data_);
-}
-
-JsonValue::Object& JsonValue::as_object() {
-  assert(is_object());
-  return std::get<Object>(data_);
+  return Object(p_.members, meta_ >> kCountShift);
 }
 
 const JsonValue* JsonValue::find(std::string_view key) const {
@@ -110,12 +96,34 @@ const JsonValue* JsonValue::find(std::string_view key) const {
   return nullptr;
 }
 
+void* JsonStorage::allocate(std::size_t bytes) {
+  constexpr std::size_t kAlign = alignof(JsonMember) > alignof(JsonValue) ? alignof(JsonMember) : alignof(JsonValue);
+  static_assert(kAlign <= alignof(std::max_align_t));
+  bytes = (bytes + kAlign - 1) / kAlign * kAlign;
+  if (bytes > left_) {
+    constexpr std::size_t kLargestBlock = std::size_t{1} << 20;
+    const std::size_t size = std::max(bytes, block_bytes_);
+    block_bytes_ = std::min(block_bytes_ * 2, kLargestBlock);
+    blocks_.push_back(std::make_unique_for_overwrite<std::byte[]>(size));
+    next_ = blocks_.back().get();
+    left_ = size;
+  }
+  void* p = next_;
+  next_ += bytes;
+  left_ -= bytes;
+  return p;
+}
+
+const std::string* JsonStorage::keep(std::string s) { return &strings_.emplace_back(std::move(s)); }
+
 JsonDocument::JsonDocument(std::shared_ptr<const SourceFile> file) : file_(std::move(file)) {
   line_starts_.push_back(0);
   if (!file_) return;
+  // Lines past JsonValue::kMaxOffset are not counted: parse_json refuses such texts.
   const std::string& text = file_->text;
-  for (std::size_t i = 0; i < text.size(); ++i)
-    if (text[i] == '\n') line_starts_.push_back(i + 1);
+  const std::size_t n = std::min(text.size(), JsonValue::kMaxOffset);
+  for (std::size_t i = 0; i < n; ++i)
+    if (text[i] == '\n') line_starts_.push_back(static_cast<uint32_t>(i + 1));
 }
 
 SourceLocation JsonDocument::location(std::size_t offset) const {

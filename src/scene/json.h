@@ -5,6 +5,13 @@
 // byte offset of every value and every object key, and keeps object members in
 // file order. JsonDocument turns offsets into file:line:col.
 //
+// The tree is compact, since a course file holds one object per triangle
+// (docs/bench/scale.md): a value is 16 bytes (its payload, offset and type), an
+// object member 32; the elements of each array and the members of each object
+// are one exact-size run in the document's storage, and every distinct string
+// (keys included) is stored once. A JsonValue is a view into its document:
+// copies are cheap and valid while the document lives.
+//
 // parse_json() reports, with locations: syntax errors (the first one ends the
 // parse), duplicate keys (the later one is an error, the first gets a note),
 // numbers that overflow to infinity, NaN/Infinity spelled out, and nesting
@@ -14,11 +21,13 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <deque>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
-#include <variant>
 #include <vector>
 
 #include "core/diagnostics.h"
@@ -34,25 +43,22 @@ struct JsonMember;
 
 class JsonValue {
  public:
-  using Array = std::vector<JsonValue>;
-  using Object = std::vector<JsonMember>;
+  using Array = std::span<const JsonValue>;
+  using Object = std::span<const JsonMember>;
 
   JsonValue() = default;  // null at offset 0
-  ~JsonValue();
-  JsonValue(const JsonValue&);
-  JsonValue(JsonValue&&) noexcept;
-  JsonValue& operator=(const JsonValue&);
-  JsonValue& operator=(JsonValue&&) noexcept;
 
   static JsonValue null(std::size_t offset);
   static JsonValue boolean(bool b, std::size_t offset);
   // `integer`: written without fraction or exponent.
   static JsonValue number(double d, bool integer, std::size_t offset);
-  static JsonValue string(std::string s, std::size_t offset);
-  static JsonValue array(std::size_t offset);
-  static JsonValue object(std::size_t offset);
+  // The string, elements and members are the document's (JsonStorage): they
+  // must outlive the value.
+  static JsonValue string(const std::string* s, std::size_t offset);
+  static JsonValue array(const JsonValue* items, std::size_t count, std::size_t offset);
+  static JsonValue object(const JsonMember* members, std::size_t count, std::size_t offset);
 
-  JsonType type() const { return static_cast<JsonType>(data_.index()); }
+  JsonType type() const { return static_cast<JsonType>(meta_ & kTypeMask); }
   // Byte offset of the value's first character in the source text.
   std::size_t offset() const { return offset_; }
 
@@ -68,28 +74,40 @@ class JsonValue {
   double as_number() const;
   bool is_integer() const;  // a number written without fraction or exponent
   const std::string& as_string() const;
-  const Array& as_array() const;
-  Array& as_array();
-  const Object& as_object() const;
-  Object& as_object();
+  Array as_array() const;
+  Object as_object() const;
 
   // For objects: the member named `key` (its first definition), else nullptr.
   const JsonValue* find(std::string_view key) const;
 
+  // Elements of one array or members of one object: the count is kept in the
+  // value beside its type, so JsonLimits::max_values may not exceed this.
+  static constexpr std::size_t kMaxCount = (std::size_t{1} << 28) - 1;
+  // Offsets are 32-bit: parse_json refuses longer texts.
+  static constexpr std::size_t kMaxOffset = UINT32_MAX;
+
  private:
-  struct Number {
-    double value = 0;
-    bool integer = false;
+  static constexpr uint32_t kTypeMask = 7;
+  static constexpr uint32_t kIntegerBit = 8;
+  static constexpr int kCountShift = 4;
+  static JsonValue make(JsonType type, std::size_t offset, uint32_t extra = 0);
+
+  union Payload {
+    double number;
+    bool boolean;
+    const std::string* string;
+    const JsonValue* items;
+    const JsonMember* members;
   };
-  // The index order matches JsonType.
-  std::variant<std::monostate, bool, Number, std::string, Array, Object> data_;
-  std::size_t offset_ = 0;
+  Payload p_{0.0};
+  uint32_t offset_ = 0;
+  uint32_t meta_ = 0;  // type (3 bits), integer (1 bit), element or member count (28 bits)
 };
 
 struct JsonMember {
-  std::string key;
-  std::size_t key_offset = 0;  // offset of the key's opening quote
+  const std::string& key;  // in the document's storage
   JsonValue value;
+  uint32_t key_offset = 0;  // offset of the key's opening quote
   // A later definition of a key that appeared before in the same object. It is
   // reported by the parser; readers skip it.
   bool duplicate = false;
@@ -97,9 +115,28 @@ struct JsonMember {
 
 struct JsonLimits {
   int max_depth = 100;  // arrays and objects nested deeper than this are refused
-  // Values (of any type) in one file: the tree takes ~50 bytes per value, so
-  // this bounds its memory (~400 MiB) whatever the file holds ("0,0,0,...").
+  // Values (of any type) in one file: the tree takes 16-32 bytes per value, so
+  // this bounds its memory (~256 MiB) whatever the file holds ("0,0,0,...").
+  // At most JsonValue::kMaxCount.
   std::size_t max_values = std::size_t{1} << 23;
+};
+
+// Where a document's arrays, objects and strings live: blocks that never move
+// (so moving the document keeps every JsonValue valid) and each distinct
+// string once.
+class JsonStorage {
+ public:
+  // `bytes` of uninitialised memory aligned for JsonValue and JsonMember.
+  void* allocate(std::size_t bytes);
+  // Keeps `s`; the caller looks strings up first so that each is kept once.
+  const std::string* keep(std::string s);
+
+ private:
+  std::vector<std::unique_ptr<std::byte[]>> blocks_;
+  std::byte* next_ = nullptr;
+  std::size_t left_ = 0;
+  std::size_t block_bytes_ = 4096;  // the next block's size: doubles up to 1 MiB
+  std::deque<std::string> strings_;
 };
 
 class JsonDocument;
@@ -124,7 +161,8 @@ class JsonDocument {
 
  private:
   std::shared_ptr<const SourceFile> file_;
-  std::vector<std::size_t> line_starts_;  // offset of the first byte of each line
+  std::vector<uint32_t> line_starts_;  // offset of the first byte of each line
+  std::unique_ptr<JsonStorage> storage_ = std::make_unique<JsonStorage>();
   JsonValue root_;
 
   friend std::optional<JsonDocument> parse_json(std::shared_ptr<const SourceFile>, Diagnostics&,

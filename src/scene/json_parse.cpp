@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstring>
 #include <iterator>
+#include <memory>
+#include <optional>
 #include <string>
 #include <unordered_map>
 
@@ -69,6 +71,10 @@ bool starts_with_nocase(std::string_view s, std::string_view prefix) {
 }
 
 // Builds the JsonValue tree from SAX events (the interface nlohmann::json::sax_parse expects).
+// Each open array or object collects its elements in a frame of its own; when
+// it closes they are copied, at their exact count, into the document's
+// storage. Frames are kept for reuse, so that their buffers are allocated
+// once per depth, not once per container.
 class TreeBuilder {
  public:
   using json = nlohmann::json;
@@ -78,14 +84,14 @@ class TreeBuilder {
   using string_t = json::string_t;
   using binary_t = json::binary_t;
 
-  TreeBuilder(const JsonDocument& doc, Diagnostics& diag, const JsonLimits& limits)
-      : doc_(doc), text_(doc.file()->text), diag_(diag), limits_(limits) {
+  TreeBuilder(const JsonDocument& doc, JsonStorage& storage, Diagnostics& diag, const JsonLimits& limits)
+      : doc_(doc), storage_(storage), text_(doc.file()->text), diag_(diag), limits_(limits) {
     // The lexer skips a UTF-8 byte order mark.
     if (text_.size() >= 3 && std::memcmp(text_.data(), "\xEF\xBB\xBF", 3) == 0) prev_end_ = 3;
   }
 
   std::size_t* consumed() { return &consumed_; }
-  JsonValue take_root() { return std::move(root_); }
+  JsonValue root() const { return root_; }
 
   // ---- SAX interface
   bool null() { return add_simple(JsonValue::null(token_start())); }
@@ -93,26 +99,26 @@ class TreeBuilder {
   bool number_integer(number_integer_t v) { return add_number(static_cast<double>(v), true); }
   bool number_unsigned(number_unsigned_t v) { return add_number(static_cast<double>(v), true); }
   bool number_float(number_float_t v, const string_t& /*text*/) { return add_number(v, false); }
-  bool string(string_t& s) { return add_simple(JsonValue::string(std::move(s), token_start())); }
+  bool string(string_t& s) { return add_simple(JsonValue::string(intern(std::move(s)), token_start())); }
   bool binary(binary_t& /*unused*/) { return true; }  // never produced by the JSON lexer
 
-  bool start_object(std::size_t /*size*/) { return open(JsonValue::object(token_start())); }
-  bool start_array(std::size_t /*size*/) { return open(JsonValue::array(token_start())); }
+  bool start_object(std::size_t /*size*/) { return open(true); }
+  bool start_array(std::size_t /*size*/) { return open(false); }
   bool end_object() { return close(); }
   bool end_array() { return close(); }
 
   bool key(string_t& k) {
     const std::size_t start = token_start();
     prev_end_ = consumed_;
-    Frame& top = stack_.back();
-    const auto [it, inserted] = top.keys.emplace(k, start);
-    pending_duplicate_ = !inserted;
-    if (!inserted) {
-      diag_.error(doc_.location(start), "duplicate key '" + k + "'");
-      diag_.note(doc_.location(it->second), "'" + k + "' is first defined here");
+    const std::string* key = intern(std::move(k));
+    const std::optional<uint32_t> first = stack_[depth_ - 1].find(key);
+    pending_duplicate_ = first.has_value();
+    if (first) {
+      diag_.error(doc_.location(start), "duplicate key '" + *key + "'");
+      diag_.note(doc_.location(*first), "'" + *key + "' is first defined here");
     }
-    pending_key_ = std::move(k);
-    pending_key_offset_ = start;
+    pending_key_ = key;
+    pending_key_offset_ = static_cast<uint32_t>(start);
     return true;
   }
 
@@ -123,10 +129,48 @@ class TreeBuilder {
   }
 
  private:
+  // Objects look keys up by address (each distinct key is kept once); an
+  // object with many members builds an index.
+  static constexpr std::size_t kIndexedMembers = 32;
+
   struct Frame {
-    JsonValue* value;
-    std::unordered_map<std::string, std::size_t> keys;  // objects: key -> offset of its first definition
+    bool object = false;
+    std::size_t offset = 0;
+    // The key this container is the value of, in the enclosing object (it is
+    // added there when it closes, after keys of its own).
+    const std::string* key = nullptr;
+    uint32_t key_offset = 0;
+    bool duplicate = false;
+    std::vector<JsonValue> items;
+    std::vector<JsonMember> members;
+    std::unordered_map<const std::string*, uint32_t> index;  // key -> offset, past kIndexedMembers
+
+    // The offset of the first definition of `name` in this object, if any.
+    std::optional<uint32_t> find(const std::string* name) const {
+      if (members.size() > kIndexedMembers) {
+        const auto it = index.find(name);
+        return it == index.end() ? std::nullopt : std::optional<uint32_t>(it->second);
+      }
+      for (const JsonMember& m : members)
+        if (&m.key == name) return m.key_offset;
+      return std::nullopt;
+    }
+    void add(JsonMember m) {
+      members.push_back(std::move(m));
+      if (members.size() == kIndexedMembers + 1) {
+        for (const JsonMember& e : members) index.emplace(&e.key, e.key_offset);
+      } else if (members.size() > kIndexedMembers + 1) {
+        index.emplace(&members.back().key, members.back().key_offset);
+      }
+    }
   };
+
+  const std::string* intern(std::string s) {
+    if (const auto it = strings_.find(s); it != strings_.end()) return it->second;
+    const std::string* kept = storage_.keep(std::move(s));
+    strings_.emplace(*kept, kept);
+    return kept;
+  }
 
   // First byte of the token the lexer has just read.
   std::size_t token_start() const {
@@ -142,7 +186,7 @@ class TreeBuilder {
 
   bool add_simple(JsonValue v) {
     prev_end_ = consumed_;
-    return add(std::move(v)) != nullptr;
+    return count(v.offset()) && add(v);
   }
 
   bool add_number(double d, bool integer) {
@@ -154,63 +198,73 @@ class TreeBuilder {
       diag_.error(doc_.location(start), "number '" + text_.substr(start, end - start) +
                                             "' is out of range (it overflows to infinity)");
     }
-    return add(JsonValue::number(d, integer, start)) != nullptr;
+    return count(start) && add(JsonValue::number(d, integer, start));
   }
 
-  bool open(JsonValue v) {
-    const std::size_t start = v.offset();
+  bool open(bool object) {
+    const std::size_t start = token_start();
     prev_end_ = consumed_;
-    if (static_cast<int>(stack_.size()) >= limits_.max_depth) {
+    if (static_cast<int>(depth_) >= limits_.max_depth) {
       diag_.error(doc_.location(start), "arrays and objects are nested more than " +
                                             std::to_string(limits_.max_depth) + " levels deep");
       return false;
     }
-    JsonValue* added = add(std::move(v));
-    if (added == nullptr) return false;
-    stack_.push_back(Frame{added, {}});
+    if (!count(start)) return false;
+    if (depth_ == stack_.size()) stack_.emplace_back();
+    Frame& f = stack_[depth_++];
+    f.object = object;
+    f.offset = start;
+    f.key = pending_key_;
+    f.key_offset = pending_key_offset_;
+    f.duplicate = pending_duplicate_;
     return true;
   }
 
+  // The container is complete: its elements move to the document's storage,
+  // exactly as many as it has.
   bool close() {
     prev_end_ = consumed_;
-    // The container is complete: its spare capacity (up to half of it, from
-    // push_back's doubling) is given back. A course file of small objects
-    // (a triangle's three 3-vectors, a material's nine members) keeps about
-    // a third less this way.
-    JsonValue& done = *stack_.back().value;
-    if (done.is_array()) {
-      done.as_array().shrink_to_fit();
+    Frame& f = stack_[--depth_];
+    JsonValue done;
+    if (f.object) {
+      auto* members = static_cast<JsonMember*>(storage_.allocate(f.members.size() * sizeof(JsonMember)));
+      for (std::size_t i = 0; i < f.members.size(); ++i) new (members + i) JsonMember(f.members[i]);
+      done = JsonValue::object(members, f.members.size(), f.offset);
+      f.members.clear();
+      f.index.clear();
     } else {
-      done.as_object().shrink_to_fit();
+      auto* items = static_cast<JsonValue*>(storage_.allocate(f.items.size() * sizeof(JsonValue)));
+      std::uninitialized_copy(f.items.begin(), f.items.end(), items);
+      done = JsonValue::array(items, f.items.size(), f.offset);
+      f.items.clear();
     }
-    stack_.pop_back();
-    return true;
+    pending_key_ = f.key;
+    pending_key_offset_ = f.key_offset;
+    pending_duplicate_ = f.duplicate;
+    return add(done);
   }
 
-  // Appends `v` to the open container (or makes it the root); returns where it
-  // now lives, or nullptr (after reporting it) past JsonLimits::max_values.
-  JsonValue* add(JsonValue v) {
-    if (++values_ > limits_.max_values) {
-      diag_.error(doc_.location(v.offset()), "the file holds more than " + std::to_string(limits_.max_values) +
-                                                 " values; put large meshes in PLY files");
-      return nullptr;
+  // Counts a value; past JsonLimits::max_values, reports it and returns false.
+  bool count(std::size_t offset) {
+    if (++values_ <= max_values_) return true;
+    diag_.error(doc_.location(offset), "the file holds more than " + std::to_string(max_values_) +
+                                           " values; put large meshes in PLY files");
+    return false;
+  }
+
+  // Appends `v` to the open container (or makes it the root).
+  bool add(const JsonValue& v) {
+    if (depth_ == 0) {
+      root_ = v;
+      return true;
     }
-    if (stack_.empty()) {
-      root_ = std::move(v);
-      return &root_;
+    Frame& top = stack_[depth_ - 1];
+    if (!top.object) {
+      top.items.push_back(v);
+    } else {
+      top.add(JsonMember{*pending_key_, v, pending_key_offset_, pending_duplicate_});
     }
-    JsonValue& top = *stack_.back().value;
-    if (top.is_array()) {
-      top.as_array().push_back(std::move(v));
-      return &top.as_array().back();
-    }
-    JsonMember m;
-    m.key = std::move(pending_key_);
-    m.key_offset = pending_key_offset_;
-    m.value = std::move(v);
-    m.duplicate = pending_duplicate_;
-    top.as_object().push_back(std::move(m));
-    return &top.as_object().back().value;
+    return true;
   }
 
   void report_syntax_error(std::size_t position, const std::string& what) {
@@ -269,17 +323,21 @@ class TreeBuilder {
   }
 
   const JsonDocument& doc_;
+  JsonStorage& storage_;
   const std::string& text_;
   Diagnostics& diag_;
   const JsonLimits& limits_;
+  const std::size_t max_values_ = std::min(limits_.max_values, JsonValue::kMaxCount);
 
   std::size_t consumed_ = 0;  // bytes the lexer has read
   std::size_t values_ = 0;    // values added to the tree
   std::size_t prev_end_ = 0;  // one past the previous token
-  std::vector<Frame> stack_;  // open arrays and objects
+  std::vector<Frame> stack_;  // frames of the open arrays and objects (and spare ones, for reuse)
+  std::size_t depth_ = 0;     // open arrays and objects: stack_[0, depth_)
+  std::unordered_map<std::string_view, const std::string*> strings_;  // each distinct string, kept once
   JsonValue root_;
-  std::string pending_key_;
-  std::size_t pending_key_offset_ = 0;
+  const std::string* pending_key_ = nullptr;
+  uint32_t pending_key_offset_ = 0;
   bool pending_duplicate_ = false;
 };
 
@@ -288,14 +346,19 @@ class TreeBuilder {
 std::optional<JsonDocument> parse_json(std::shared_ptr<const SourceFile> file, Diagnostics& diag,
                                        const JsonLimits& limits) {
   JsonDocument doc(std::move(file));
-  TreeBuilder builder(doc, diag, limits);
   const std::string& text = doc.file()->text;
+  if (text.size() > JsonValue::kMaxOffset) {
+    diag.error(doc.location(0), "the file is " + std::to_string(text.size() >> 20) +
+                                    " MiB; JSON texts of 4 GiB or more are refused");
+    return std::nullopt;
+  }
+  TreeBuilder builder(doc, *doc.storage_, diag, limits);
   const CountingIterator first(text.data(), builder.consumed());
   const CountingIterator last(text.data() + text.size(), nullptr);
   const bool ok = nlohmann::json::sax_parse(first, last, &builder, nlohmann::json::input_format_t::json,
                                             /*strict=*/true, /*ignore_comments=*/false);
   if (!ok) return std::nullopt;
-  doc.root_ = builder.take_root();
+  doc.root_ = builder.root();
   return doc;
 }
 

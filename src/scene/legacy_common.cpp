@@ -222,8 +222,8 @@ void warn_if_unlit(ImportContext& ctx) {
                      "black and the image will show the background only");
 }
 
-void read_legacy_scene(ImportContext& ctx, const JsonValue& v, LegacyItemReader read_light,
-                       LegacyItemReader read_shape) {
+void read_legacy_scene(ImportContext& ctx, const JsonValue& v, const LegacyItemReader& read_light,
+                       const LegacyItemReader& read_shape) {
   if (!expect_object(ctx.read, v, "scene")) return;
   ObjectReader r(ctx.read, v, "scene");
   r.read("backgroundcolor", ctx.scene.render.background);

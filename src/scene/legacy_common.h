@@ -1,6 +1,7 @@
 // Helpers shared by the two course-format importers (Path of Light and CGR).
 #pragma once
 
+#include <functional>
 #include <string>
 #include <string_view>
 
@@ -64,15 +65,15 @@ void read_legacy_mesh(ImportContext& ctx, ObjectReader& r, const JsonValue& obje
 void warn_if_unlit(ImportContext& ctx);
 
 // Reads an item of a legacy list (a light or a shape) at `index`.
-using LegacyItemReader = void (*)(ImportContext& ctx, const JsonValue& v, std::size_t index);
+using LegacyItemReader = std::function<void(ImportContext& ctx, const JsonValue& v, std::size_t index)>;
 // Reads a legacy material object; returns its index in the scene, or -1 after an error.
 using LegacyMaterialReader = int (*)(ImportContext& ctx, const JsonValue& v);
 
 // Reads the "scene" object both course families share: "backgroundcolor",
 // optional "lightsources" and required "shapes", each item by its family's
 // reader. Shapes are read first, so that an area light can name one.
-void read_legacy_scene(ImportContext& ctx, const JsonValue& v, LegacyItemReader read_light,
-                       LegacyItemReader read_shape);
+void read_legacy_scene(ImportContext& ctx, const JsonValue& v, const LegacyItemReader& read_light,
+                       const LegacyItemReader& read_shape);
 
 // Ends a legacy shape whose geometry is read: its optional "material" (the
 // default material when absent), the unknown-key check (a material key on the

@@ -31,6 +31,10 @@ inline bool degenerate_triangle(const TriangleMesh& m, std::size_t tri) {
   return degenerate_triangle(m.positions[idx[0]], m.positions[idx[1]], m.positions[idx[2]]);
 }
 
+// Zero area as the validation rule of a file's "triangle" measures it (check
+// below warns about it): the length of the corners' cross product is 0 in float.
+inline bool zero_area_triangle(Vec3f p0, Vec3f p1, Vec3f p2) { return length(cross(p1 - p0, p2 - p0)) == 0.0f; }
+
 Bounds3f bounds(const TriangleMesh& m);                 // every referenced vertex
 Bounds3f bounds(const TriangleMesh& m, uint32_t tri);   // one triangle
 bool intersect(const TriangleMesh& m, uint32_t tri, const Ray& ray, PrimHit& hit);
