@@ -96,13 +96,16 @@ void CgrTriangleRuns::merge_run(ImportContext& ctx) {
 void CgrTriangleRuns::append(ImportContext& ctx) {
   auto& shapes = ctx.scene.shapes;
   ShapeDesc& run = shapes[first_shape_];
-  if (shapes.back().material != run.material) ctx.scene.materials.pop_back();  // the triangle's own copy
+  auto& materials = ctx.scene.materials;
+  const auto own = static_cast<std::size_t>(shapes.back().material);
+  if (shapes.back().material != run.material && own + 1 == materials.size()) materials.pop_back();  // its own copy
   add_triangle(std::get<TriangleMesh>(run.geometry), std::get<TriangleMesh>(shapes.back().geometry));
   shapes.pop_back();
 }
 
-// The mesh's arrays keep the capacity they grew to: the pages past their size
-// were never written, so they take no memory, and shrinking would copy them.
+// The mesh's arrays keep the capacity they grew to: shrinking would copy them,
+// and in a large one (mapped, not in the heap) the pages past its size were
+// never written, so they take no memory.
 void CgrTriangleRuns::end_run(ImportContext& ctx) {
   if (merged_) {
     ctx.scene.shapes[first_shape_].name =
