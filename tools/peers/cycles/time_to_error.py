@@ -21,7 +21,9 @@
    reached the target.
 3. Time to the target, per seed: interpolated log-log between the last spp above the target and the
    first at or below it (RMSE and time are both close to power laws in spp); the table gives the
-   median over seeds and the spread (min-max), and the ratio ours / Cycles of the medians.
+   median over seeds and the spread (min-max), and the ratio ours / Cycles of the medians. With
+   --extrapolate (where the machine cannot afford the spp the target needs), a seed that never
+   reaches it gets the time of its largest spp times (RMSE / target)^2, which the table says.
 4. The load average (1 minute) is sampled before every render; its min, median and max go in the
    table with `lscpu`.
 5. Each scene's runs are kept in docs/bench/peers/NAME.json (NAME: the scene file's stem); the
@@ -121,9 +123,13 @@ def make_reference(a, scene):
     return info
 
 
-def time_at_target(points, target, key):
-    """Interpolated time (log-log) at which the RMSE reaches `target`; None if never reached."""
+def time_at_target(points, target, key, extrapolate=False):
+    """Interpolated time (log-log) at which the RMSE reaches `target`. If it is never reached:
+    None, or with `extrapolate` the time of the largest spp rendered scaled by (RMSE / target)^2
+    (MSE falling as 1 / spp, time growing as spp)."""
     points = sorted(points, key=lambda p: p["spp"])
+    if extrapolate and points and all(p["rmse"] > target for p in points):
+        return points[-1][key] * (points[-1]["rmse"] / target) ** 2
     for prev, cur in zip([None] + points[:-1], points):
         if cur["rmse"] <= target:
             if prev is None or prev["rmse"] <= target or prev[key] <= 0 or cur[key] <= 0:
@@ -154,6 +160,8 @@ def main():
     p.add_argument("--ref-spp", type=int, default=16384)
     p.add_argument("--cycles-ref-spp", type=int, default=0,
                    help="make the reference the mean of ours (--ref-spp) and Cycles' at this spp (see 1.)")
+    p.add_argument("--extrapolate", action="store_true",
+                   help="a seed that never reaches the target within --max-spp: extrapolate its time (see 3.)")
     p.add_argument("--references-only", action="store_true", help="make the reference (1.) and stop")
     p.add_argument("--name", help="the scene's record: docs/bench/peers/NAME.json (default: the scene's stem)")
     p.add_argument("--exe", default=os.path.join(REPO, "build", "pathtracer"))
@@ -207,14 +215,17 @@ def main():
     return 0
 
 
-def summarise(target, seeds, runs):
+def summarise(target, seeds, runs, extrapolate=False):
     out = {}
     for name, rs in runs.items():
         per_seed = {}
         for key in ("render", "total"):
-            per_seed[key] = [time_at_target([r for r in rs if r["seed"] == s], target, key) for s in range(seeds)]
+            per_seed[key] = [time_at_target([r for r in rs if r["seed"] == s], target, key, extrapolate)
+                             for s in range(seeds)]
         out[name] = {key: median_spread(v) for key, v in per_seed.items()}
         out[name]["per_seed"] = per_seed
+        # seeds whose time is extrapolated (never reached the target)
+        out[name]["extrapolated"] = sum(all(r["rmse"] > target for r in rs if r["seed"] == s) for s in range(seeds))
         top = max(r["spp"] for r in rs)
         out[name]["floor"] = statistics.median(r["rmse"] for r in rs if r["spp"] == top), top
         out[name]["spp_per_s"] = statistics.median(r["spp"] / r["render"] for r in rs if r["render"] > 0)
@@ -227,7 +238,7 @@ def write_record(a, runs, loads, reference):
     with open(a.json, "w") as f:
         json.dump({"scene": os.path.relpath(a.scene, REPO), "reference": os.path.relpath(a.reference, REPO),
                    "reference_info": reference, "target": a.target, "threads": a.threads, "size": size,
-                   "seeds": a.seeds, "min_spp": a.min_spp, "cpus": os.cpu_count(), "loads": loads, "runs": runs},
+                   "seeds": a.seeds, "min_spp": a.min_spp, "extrapolate": a.extrapolate, "cpus": os.cpu_count(), "loads": loads, "runs": runs},
                   f, indent=1)
 
 
@@ -244,23 +255,30 @@ def reference_text(r):
 
 
 def section(r):
-    s = summarise(r["target"], r["seeds"], r["runs"])
+    s = summarise(r["target"], r["seeds"], r["runs"], r.get("extrapolate", False))
     loads = r["loads"]
-    fmt = lambda m: "not reached" if m[0] is None else f"{m[0]:.2f} s ({m[1]:.2f}–{m[2]:.2f})"
+    def fmt(name, key):
+        m = s[name][key]
+        if m[0] is None:
+            return "not reached"
+        x = s[name]["extrapolated"]
+        return f"{m[0]:.2f} s ({m[1]:.2f}–{m[2]:.2f})" + (f", {x} of {r['seeds']} seeds extrapolated" if x else "")
     ratio = lambda key: ("—" if s["ours"][key][0] is None or s["cycles"][key][0] is None
                          else f"{s['ours'][key][0] / s['cycles'][key][0]:.2f}×")
     lines = [
         f"## {r['scene']}", "",
         f"{r['size']}, {r['threads']} threads each, target RMSE {r['target']} against {reference_text(r)}, "
         f"{r['seeds']} seeds, spp doubling from {r['min_spp']}. Median time to the target over the seeds "
-        "(min–max), interpolated log-log between the two spp counts around it. 1-minute load average "
+        "(min–max), interpolated log-log between the two spp counts around it"
+        + (" (a seed that never reached it within the largest spp rendered: that render's time x "
+           "(its RMSE / target)^2, MSE falling as 1 / spp)" if r.get("extrapolate") else "") + ". 1-minute load average "
         f"before each render: min {min(loads):.2f}, median {statistics.median(loads):.2f}, max {max(loads):.2f} "
         f"(on {r['cpus']} hardware threads).", "",
         "| | ours | Cycles 3.4 | ours / Cycles |", "|---|---|---|---|",
-        f"| render time (ours: `timings.render`; Cycles: path tracing, its progress timer) | {fmt(s['ours']['render'])} | "
-        f"{fmt(s['cycles']['render'])} | {ratio('render')} |",
+        f"| render time (ours: `timings.render`; Cycles: path tracing, its progress timer) | {fmt('ours', 'render')} | "
+        f"{fmt('cycles', 'render')} | {ratio('render')} |",
         f"| total (ours: `timings.total`; Cycles: around `bpy.ops.render.render`, incl. sync and BVH) | "
-        f"{fmt(s['ours']['total'])} | {fmt(s['cycles']['total'])} | {ratio('total')} |",
+        f"{fmt('ours', 'total')} | {fmt('cycles', 'total')} | {ratio('total')} |",
         f"| samples per pixel per second of render time (median over runs) | {s['ours']['spp_per_s']:.1f} | "
         f"{s['cycles']['spp_per_s']:.1f} | {s['ours']['spp_per_s'] / s['cycles']['spp_per_s']:.2f}× |",
         f"| RMSE at the largest spp rendered (error floor against the reference) | {s['ours']['floor'][0]:.5f} at "
