@@ -38,6 +38,7 @@ import argparse
 import json
 import math
 import os
+import re
 import statistics
 import subprocess
 import sys
@@ -123,6 +124,33 @@ def make_reference(a, scene):
     return info
 
 
+LOG_LINE = re.compile(r"^(ours|cycles) +spp +(\d+) seed (\d+): RMSE ([0-9.]+), render ([0-9.]+) s, "
+                      r"total ([0-9.]+) s, load ([0-9.]+)$")
+
+
+def read_log(path):
+    """The runs and loads of the progress lines main() prints."""
+    runs, loads = {"ours": [], "cycles": []}, []
+    for line in open(path):
+        m = LOG_LINE.match(line.strip())
+        if m:
+            runs[m.group(1)].append({"spp": int(m.group(2)), "seed": int(m.group(3)), "rmse": float(m.group(4)),
+                                     "render": float(m.group(5)), "total": float(m.group(6))})
+            loads.append(float(m.group(7)))
+    return runs, loads
+
+
+def reference_from_log(path, a):
+    """What make_reference() printed about a mean reference, else ours alone."""
+    for line in open(path):
+        m = re.match(r"reference: RMSE between ours and Cycles' ([0-9.]+); means \[(.*)\] / \[(.*)\]", line)
+        if m:
+            return {"kind": "mean", "ours_spp": a.ref_spp, "cycles_spp": a.cycles_ref_spp,
+                    "rmse_between": float(m.group(1)), "mean_ours": [float(x) for x in m.group(2).split(",")],
+                    "mean_cycles": [float(x) for x in m.group(3).split(",")]}
+    return {"kind": "ours", "ours_spp": a.ref_spp}
+
+
 def time_at_target(points, target, key, extrapolate=False):
     """Interpolated time (log-log) at which the RMSE reaches `target`. If it is never reached:
     None, or with `extrapolate` the time of the largest spp rendered scaled by (RMSE / target)^2
@@ -162,6 +190,9 @@ def main():
                    help="make the reference the mean of ours (--ref-spp) and Cycles' at this spp (see 1.)")
     p.add_argument("--extrapolate", action="store_true",
                    help="a seed that never reaches the target within --max-spp: extrapolate its time (see 3.)")
+    p.add_argument("--from-log", metavar="LOG",
+                   help="render nothing: write the record from the progress lines of a run cut short (its "
+                        "stderr), extrapolating where the target was not reached")
     p.add_argument("--references-only", action="store_true", help="make the reference (1.) and stop")
     p.add_argument("--name", help="the scene's record: docs/bench/peers/NAME.json (default: the scene's stem)")
     p.add_argument("--exe", default=os.path.join(REPO, "build", "pathtracer"))
@@ -175,6 +206,12 @@ def main():
     a.name = a.name or os.path.splitext(os.path.basename(a.scene))[0]
     a.json = a.json or os.path.join(REPO, "docs", "bench", "peers", a.name + ".json")
     if a.rewrite:
+        write_markdown(a.md, os.path.dirname(a.json))
+        return 0
+    if a.from_log:
+        runs, loads = read_log(a.from_log)
+        a.extrapolate = True
+        write_record(a, runs, loads, reference_from_log(a.from_log, a))
         write_markdown(a.md, os.path.dirname(a.json))
         return 0
 
