@@ -270,7 +270,8 @@ def summarise(target, seeds, runs, extrapolate=False):
 
 
 def write_record(a, runs, loads, reference):
-    size = f"{a.width}×{a.height}" if a.width else "the scene's size"
+    film = json.load(open(a.scene)).get("film", {})
+    size = f"{a.width or film.get('width')}×{a.height or film.get('height')}"
     os.makedirs(os.path.dirname(a.json), exist_ok=True)
     with open(a.json, "w") as f:
         json.dump({"scene": os.path.relpath(a.scene, REPO), "reference": os.path.relpath(a.reference, REPO),
