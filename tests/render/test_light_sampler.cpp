@@ -4,7 +4,9 @@
 // returns each light as often as pmf() says (exactly for stratified numbers,
 // and by chi-square for random ones), a light gets probability 0 only where it
 // sends the point nothing, and the spot + sky case that motivated it.
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <deque>
 #include <vector>
 
@@ -84,7 +86,7 @@ struct Lights {
 TEST(LightSampler, TheBvhHoldsTheBoundedLightsAndEveryLightCanBeChosen) {
   const Lights lights(LightSamplerType::Bvh);
   ASSERT_EQ(lights.set.size(), 27u);
-  EXPECT_EQ(lights.set.bvh().node_count(), 2u * 24u - 1u);  // all but the three unbounded ones
+  EXPECT_EQ(lights.set.bvh().light_count(), 24u);  // all but the three unbounded ones
   EXPECT_TRUE(lights.set.needs_choice());
 }
 
@@ -255,6 +257,46 @@ TEST(LightBounds, ConeUnionHoldsBothCones) {
       }
     }
   }
+}
+
+// The light BVH's nodes evaluate four children at once (ImportanceBounds4,
+// SSE2 where available): each lane must be what ImportanceBounds gives, bit for
+// bit, for every kind of bounds (points, one- and two-sided cones, spots' narrow
+// emission, empty lanes) at points inside, near and far from them, with and
+// without a receiver normal.
+TEST(LightBounds, FourLanesAreTheScalarImportanceBitForBit) {
+  Rng rng(13);
+  int positive = 0, zero = 0;
+  for (int t = 0; t < 3000; ++t) {
+    ImportanceBounds4 four;
+    ImportanceBounds lanes[4];
+    for (int k = 0; k < 4; ++k) {
+      if (t % 7 == k) continue;  // an empty lane
+      LightBounds b;
+      const Vec3f c = random_point(rng, 3);
+      const float half = (t + k) % 5 == 0 ? 0.0f : rng.next_float();  // a point, or a box
+      b.bounds.extend(c - Vec3f(half));
+      b.bounds.extend(c + Vec3f(half * rng.next_float()));
+      b.intensity = 0.1f + 10.0f * rng.next_float();
+      b.normals = (t + k) % 4 == 0 ? DirectionCone::all()
+                                   : DirectionCone{random_unit(rng), std::cos(rng.next_float() * 2.5f), false};
+      b.cos_theta_e = (t + k) % 3 == 0 ? std::cos(rng.next_float() * 0.5f) : 0.0f;
+      b.two_sided = (t + k) % 2 == 0;
+      lanes[k] = ImportanceBounds(b);
+      four.set(k, lanes[k]);
+    }
+    const Vec3f p = random_point(rng, 4), n = t % 3 == 0 ? Vec3f() : random_unit(rng);
+    alignas(16) float out[4];
+    four.importance(p, n, out);
+    for (int k = 0; k < 4; ++k) {
+      const float expected = lanes[k].importance(p, n);
+      EXPECT_EQ(std::bit_cast<uint32_t>(out[k]), std::bit_cast<uint32_t>(expected))
+          << "trial " << t << " lane " << k << ": " << out[k] << " against " << expected;
+      (expected > 0.0f ? positive : zero) += 1;
+    }
+  }
+  EXPECT_GT(positive, 3000);  // the cases are not all trivial
+  EXPECT_GT(zero, 1000);
 }
 
 }  // namespace

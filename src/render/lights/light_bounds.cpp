@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace pt {
 
 namespace {
@@ -100,5 +104,89 @@ float ImportanceBounds::importance(Vec3f p, Vec3f n) const {
   }
   return std::min(kMaxImportance, std::max(0.0f, result));
 }
+
+}  // namespace pt
+
+// ImportanceBounds4: the lanes of ImportanceBounds, side by side.
+namespace pt {
+
+void ImportanceBounds4::set(int lane, const ImportanceBounds& b) {
+  cx[lane] = b.centre.x, cy[lane] = b.centre.y, cz[lane] = b.centre.z;
+  r2[lane] = b.r2, r[lane] = b.r;
+  ax[lane] = b.axis.x, ay[lane] = b.axis.y, az[lane] = b.axis.z;
+  cos_o[lane] = b.cos_o, sin_o[lane] = b.sin_o, cos_e[lane] = b.cos_e;
+  intensity[lane] = b.intensity;
+  two_sided[lane] = b.two_sided ? 1.0f : 0.0f;
+}
+
+ImportanceBounds ImportanceBounds4::get(int lane) const {
+  ImportanceBounds b;
+  b.centre = Vec3f(cx[lane], cy[lane], cz[lane]);
+  b.r2 = r2[lane], b.r = r[lane];
+  b.axis = Vec3f(ax[lane], ay[lane], az[lane]);
+  b.cos_o = cos_o[lane], b.sin_o = sin_o[lane], b.cos_e = cos_e[lane];
+  b.intensity = intensity[lane];
+  b.two_sided = two_sided[lane] != 0.0f;
+  return b;
+}
+
+#if defined(__SSE2__)
+
+namespace {
+
+using F4 = __m128;
+inline F4 add(F4 a, F4 b) { return _mm_add_ps(a, b); }
+inline F4 sub(F4 a, F4 b) { return _mm_sub_ps(a, b); }
+inline F4 mul(F4 a, F4 b) { return _mm_mul_ps(a, b); }
+inline F4 splat(float x) { return _mm_set1_ps(x); }
+inline F4 select(F4 mask, F4 a, F4 b) { return _mm_or_ps(_mm_and_ps(mask, a), _mm_andnot_ps(mask, b)); }
+inline F4 abs4(F4 a) { return _mm_andnot_ps(_mm_set1_ps(-0.0f), a); }
+// sqrt(max(0, 1 - c^2)), as sin_from_cos.
+inline F4 sin_from_cos4(F4 c) { return _mm_sqrt_ps(_mm_max_ps(sub(splat(1.0f), mul(c, c)), _mm_setzero_ps())); }
+inline F4 dot4(F4 ax, F4 ay, F4 az, F4 bx, F4 by, F4 bz) { return add(add(mul(ax, bx), mul(ay, by)), mul(az, bz)); }
+
+}  // namespace
+
+// ImportanceBounds::importance, line by line; its early returns are the masks.
+void ImportanceBounds4::importance(Vec3f p, Vec3f n, float out[4]) const {
+  const F4 zero = _mm_setzero_ps(), one = splat(1.0f), max_importance = splat(kMaxImportance);
+  const F4 vi = _mm_load_ps(intensity), vr2 = _mm_load_ps(r2);
+  const F4 dx = sub(splat(p.x), _mm_load_ps(cx)), dy = sub(splat(p.y), _mm_load_ps(cy)),
+           dz = sub(splat(p.z), _mm_load_ps(cz));
+  const F4 d2 = dot4(dx, dy, dz, dx, dy, dz);
+  const F4 inv_d = _mm_div_ps(one, _mm_sqrt_ps(d2));
+  const F4 wx = mul(dx, inv_d), wy = mul(dy, inv_d), wz = mul(dz, inv_d);
+  const F4 sin_b = _mm_min_ps(mul(_mm_load_ps(r), inv_d), one);
+  const F4 cos_b = _mm_sqrt_ps(_mm_max_ps(sub(one, mul(sin_b, sin_b)), zero));
+  F4 cos_w = dot4(_mm_load_ps(ax), _mm_load_ps(ay), _mm_load_ps(az), wx, wy, wz);
+  cos_w = select(_mm_cmpneq_ps(_mm_load_ps(two_sided), zero), abs4(cos_w), cos_w);
+  const F4 vcos_o = _mm_load_ps(cos_o), vsin_o = _mm_load_ps(sin_o);
+  const F4 outside = _mm_cmplt_ps(cos_w, vcos_o);
+  const F4 sin_w = sin_from_cos4(cos_w);
+  const F4 cos_x = select(outside, add(mul(cos_w, vcos_o), mul(sin_w, vsin_o)), one);
+  const F4 sin_x = select(outside, sub(mul(sin_w, vcos_o), mul(cos_w, vsin_o)), zero);
+  const F4 cos_p = select(_mm_cmpge_ps(cos_x, cos_b), one, add(mul(cos_x, cos_b), mul(sin_x, sin_b)));
+  F4 result = mul(mul(vi, cos_p), mul(inv_d, inv_d));
+  if (n.x != 0.0f || n.y != 0.0f || n.z != 0.0f) {
+    const F4 cos_i = abs4(dot4(wx, wy, wz, splat(n.x), splat(n.y), splat(n.z)));
+    const F4 factor = add(mul(cos_i, cos_b), mul(sin_from_cos4(cos_i), sin_b));
+    result = select(_mm_cmplt_ps(cos_i, cos_b), mul(result, factor), result);
+  }
+  result = _mm_min_ps(_mm_max_ps(result, zero), max_importance);
+  result = select(_mm_cmple_ps(cos_p, _mm_load_ps(cos_e)), zero, result);
+  // Inside the bounding sphere: intensity / r2 (0 on a point light; lanes not taken may hold inf or NaN).
+  const F4 inside = _mm_min_ps(_mm_div_ps(vi, vr2), max_importance);
+  result = select(_mm_cmple_ps(d2, vr2), select(_mm_cmpgt_ps(vr2, zero), inside, zero), result);
+  result = select(_mm_cmpgt_ps(vi, zero), result, zero);
+  _mm_store_ps(out, result);
+}
+
+#else
+
+void ImportanceBounds4::importance(Vec3f p, Vec3f n, float out[4]) const {
+  for (int lane = 0; lane < 4; ++lane) out[lane] = get(lane).importance(p, n);
+}
+
+#endif
 
 }  // namespace pt

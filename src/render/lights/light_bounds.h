@@ -63,4 +63,22 @@ struct ImportanceBounds {
   float importance(Vec3f p, Vec3f n) const;
 };
 
+// Four ImportanceBounds side by side (a light BVH node's children), evaluated
+// at once: importance(p, n, out) writes what each lane's
+// ImportanceBounds::importance(p, n) returns, bit for bit (the same operations
+// in the same order, four lanes at a time where SSE2 is available). An unset
+// lane has intensity 0 and importance 0.
+struct ImportanceBounds4 {
+  alignas(16) float cx[4]{}, cy[4]{}, cz[4]{};
+  alignas(16) float r2[4]{}, r[4]{};
+  alignas(16) float ax[4]{}, ay[4]{}, az[4]{};
+  alignas(16) float cos_o[4]{}, sin_o[4]{}, cos_e[4]{};
+  alignas(16) float intensity[4]{};
+  alignas(16) float two_sided[4]{};  // 1 or 0
+
+  void set(int lane, const ImportanceBounds& b);
+  ImportanceBounds get(int lane) const;
+  void importance(Vec3f p, Vec3f n, float out[4]) const;
+};
+
 }  // namespace pt

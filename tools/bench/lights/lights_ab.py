@@ -12,6 +12,12 @@ need to reach the same error (MSE falls as 1 / samples), and the RMSE each
 would reach in the other's time.
 
 Usage: lights_ab.py [--build build] [--out docs/bench/lights.md] [--rounds 3] [--quick]
+                    [--against OLD_PATHTRACER] [--case NAME]
+
+--against: instead of power against bvh, the bvh sampler of another build of the
+renderer ("before", e.g. a copy of main's build/pathtracer with its pt_oiio.so
+beside it) against this build's ("after"), rounds alternating as above; the
+reference is this build's. --case runs only the cases whose name starts with NAME.
 """
 import argparse
 import os
@@ -61,13 +67,14 @@ def run_case(args, tmp, case):
         ref_spp, spp = ref_spp // 8, max(1, spp // 4)
     ref = os.path.join(tmp, "ref.exr")
     render(args.pathtracer, scene, width, ref_spp, "bvh", 1000, ref)
-    res = {s: {"time": [], "mse": [], "rect": []} for s in SAMPLERS}
+    res = {s: {"time": [], "mse": [], "rect": []} for s in args.variants}
     pixels = 0
     for r in range(args.rounds):
-        order = SAMPLERS if r % 2 == 0 else SAMPLERS[::-1]
+        order = list(args.variants) if r % 2 == 0 else list(args.variants)[::-1]
         for s in order:
             out = os.path.join(tmp, "%s.exr" % s)
-            t, pixels = render(args.pathtracer, scene, width, spp, s, r + 1, out)
+            exe, sampler = args.variants[s]
+            t, pixels = render(exe, scene, width, spp, sampler, r + 1, out)
             res[s]["time"].append(t)
             res[s]["mse"].append(image_error(args.imgerr, out, ref)["mse"])
             if rect:
@@ -75,18 +82,19 @@ def run_case(args, tmp, case):
     return {"name": name, "scene": scene, "spp": spp, "ref_spp": ref_spp, "pixels": pixels, "rect": rect, "res": res}
 
 
-def table(cases):
+def table(cases, variants):
+    base = variants[0]
     lines = ["| scene | sampler | render s (median) | ns per sample | MSE at equal spp | RMSE | "
-             "efficiency 1/(MSE t) | time to equal error (power = 1) | RMSE in power's time |",
+             "efficiency 1/(MSE t) | time to equal error (%s = 1) | RMSE in %s's time |" % (base, base),
              "|---|---|---|---|---|---|---|---|---|"]
     for c in cases:
         stats = {}
-        for s in SAMPLERS:
+        for s in variants:
             t = statistics.median(c["res"][s]["time"])
             mse = statistics.mean(c["res"][s]["mse"])
             stats[s] = (t, mse)
-        tp, mp = stats["power"]
-        for s in SAMPLERS:
+        tp, mp = stats[base]
+        for s in variants:
             t, mse = stats[s]
             eff = 1.0 / (mse * t)
             ratio = (mse * t) / (mp * tp)
@@ -94,7 +102,7 @@ def table(cases):
             lines.append("| %s | %s | %.3f | %.0f | %.3g | %.4f | %.3g | %.2f | %.4f |" % (
                 c["name"], s, t, 1e9 * t / (c["pixels"] * c["spp"]), mse, mse ** 0.5, eff, ratio, rmse_equal_time))
         if c["rect"]:
-            for s in SAMPLERS:
+            for s in variants:
                 lines.append("| %s, rect %s | %s | | | %.3g | %.4f | | | |" % (
                     c["name"], c["rect"], s, statistics.mean(c["res"][s]["rect"]),
                     statistics.mean(c["res"][s]["rect"]) ** 0.5))
@@ -107,18 +115,26 @@ def main():
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "bench", "lights.md"))
     ap.add_argument("--rounds", type=int, default=3)
     ap.add_argument("--quick", action="store_true", help="an eighth of the samples (a smoke run)")
+    ap.add_argument("--against", help="another build's pathtracer: its bvh sampler against this build's")
+    ap.add_argument("--case", default="", help="only the cases whose name starts with this")
     args = ap.parse_args()
     args.pathtracer = os.path.join(args.build, "pathtracer")
+    if args.against:
+        args.variants = {"before": (args.against, "bvh"), "after": (args.pathtracer, "bvh")}
+    else:
+        args.variants = {s: (args.pathtracer, s) for s in SAMPLERS}
+    names = list(args.variants)
     args.imgerr = os.path.join(args.build, "tools", "imgerr", "pt-imgerr")
     load_before = loadavg()
     cases = []
     with tempfile.TemporaryDirectory() as tmp:
         for case in CASES:
-            cases.append(run_case(args, tmp, case))
-            print(table(cases[-1:]), flush=True)
+            if case[0].startswith(args.case):
+                cases.append(run_case(args, tmp, case))
+                print(table(cases[-1:], names), flush=True)
     load_after = loadavg()
     with open(args.out + ".table", "w") as f:
-        f.write("load average before: %s, after: %s\n\n%s\n\n```\n%s```\n" % (load_before, load_after, table(cases),
+        f.write("load average before: %s, after: %s\n\n%s\n\n```\n%s```\n" % (load_before, load_after, table(cases, names),
                                                                           lscpu()))
     print("wrote %s.table (paste into %s)" % (args.out, args.out))
 

@@ -3,12 +3,15 @@
 
     python3 tools/peers/cycles/time_to_error.py SCENE.json --reference REF.exr [--width W --height H]
         [--target 0.01] [--seeds 3] [--threads 2] [--min-spp 4] [--max-spp 4096] [--ref-spp 16384]
-        [--md docs/bench/peers.md] [--json docs/bench/peers.json]
+        [--cycles-ref-spp N] [--name NAME] [--md docs/bench/peers.md] [--json docs/bench/peers/NAME.json]
 
-1. The reference: if REF.exr does not exist, our renderer renders the scene once at --ref-spp (a
-   small EXR meant to be committed beside the scene) and later runs reuse it. Both renderers are
-   measured against the same reference, so a bias of either against it is an error floor that
-   the table shows (the RMSE at the largest spp rendered).
+1. The reference: if REF.exr does not exist, it is made once (a small EXR meant to be committed
+   beside the scene) and later runs reuse it. With --cycles-ref-spp N it is the mean of two
+   converged renders, ours at --ref-spp (REF-ours.exr) and Cycles' at N (REF-cycles.exr), each kept
+   (and reused if present): independent of either renderer, and the RMSE between the two (their
+   noise and any bias of one against the other) is recorded; the mean's own error is about half of
+   it. Without, ours alone at --ref-spp. Both renderers are measured against the same reference, so
+   a bias of either against it is an error floor that the table shows (the RMSE at the largest spp).
 2. For spp = min-spp, 2 min-spp, ... each seed renders with ours (`--report`: its `timings.render`,
    the render phase alone, and `timings.total`) and then with Cycles (tools/peers/cycles/
    scene_to_cycles.py: its path tracing time from Cycles' own progress timer, and the time around
@@ -18,9 +21,14 @@
    reached the target.
 3. Time to the target, per seed: interpolated log-log between the last spp above the target and the
    first at or below it (RMSE and time are both close to power laws in spp); the table gives the
-   median over seeds and the spread (min-max), and the ratio ours / Cycles of the medians.
+   median over seeds and the spread (min-max), and the ratio ours / Cycles of the medians. With
+   --extrapolate (where the machine cannot afford the spp the target needs), a seed that never
+   reaches it gets the time of its largest spp times (RMSE / target)^2, which the table says.
 4. The load average (1 minute) is sampled before every render; its min, median and max go in the
    table with `lscpu`.
+5. Each scene's runs are kept in docs/bench/peers/NAME.json (NAME: the scene file's stem); the
+   Markdown file gets one section per JSON file there, so that scenes measured in separate
+   invocations share one page.
 
 Both renderers get the same scene at the same size (a copy written with --width/--height), the same
 threads and the bounce cap of the scene (scene_to_cycles.py maps it); Cycles gets seed s + 1 where
@@ -30,6 +38,7 @@ import argparse
 import json
 import math
 import os
+import re
 import statistics
 import subprocess
 import sys
@@ -77,9 +86,78 @@ def run_cycles(blender, scene, spp, seed, threads, out):
     return {"render": s["path_tracing_seconds"], "total": s["render_seconds"]}
 
 
-def time_at_target(points, target, key):
-    """Interpolated time (log-log) at which the RMSE reaches `target`; None if never reached."""
+def image_mean(path):
+    """The mean R, G, B of an EXR (oiiotool --stats)."""
+    out = subprocess.run(["oiiotool", "--stats", path], capture_output=True, text=True, check=True).stdout
+    line = next(l for l in out.splitlines() if "Stats Avg:" in l)
+    return [float(x) for x in line.split(":")[1].split()[:3]]
+
+
+def make_reference(a, scene):
+    """Makes a.reference if missing (see the docstring, 1.) and returns what is known of it."""
+    base = os.path.splitext(a.reference)[0]
+    ours, cycles = base + "-ours.exr", base + "-cycles.exr"
+    info = {"kind": "ours", "ours_spp": a.ref_spp}
+    os.makedirs(os.path.dirname(os.path.abspath(a.reference)), exist_ok=True)
+    if not a.cycles_ref_spp:
+        if not os.path.exists(a.reference):
+            print(f"reference: ours at {a.ref_spp} spp -> {a.reference}", file=sys.stderr)
+            run_ours(a.exe, scene, a.ref_spp, 1000, a.threads, a.reference)
+            os.unlink(a.reference + ".report.json")
+        return info
+    if not os.path.exists(ours):
+        print(f"reference: ours at {a.ref_spp} spp -> {ours}", file=sys.stderr)
+        run_ours(a.exe, scene, a.ref_spp, 1000, a.threads, ours)
+        os.unlink(ours + ".report.json")
+    if not os.path.exists(cycles):
+        print(f"reference: Cycles at {a.cycles_ref_spp} spp -> {cycles}", file=sys.stderr)
+        run_cycles(a.blender, scene, a.cycles_ref_spp, 1000, a.threads, cycles)
+        os.unlink(cycles + ".stats.json")
+    if not os.path.exists(a.reference):
+        subprocess.run(["oiiotool", ours, cycles, "--add", "--mulc", "0.5", "-d", "float", "-o", a.reference],
+                       check=True)
+    d = pt_tools.image_error(a.imgerr, ours, cycles)["rmse"]
+    info = {"kind": "mean", "ours_spp": a.ref_spp, "cycles_spp": a.cycles_ref_spp, "rmse_between": d,
+            "mean_ours": image_mean(ours), "mean_cycles": image_mean(cycles)}
+    print(f"reference: RMSE between ours and Cycles' {d:.5f}; means {info['mean_ours']} / {info['mean_cycles']}",
+          file=sys.stderr)
+    return info
+
+
+LOG_LINE = re.compile(r"^(ours|cycles) +spp +(\d+) seed (\d+): RMSE ([0-9.]+), render ([0-9.]+) s, "
+                      r"total ([0-9.]+) s, load ([0-9.]+)$")
+
+
+def read_log(path):
+    """The runs and loads of the progress lines main() prints."""
+    runs, loads = {"ours": [], "cycles": []}, []
+    for line in open(path):
+        m = LOG_LINE.match(line.strip())
+        if m:
+            runs[m.group(1)].append({"spp": int(m.group(2)), "seed": int(m.group(3)), "rmse": float(m.group(4)),
+                                     "render": float(m.group(5)), "total": float(m.group(6))})
+            loads.append(float(m.group(7)))
+    return runs, loads
+
+
+def reference_from_log(path, a):
+    """What make_reference() printed about a mean reference, else ours alone."""
+    for line in open(path):
+        m = re.match(r"reference: RMSE between ours and Cycles' ([0-9.]+); means \[(.*)\] / \[(.*)\]", line)
+        if m:
+            return {"kind": "mean", "ours_spp": a.ref_spp, "cycles_spp": a.cycles_ref_spp,
+                    "rmse_between": float(m.group(1)), "mean_ours": [float(x) for x in m.group(2).split(",")],
+                    "mean_cycles": [float(x) for x in m.group(3).split(",")]}
+    return {"kind": "ours", "ours_spp": a.ref_spp}
+
+
+def time_at_target(points, target, key, extrapolate=False):
+    """Interpolated time (log-log) at which the RMSE reaches `target`. If it is never reached:
+    None, or with `extrapolate` the time of the largest spp rendered scaled by (RMSE / target)^2
+    (MSE falling as 1 / spp, time growing as spp)."""
     points = sorted(points, key=lambda p: p["spp"])
+    if extrapolate and points and all(p["rmse"] > target for p in points):
+        return points[-1][key] * (points[-1]["rmse"] / target) ** 2
     for prev, cur in zip([None] + points[:-1], points):
         if cur["rmse"] <= target:
             if prev is None or prev["rmse"] <= target or prev[key] <= 0 or cur[key] <= 0:
@@ -108,28 +186,42 @@ def main():
     p.add_argument("--min-spp", type=int, default=4)
     p.add_argument("--max-spp", type=int, default=4096)
     p.add_argument("--ref-spp", type=int, default=16384)
+    p.add_argument("--cycles-ref-spp", type=int, default=0,
+                   help="make the reference the mean of ours (--ref-spp) and Cycles' at this spp (see 1.)")
+    p.add_argument("--extrapolate", action="store_true",
+                   help="a seed that never reaches the target within --max-spp: extrapolate its time (see 3.)")
+    p.add_argument("--from-log", metavar="LOG",
+                   help="render nothing: write the record from the progress lines of a run cut short (its "
+                        "stderr), extrapolating where the target was not reached")
+    p.add_argument("--references-only", action="store_true", help="make the reference (1.) and stop")
+    p.add_argument("--name", help="the scene's record: docs/bench/peers/NAME.json (default: the scene's stem)")
     p.add_argument("--exe", default=os.path.join(REPO, "build", "pathtracer"))
     p.add_argument("--imgerr", default=os.path.join(REPO, "build", "tools", "imgerr", "pt-imgerr"))
     p.add_argument("--blender", default="blender")
     p.add_argument("--md", default=os.path.join(REPO, "docs", "bench", "peers.md"))
-    p.add_argument("--json", default=os.path.join(REPO, "docs", "bench", "peers.json"))
+    p.add_argument("--json", help="this scene's record (default docs/bench/peers/NAME.json)")
     p.add_argument("--rewrite", action="store_true",
                    help="render nothing: rewrite --md from the runs recorded in --json (same other arguments)")
     a = p.parse_args()
+    a.name = a.name or os.path.splitext(os.path.basename(a.scene))[0]
+    a.json = a.json or os.path.join(REPO, "docs", "bench", "peers", a.name + ".json")
     if a.rewrite:
-        rec = json.load(open(a.json))
-        write_results(a, rec["runs"], rec["loads"])
+        write_markdown(a.md, os.path.dirname(a.json))
+        return 0
+    if a.from_log:
+        runs, loads = read_log(a.from_log)
+        a.extrapolate = True
+        write_record(a, runs, loads, reference_from_log(a.from_log, a))
+        write_markdown(a.md, os.path.dirname(a.json))
         return 0
 
     scene = sized_scene(a.scene, a.width, a.height)
     work = tempfile.mkdtemp(prefix="pt-tte-")
     loads = []
     try:
-        if not os.path.exists(a.reference):
-            print(f"reference: ours at {a.ref_spp} spp -> {a.reference}", file=sys.stderr)
-            t = run_ours(a.exe, scene, a.ref_spp, 1000, a.threads, a.reference)
-            os.unlink(a.reference + ".report.json")
-            print(f"  {t['render']:.1f} s", file=sys.stderr)
+        reference = make_reference(a, scene)
+        if a.references_only:
+            return 0
         runs = {"ours": [], "cycles": []}
         done = {"ours": False, "cycles": False}
         spp = a.min_spp
@@ -155,76 +247,109 @@ def main():
             spp *= 2
     finally:
         os.unlink(scene)
-    write_results(a, runs, loads)
+    write_record(a, runs, loads, reference)
+    write_markdown(a.md, os.path.dirname(a.json))
     return 0
 
 
-def summarise(a, runs):
+def summarise(target, seeds, runs, extrapolate=False):
     out = {}
     for name, rs in runs.items():
         per_seed = {}
         for key in ("render", "total"):
-            per_seed[key] = [time_at_target([r for r in rs if r["seed"] == s], a.target, key) for s in range(a.seeds)]
+            per_seed[key] = [time_at_target([r for r in rs if r["seed"] == s], target, key, extrapolate)
+                             for s in range(seeds)]
         out[name] = {key: median_spread(v) for key, v in per_seed.items()}
         out[name]["per_seed"] = per_seed
+        # seeds whose time is extrapolated (never reached the target)
+        out[name]["extrapolated"] = sum(all(r["rmse"] > target for r in rs if r["seed"] == s) for s in range(seeds))
         top = max(r["spp"] for r in rs)
         out[name]["floor"] = statistics.median(r["rmse"] for r in rs if r["spp"] == top), top
         out[name]["spp_per_s"] = statistics.median(r["spp"] / r["render"] for r in rs if r["render"] > 0)
     return out
 
 
-def write_results(a, runs, loads):
-    s = summarise(a, runs)
-    fmt = lambda m: "not reached" if m[0] is None else f"{m[0]:.2f} s ({m[1]:.2f}–{m[2]:.2f})"
+def write_record(a, runs, loads, reference):
+    film = json.load(open(a.scene)).get("film", {})
+    size = f"{a.width or film.get('width')}×{a.height or film.get('height')}"
+    os.makedirs(os.path.dirname(a.json), exist_ok=True)
+    with open(a.json, "w") as f:
+        json.dump({"scene": os.path.relpath(a.scene, REPO), "reference": os.path.relpath(a.reference, REPO),
+                   "reference_info": reference, "target": a.target, "threads": a.threads, "size": size,
+                   "seeds": a.seeds, "min_spp": a.min_spp, "extrapolate": a.extrapolate, "cpus": os.cpu_count(), "loads": loads, "runs": runs},
+                  f, indent=1)
+
+
+def reference_text(r):
+    info = r.get("reference_info", {"kind": "ours", "ours_spp": None})
+    ref = f"`{r['reference']}`"
+    if info["kind"] != "mean":
+        return f"{ref} (ours at {info['ours_spp']} spp)"
+    mo, mc = info["mean_ours"], info["mean_cycles"]
+    ratio = ", ".join(f"{o / c:.4f}" for o, c in zip(mo, mc))
+    return (f"{ref}, the mean of ours at {info['ours_spp']} spp and Cycles' at {info['cycles_spp']} spp (RMSE "
+            f"between the two {info['rmse_between']:.4f}, so the mean's own error is about "
+            f"{info['rmse_between'] / 2:.4f}; mean RGB ours / Cycles {ratio})")
+
+
+def section(r):
+    s = summarise(r["target"], r["seeds"], r["runs"], r.get("extrapolate", False))
+    loads = r["loads"]
+    def fmt(name, key):
+        m = s[name][key]
+        if m[0] is None:
+            return "not reached"
+        x = s[name]["extrapolated"]
+        return f"{m[0]:.2f} s ({m[1]:.2f}–{m[2]:.2f})" + (f", {x} of {r['seeds']} seeds extrapolated" if x else "")
     ratio = lambda key: ("—" if s["ours"][key][0] is None or s["cycles"][key][0] is None
                          else f"{s['ours'][key][0] / s['cycles'][key][0]:.2f}×")
-    ref = os.path.relpath(a.reference, REPO)
-    scene = os.path.relpath(a.scene, REPO)
-    size = f"{a.width}×{a.height}" if a.width else "the scene's size"
     lines = [
-        "# Peers: time to a target error against Blender's Cycles", "",
-        "Written by `tools/peers/cycles/time_to_error.py` (how it measures: its docstring and "
-        "`tools/peers/cycles/README.md`).", "",
-        "**Preliminary.** The machine is shared by several engineers and was loaded during the run "
-        f"(1-minute load average sampled before each render: min {min(loads):.2f}, median "
-        f"{statistics.median(loads):.2f}, max {max(loads):.2f}, on {os.cpu_count()} hardware threads). "
-        "Renders are interleaved (ours and Cycles alternate, seed by seed) so the load hits both alike, "
-        "but the absolute times are inflated and the ratios are noisy; rerun on a quiet machine before "
-        "quoting them.", "",
-        f"## {scene}", "",
-        f"{size}, {a.threads} threads each, target RMSE {a.target} against `{ref}` (ours at {a.ref_spp} spp), "
-        f"{a.seeds} seeds, spp doubling from {a.min_spp}. Median time to the target over the seeds "
-        "(min–max), interpolated log-log between the two spp counts around it.", "",
-        "Caveats: the reference is ours, so a bias of Cycles against ours shows as Cycles' error floor "
-        "(last row), and every RMSE includes the reference's own noise (the same for both renderers). "
-        "Cycles gets a sphere of refracting or emitting material as a 256 × 128 UV-sphere mesh "
-        "(`tools/peers/cycles/README.md`: it finds no exit from inside its exact point spheres), so its "
-        "total time includes that mesh's BVH and its path tracing intersects triangles where ours "
-        "intersects an analytic sphere. Samplers: ours `sobol` (the default), Cycles its default "
-        "progressive multi-jitter. Render time is what each renderer's own timer reports; Blender's "
-        "start-up (about a second) is in neither column.", "",
+        f"## {r['scene']}", "",
+        f"{r['size']}, {r['threads']} threads each, target RMSE {r['target']} against {reference_text(r)}, "
+        f"{r['seeds']} seeds, spp doubling from {r['min_spp']}. Median time to the target over the seeds "
+        "(min–max), interpolated log-log between the two spp counts around it"
+        + (" (a seed that never reached it within the largest spp rendered: that render's time x "
+           "(its RMSE / target)^2, MSE falling as 1 / spp)" if r.get("extrapolate") else "") + ". 1-minute load average "
+        f"before each render: min {min(loads):.2f}, median {statistics.median(loads):.2f}, max {max(loads):.2f} "
+        f"(on {r['cpus']} hardware threads).", "",
         "| | ours | Cycles 3.4 | ours / Cycles |", "|---|---|---|---|",
-        f"| render time (ours: `timings.render`; Cycles: path tracing, its progress timer) | {fmt(s['ours']['render'])} | "
-        f"{fmt(s['cycles']['render'])} | {ratio('render')} |",
+        f"| render time (ours: `timings.render`; Cycles: path tracing, its progress timer) | {fmt('ours', 'render')} | "
+        f"{fmt('cycles', 'render')} | {ratio('render')} |",
         f"| total (ours: `timings.total`; Cycles: around `bpy.ops.render.render`, incl. sync and BVH) | "
-        f"{fmt(s['ours']['total'])} | {fmt(s['cycles']['total'])} | {ratio('total')} |",
+        f"{fmt('ours', 'total')} | {fmt('cycles', 'total')} | {ratio('total')} |",
         f"| samples per pixel per second of render time (median over runs) | {s['ours']['spp_per_s']:.1f} | "
         f"{s['cycles']['spp_per_s']:.1f} | {s['ours']['spp_per_s'] / s['cycles']['spp_per_s']:.2f}× |",
         f"| RMSE at the largest spp rendered (error floor against the reference) | {s['ours']['floor'][0]:.5f} at "
         f"{s['ours']['floor'][1]} spp | {s['cycles']['floor'][0]:.5f} at {s['cycles']['floor'][1]} spp | |", "",
-        "Every run (spp, seed, RMSE, render and total seconds):", "",
+        "<details><summary>Every run (spp, seed, RMSE, render and total seconds)</summary>", "",
         "| renderer | spp | seed | RMSE | render s | total s |", "|---|---|---|---|---|---|"]
     for name in ("ours", "cycles"):
-        for r in runs[name]:
-            lines.append(f"| {name} | {r['spp']} | {r['seed']} | {r['rmse']:.5f} | {r['render']:.3f} | {r['total']:.3f} |")
-    lines += ["", "## Machine", "", "```", pt_tools.lscpu().strip(), "```", ""]
-    os.makedirs(os.path.dirname(a.md), exist_ok=True)
-    with open(a.md, "w") as f:
+        for run in r["runs"][name]:
+            lines.append(f"| {name} | {run['spp']} | {run['seed']} | {run['rmse']:.5f} | {run['render']:.3f} | "
+                         f"{run['total']:.3f} |")
+    return lines + ["", "</details>", ""]
+
+
+def write_markdown(md, folder):
+    """docs/bench/peers.md: the hand-written part above the first "## " heading is kept (the verdicts),
+    then one section per record in `folder`, then the machine."""
+    head = []
+    if os.path.exists(md):
+        for line in open(md).read().split("\n"):
+            if line.startswith("## "):
+                break
+            head.append(line)
+    if not any(l.strip() for l in head):
+        head = ["# Peers: time to a target error against Blender's Cycles", "",
+                "Written by `tools/peers/cycles/time_to_error.py` (how it measures: its docstring and "
+                "`tools/peers/cycles/README.md`).", ""]
+    lines = head[:]
+    for name in sorted(os.listdir(folder)):
+        if name.endswith(".json"):
+            lines += section(json.load(open(os.path.join(folder, name))))
+    lines += ["## Machine", "", "```", pt_tools.lscpu().strip(), "```", ""]
+    with open(md, "w") as f:
         f.write("\n".join(lines))
-    with open(a.json, "w") as f:
-        json.dump({"scene": scene, "reference": ref, "target": a.target, "threads": a.threads, "size": size,
-                   "loads": loads, "runs": runs, "summary": s}, f, indent=1)
-    print("\n".join(lines[:20]))
 
 
 if __name__ == "__main__":
