@@ -52,7 +52,8 @@ std::vector<Case> cases() {
   std::error_code ec;
   std::vector<Case> native;
   for (const auto& e : fs::directory_iterator(PT_SCENES_DIR, ec))
-    if (e.path().extension() == ".json")
+    // Hidden files are tools' scratch copies (time_to_error.py's sized scenes), not scenes of the project.
+    if (e.path().extension() == ".json" && e.path().filename().string().front() != '.')
       native.push_back({e.path().string(), "scenes_" + e.path().stem().string() + ".exr"});
   std::sort(native.begin(), native.end(), [](const Case& a, const Case& b) { return a.golden < b.golden; });
   out.insert(out.end(), native.begin(), native.end());
