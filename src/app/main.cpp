@@ -117,9 +117,10 @@ int run(const Options& o) {
   // Write.
   t0 = Clock::now();
   const ImageMetadata metadata = render_metadata(*job, *scene, outcome, figures.render_s);
+  LayeredImage image;  // resolved in parallel (Film::layers), on --threads threads
+  pool.run([&] { image = film.layers(job->beauty_type); });
   // An output that cannot be written does not stop the others or the record.
-  const bool written =
-      write_outputs(o.outputs, film.layers(job->beauty_type), job->display, job->exr, metadata, job->stamps, error);
+  const bool written = write_outputs(o.outputs, image, job->display, job->exr, metadata, job->stamps, error);
   if (!written) std::cerr << "error: " << error << '\n';
   figures.write_s = seconds_since(t0);
 

@@ -13,6 +13,8 @@
 #include "app/output_checks.h"
 #include "app/outputs.h"
 #include "app/shard_merge.h"
+#include "core/mapped_file.h"
+#include "core/memory_stream.h"
 #include "core/stopwatch.h"
 
 namespace pt {
@@ -76,15 +78,22 @@ bool read_headers(const MergeOptions& m, std::vector<Input>& inputs, std::string
   return true;
 }
 
+// Each shard file is mapped (not copied into buffers) and its film state
+// added in parallel; one file is mapped at a time.
 bool add_films(const std::vector<Input>& inputs, ShardMerger& merger, std::string& error) {
   for (const Input& input : inputs) {
-    std::ifstream in(input.path, std::ios::binary);
-    ShardInfo again;
-    if (!in || !read_shard_info(in, input.path, again, error)) {
-      if (error.empty()) error = "cannot open shard file '" + input.path + "'";
+    std::string why;
+    const std::optional<MappedFile> file = MappedFile::open(input.path, why);
+    if (!file) {
+      error = "cannot read shard file '" + input.path + "': " + why;
       return false;
     }
-    if (!merger.add(input.path, again, in, error)) return false;
+    MemoryBuffer buffer(file->bytes());
+    std::istream in(&buffer);
+    ShardInfo again;
+    if (!read_shard_info(in, input.path, again, error) ||
+        !merger.add(input.path, again, file->bytes().substr(buffer.consumed()), error))
+      return false;
   }
   return true;
 }

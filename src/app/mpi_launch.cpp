@@ -12,6 +12,7 @@
 #include "app/options.h"
 #include "app/outputs.h"
 #include "app/shard_merge.h"
+#include "core/memory_stream.h"
 #include "core/stopwatch.h"
 
 namespace pt {
@@ -71,20 +72,14 @@ int fail_gather(int status) {
   return status;
 }
 
-// A stream over bytes in memory, without copying them (std::istringstream copies).
-class MemoryBuffer : public std::streambuf {
- public:
-  explicit MemoryBuffer(std::string& bytes) { setg(bytes.data(), bytes.data(), bytes.data() + bytes.size()); }
-};
-
 // Rank 0: rank r's state into the merger. False with `error`.
 bool merge_rank(int r, std::string& bytes, ShardMerger& merger, std::string& error) {
   const std::string name = "rank " + std::to_string(r);
-  MemoryBuffer buffer(bytes);
+  MemoryBuffer buffer(bytes);  // a stream over the bytes, without copying them
   std::istream in(&buffer);
   ShardInfo info;
   return read_shard_info(in, name, info, error) && merger.check(name, info, error) &&
-         merger.add(name, info, in, error);
+         merger.add(name, info, std::string_view(bytes).substr(buffer.consumed()), error);
 }
 
 }  // namespace

@@ -137,8 +137,7 @@ bool ShardMerger::add(const std::string& name, const ShardInfo& info, const Film
   return true;
 }
 
-bool ShardMerger::add(const std::string& name, const ShardInfo& info, std::istream& state, std::string& error) {
-  if (!make_film(error)) return false;
+StateRules ShardMerger::rules(const ShardInfo& info, const std::map<Key, std::pair<bool, int>>& order) const {
   const PixelRect& c = info.crop;
   const auto width = static_cast<std::size_t>(c.width());
   StateRules rules;
@@ -152,18 +151,32 @@ bool ShardMerger::add(const std::string& name, const ShardInfo& info, std::istre
     for (int y = std::get<1>(key); y < std::get<3>(key); ++y)
       for (int x = std::get<0>(key); x < std::get<2>(key); ++x)
         rules.max_samples[static_cast<std::size_t>(y - c.y0) * width + static_cast<std::size_t>(x - c.x0)] += n;
-  const std::map<Key, std::pair<bool, int>> order = precedence(info);
   for (const auto& [key, first] : order)
     for (int y = std::get<1>(key); first.first && y < std::get<3>(key); ++y)
       for (int x = std::get<0>(key); x < std::get<2>(key); ++x)
         rules.other_first[static_cast<std::size_t>(y - c.y0) * width + static_cast<std::size_t>(x - c.x0)] = 1;
-  if (std::string why; !film_->add_state(state, rules, why)) {
+  return rules;
+}
+
+template <typename State>
+bool ShardMerger::add_state(const std::string& name, const ShardInfo& info, State&& state, std::string& error) {
+  if (!make_film(error)) return false;
+  const std::map<Key, std::pair<bool, int>> order = precedence(info);
+  if (std::string why; !film_->add_state(std::forward<State>(state), rules(info, order), why)) {
     error = "'" + name + "': " + why;
     return false;
   }
   for (const auto& [key, first] : order)
     if (first.first) first_start_[key] = first.second;
   return true;
+}
+
+bool ShardMerger::add(const std::string& name, const ShardInfo& info, std::istream& state, std::string& error) {
+  return add_state(name, info, state, error);
+}
+
+bool ShardMerger::add(const std::string& name, const ShardInfo& info, std::string_view state, std::string& error) {
+  return add_state(name, info, state, error);
 }
 
 std::string ShardMerger::missing_tiles() const {

@@ -12,6 +12,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <tuple>
 #include <vector>
 
@@ -40,6 +41,10 @@ class ShardMerger {
   // Also checks that no pixel holds more samples than the pieces say. After
   // a failure the merged film is unusable.
   bool add(const std::string& name, const ShardInfo& info, std::istream& state, std::string& error);
+  // The same from the film state in memory (the rest of a mapped shard file
+  // after its header, a received message): its size checked first, then
+  // added in parallel (Film::add_state), the same bits.
+  bool add(const std::string& name, const ShardInfo& info, std::string_view state, std::string& error);
   // After the last shard: every tile of the window and every sample of the
   // target present? Missing pieces are an error, unless allowed: then the
   // result is marked partial and notes() says what is missing.
@@ -66,6 +71,10 @@ class ShardMerger {
   };
   bool check_pieces(const std::string& name, const ShardInfo& info, std::string& error) const;
   bool make_film(std::string& error);
+  // What a film state of `info` may add (Film::add_state), with `order` its precedence().
+  StateRules rules(const ShardInfo& info, const std::map<Key, std::pair<bool, int>>& order) const;
+  template <typename State>
+  bool add_state(const std::string& name, const ShardInfo& info, State&& state, std::string& error);
   // Per crop of `info`'s pieces: whether its first-sample values come first
   // there (its lowest first sample is below every earlier shard's), and that
   // first sample; the caller records the ones that come first.

@@ -189,6 +189,36 @@ TEST_F(Distributed, WhatDoesNotBelongTogetherIsRefused) {
   EXPECT_NE(r.err.find("cannot open shard file 'nothing.ptshard'"), std::string::npos) << r.err;
 }
 
+// The merge maps each shard file and checks its film state's size before
+// adding any of it: a short or long file, or a damaged state, is refused
+// naming the file, and nothing is written.
+TEST_F(Distributed, DamagedShardFilesAreRefusedAndNothingIsWritten) {
+  for (const char* s : {"0/2", "1/2"})
+    ASSERT_EQ(run(kRender + " --shard " + s + " --shard-out " + std::string(1, s[0]) + ".ptshard").status, 0);
+  const std::string good = slurp(path("1.ptshard"));
+  const auto refused = [&](const std::string& bytes, const std::string& message) {
+    write("bad.ptshard", bytes);
+    const RunResult r = run("merge 0.ptshard bad.ptshard -o m.exr --shard-out m.ptshard");
+    EXPECT_EQ(r.status, 1) << message;
+    EXPECT_NE(r.err.find("'bad.ptshard': " + message), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(path("m.exr")));
+    EXPECT_FALSE(std::filesystem::exists(path("m.ptshard")));
+  };
+  refused(good.substr(0, good.size() - 1), "truncated film state");
+  refused(good.substr(0, good.size() / 2), "truncated film state");
+  refused(good + "x", "film state has trailing data");
+  // The first pixel's sample count raised above the header's: after the film
+  // state's header (89 bytes and 3 per AOV, their count at byte 36), its five sums.
+  std::string samples = good;
+  const std::size_t body = good.find("PTFILM\r\n");
+  ASSERT_NE(body, std::string::npos);
+  const auto aovs = static_cast<std::size_t>(static_cast<unsigned char>(good[body + 36]));
+  samples[body + 89 + 3 * aovs + 5 * 16] = 99;
+  refused(samples, "its film state holds 99 samples in pixel (0, 0), more than its pieces' 5");
+  const RunResult r = run("merge 0.ptshard 1.ptshard -o m.exr");  // the good ones still merge
+  EXPECT_EQ(r.status, 0) << r.err;
+}
+
 TEST_F(Distributed, CompositingLayersMergeExactly) {
   // A transparent film (alpha is the coverage) and Cryptomatte with 2 levels,
   // fewer than the ids some pixels see, so that slots overflow in the shards.

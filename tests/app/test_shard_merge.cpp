@@ -4,10 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstring>
 #include <functional>
 #include <random>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "app/shard.h"
@@ -161,6 +164,73 @@ TEST(FilmMerge, TilesLandInTheirPixelsAndBadRegionsAreRefused) {
   EXPECT_EQ(state(merged), state(whole));  // unchanged by the refusals
 }
 
+// A film state in memory (a mapped shard file) is added in parallel blocks
+// of pixels, from bytes at any alignment: the same bits as the stream's adds,
+// and a state that breaks the rules is refused naming its first bad pixel.
+TEST(FilmMerge, StatesInMemoryAddInParallelToTheSameBits) {
+  constexpr int w = 128, h = 80;  // 10240 pixels: three blocks of the parallel add
+  Film whole(w, h, {0, 0, w, h}, all_aovs()), a(w, h, {0, 0, w, h}, all_aovs()), b(w, h, {0, 0, w, h}, all_aovs());
+  render(whole, whole.crop(), {0, 5});
+  render(a, a.crop(), {0, 2});
+  render(b, b.crop(), {2, 5});
+  const auto n = static_cast<std::size_t>(w * h);
+  const auto rules = [&](bool first, uint64_t samples) {
+    return StateRules{whole.crop(), std::vector<uint8_t>(n, first ? 1 : 0), std::vector<uint64_t>(n, samples)};
+  };
+  const std::string state_b = " " + state(b);  // one byte ahead: the state's sums are misaligned
+  const std::string_view view_b = std::string_view(state_b).substr(1);
+  for (bool earlier_first : {true, false}) {
+    Film merged(w, h, {0, 0, w, h}, all_aovs()), streamed(w, h, {0, 0, w, h}, all_aovs());
+    std::string error;
+    const std::string state_a = state(a);
+    for (int i = 0; i < 2; ++i) {
+      const bool is_a = (i == 0) == earlier_first;
+      const std::string_view bytes = is_a ? std::string_view(state_a) : view_b;
+      ASSERT_TRUE(merged.add_state(bytes, rules(is_a || !earlier_first, is_a ? 2 : 3), error)) << error;
+      std::stringstream in{std::string(bytes)};
+      ASSERT_TRUE(streamed.add_state(in, rules(is_a || !earlier_first, is_a ? 2 : 3), error)) << error;
+    }
+    EXPECT_EQ(state(merged), state(whole)) << "earlier range first: " << earlier_first;
+    EXPECT_EQ(state(streamed), state(whole)) << "earlier range first: " << earlier_first;
+  }
+  // Refusals. The body's size is checked before anything is added.
+  Film merged(w, h, {0, 0, w, h}, all_aovs());
+  std::string error;
+  ASSERT_TRUE(merged.add_state(state(a), rules(true, 2), error)) << error;
+  const std::string before = state(merged);
+  EXPECT_FALSE(merged.add_state(view_b.substr(0, view_b.size() - 1), rules(false, 3), error));
+  EXPECT_EQ(error, "truncated film state");
+  EXPECT_FALSE(merged.add_state(std::string(view_b) + "x", rules(false, 3), error));
+  EXPECT_EQ(error, "film state has trailing data");
+  EXPECT_FALSE(merged.add_state(view_b.substr(0, 40), rules(false, 3), error));
+  EXPECT_EQ(error, "truncated film state header");
+  EXPECT_EQ(state(merged), before);
+  // Too many samples in pixels 9000 and 5000 (the third and second blocks): the first is named.
+  const std::size_t header = 89 + 3 * all_aovs().size(), samples_at = 5 * sizeof(ExactSum);
+  std::string bad(view_b);
+  for (std::size_t pixel : {9000u, 5000u}) {
+    const uint64_t many = 1000;
+    std::memcpy(&bad[header + pixel * sizeof(PixelSum) + samples_at], &many, sizeof many);
+  }
+  EXPECT_FALSE(merged.add_state(bad, rules(false, 3), error));
+  EXPECT_EQ(error, "its film state holds 1000 samples in pixel (8, 39), more than its pieces' 3 "
+                   "(the two do not belong together)");
+  // A Cryptomatte slot's id with bits above its 32, in the last pixel.
+  std::size_t sum_stride = 0, crypto = 0;  // a pixel's AOV sums; where CryptoObject's slots begin
+  for (const AovRequest& r : a.aovs()) {
+    if (r.type == AovType::CryptoObject) crypto = sum_stride;
+    sum_stride += static_cast<std::size_t>(aov_state_sums(r));
+  }
+  bad = std::string(view_b);
+  const std::size_t id_at = header + n * sizeof(PixelSum) + ((n - 1) * sum_stride + crypto) * sizeof(ExactSum);
+  bad[id_at + 5] = 1;
+  EXPECT_FALSE(merged.add_state(bad, rules(false, 3), error));
+  EXPECT_EQ(error, "corrupt film state (Cryptomatte slots)");
+  std::stringstream in(bad);
+  EXPECT_FALSE(Film(w, h, {0, 0, w, h}, all_aovs()).add_state(in, rules(false, 3), error));
+  EXPECT_EQ(error, "corrupt film state (Cryptomatte slots)");  // the stream says the same
+}
+
 // ---------------------------------------------------------------- shares and tiles
 
 TEST(Shards, SharesAndTilesCoverEverythingOnce) {
@@ -278,11 +348,13 @@ TEST(ShardFile, DamagedHeadersAndStatesAreRefused) {
   refused(bytes.substr(0, bytes.size() - 5), "truncated film state");
 }
 
-// Merges `shards` in the order given (their films, or with `streams` their
-// film states as read, as `pathtracer merge` does); the merged film's state,
-// or "" with `error`.
+// How a merge takes its shards: their films, their film states as read from
+// a stream, or their film states in memory (as `pathtracer merge` maps them).
+enum class Via { Films, Streams, Memory };
+
+// Merges `shards` in the order given; the merged film's state, or "" with `error`.
 std::string merge(const std::vector<const Shard*>& shards, std::string& error, bool allow_partial = false,
-                  ShardMerger* out = nullptr, bool streams = false) {
+                  ShardMerger* out = nullptr, Via via = Via::Films) {
   ShardMerger local(allow_partial);
   ShardMerger& merger = out ? *out : local;
   std::vector<std::string> names;
@@ -290,9 +362,11 @@ std::string merge(const std::vector<const Shard*>& shards, std::string& error, b
   for (std::size_t i = 0; i < shards.size(); ++i)
     if (!merger.check(names[i], shards[i]->info, error)) return {};
   for (std::size_t i = 0; i < shards.size(); ++i) {
-    std::stringstream state(state_of_film(shards[i]->film));
-    if (!(streams ? merger.add(names[i], shards[i]->info, state, error)
-                  : merger.add(names[i], shards[i]->info, shards[i]->film, error)))
+    const std::string bytes = state_of_film(shards[i]->film);
+    std::stringstream state(bytes);
+    if (!(via == Via::Streams  ? merger.add(names[i], shards[i]->info, state, error)
+          : via == Via::Memory ? merger.add(names[i], shards[i]->info, std::string_view(bytes), error)
+                               : merger.add(names[i], shards[i]->info, shards[i]->film, error)))
       return {};
   }
   return merger.finish(error) ? state(merger.film()) : std::string();
@@ -311,7 +385,8 @@ TEST(ShardMerger, AnyOrderOfAnySplitGivesTheWholeRender) {
       std::shuffle(order.begin(), order.end(), rng);
       std::string error;
       EXPECT_EQ(merge(order, error), state(whole)) << n << " shards: " << error;
-      EXPECT_EQ(merge(order, error, false, nullptr, true), state(whole)) << n << " shards, streamed: " << error;
+      EXPECT_EQ(merge(order, error, false, nullptr, Via::Streams), state(whole)) << n << " shards, streamed: " << error;
+      EXPECT_EQ(merge(order, error, false, nullptr, Via::Memory), state(whole)) << n << " shards, in memory: " << error;
     }
   }
   // Tiles of sample shares.
@@ -323,7 +398,8 @@ TEST(ShardMerger, AnyOrderOfAnySplitGivesTheWholeRender) {
   std::reverse(order.begin(), order.end());
   std::string error;
   EXPECT_EQ(merge(order, error), state(whole)) << error;
-  EXPECT_EQ(merge(order, error, false, nullptr, true), state(whole)) << error;
+  EXPECT_EQ(merge(order, error, false, nullptr, Via::Streams), state(whole)) << error;
+  EXPECT_EQ(merge(order, error, false, nullptr, Via::Memory), state(whole)) << error;
 }
 
 TEST(ShardMerger, StreamedStatesAreCheckedAsTheyAreRead) {
@@ -331,13 +407,17 @@ TEST(ShardMerger, StreamedStatesAreCheckedAsTheyAreRead) {
   const Shard b = shard({15, kSpp});
   a.info.pieces[0].done = {0, 14};  // its header claims fewer samples than its film holds
   std::string error;
-  EXPECT_EQ(merge({&a, &b}, error, false, nullptr, true), "");
-  EXPECT_EQ(error, "'s0': its film state holds 15 samples in pixel (0, 0), more than its pieces' 14 "
-                   "(the two do not belong together)");
+  for (Via via : {Via::Streams, Via::Memory}) {
+    EXPECT_EQ(merge({&a, &b}, error, false, nullptr, via), "");
+    EXPECT_EQ(error, "'s0': its film state holds 15 samples in pixel (0, 0), more than its pieces' 14 "
+                     "(the two do not belong together)");
+  }
   ShardMerger merger(false);
   ASSERT_TRUE(merger.check("b", b.info, error)) << error;
   std::stringstream truncated(state(b.film).substr(0, 500));
   EXPECT_FALSE(merger.add("b", b.info, truncated, error));
+  EXPECT_EQ(error, "'b': truncated film state");
+  EXPECT_FALSE(merger.add("b", b.info, std::string_view(state(b.film)).substr(0, 500), error));
   EXPECT_EQ(error, "'b': truncated film state");
   // The state of tile 0/5 under the header of tile 1/5 (the same size, another
   // place) is refused, not added in the wrong place.
@@ -346,6 +426,8 @@ TEST(ShardMerger, StreamedStatesAreCheckedAsTheyAreRead) {
   ASSERT_TRUE(tiles.check("t1", t1.info, error)) << error;
   std::stringstream other_tile(state(t0.film));
   EXPECT_FALSE(tiles.add("t1", t1.info, other_tile, error));
+  EXPECT_EQ(error, "'t1': film state covers pixels [0,6)x[0,1), not [0,6)x[1,2) inside [0,6)x[0,5)");
+  EXPECT_FALSE(tiles.add("t1", t1.info, std::string_view(state(t0.film)), error));
   EXPECT_EQ(error, "'t1': film state covers pixels [0,6)x[0,1), not [0,6)x[1,2) inside [0,6)x[0,5)");
 }
 

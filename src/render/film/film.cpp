@@ -8,6 +8,10 @@
 #include <sstream>
 #include <tuple>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
+
 namespace pt {
 
 namespace {
@@ -159,7 +163,13 @@ Film::Film(int width, int height, PixelRect crop, std::vector<AovRequest> aovs)
                                                          : std::min(r.ranks, kCryptomatteMaxRanks);
     sum_offset_.push_back(sum_stride_);
     value_offset_.push_back(value_stride_);
-    sum_stride_ += aov_state_sums(r);
+    const int ranks = info.accumulation == Accumulation::Ranked ? r.ranks : 0, count = aov_state_sums(r);
+    if (ranks == 0 && !sum_runs_.empty() && sum_runs_.back().ranks == 0) {
+      sum_runs_.back().count += count;
+    } else if (count > 0) {
+      sum_runs_.push_back({sum_stride_, count, ranks});
+    }
+    sum_stride_ += count;
     value_stride_ += aov_state_values(r);
     if (aov_bit(r.type) & kGeometryAovs) wants_geometry_ = true;
     if (info.lighting) wants_lighting_ = true;
@@ -251,12 +261,11 @@ void Film::add_aovs(int x, int y, const AovScratch& scratch) {
 }
 
 bool Film::valid_ranked(const ExactSum* s) const {
-  for (std::size_t i = 0; i < aovs_.size(); ++i) {
-    const AovRequest& r = aovs_[i];
-    if (aov_info(r.type).accumulation != Accumulation::Ranked) continue;
-    const ExactSum* slots = s + sum_offset_[i];
+  for (const SumRun& run : sum_runs_) {
+    if (run.ranks == 0) continue;
+    const ExactSum* slots = s + run.offset;
     uint32_t previous = 0;
-    for (int k = 0; k < r.ranks; ++k) {
+    for (int k = 0; k < run.ranks; ++k) {
       const ExactSum& id = slots[2 * k];
       const uint32_t bits = slot_id(id), exponent = (bits >> 23) & 0xffu;
       if (id.raw() >> 32 != 0) return false;
@@ -275,15 +284,14 @@ bool Film::valid_ranked(const ExactSum* s) const {
 
 void Film::add_sums(std::size_t pixel, const ExactSum* s) {
   ExactSum* d = aov_sums_.data() + pixel * static_cast<std::size_t>(sum_stride_);
-  for (std::size_t i = 0; i < aovs_.size(); ++i) {
-    const AovRequest& r = aovs_[i];
-    ExactSum* dl = d + sum_offset_[i];
-    const ExactSum* sl = s + sum_offset_[i];
-    if (aov_info(r.type).accumulation == Accumulation::Ranked) {
-      for (int k = 0; k < r.ranks && !sl[2 * k].is_zero(); ++k)
-        add_ranked(dl, r.ranks, slot_id(sl[2 * k]), sl[2 * k + 1]);
+  for (const SumRun& run : sum_runs_) {
+    ExactSum* dl = d + run.offset;
+    const ExactSum* sl = s + run.offset;
+    if (run.ranks > 0) {
+      for (int k = 0; k < run.ranks && !sl[2 * k].is_zero(); ++k)
+        add_ranked(dl, run.ranks, slot_id(sl[2 * k]), sl[2 * k + 1]);
     } else {
-      for (int k = 0; k < aov_state_sums(r); ++k) dl[k].add(sl[k]);
+      for (int k = 0; k < run.count; ++k) dl[k].add(sl[k]);
     }
   }
 }
@@ -348,36 +356,46 @@ LayeredImage Film::layers(ChannelType beauty_type) const {
   out.width = crop_.width();
   out.height = crop_.height();
   const std::size_t n = out.pixel_count();
-  ImageLayer beauty{"", {"R", "G", "B", "A"}, beauty_type, std::vector<float>(n * 4)};
-  for (std::size_t i = 0; i < n; ++i) {
-    const RGB v = pixels_[i].value();
-    float* p = &beauty.values[i * 4];
-    p[0] = v.r;
-    p[1] = v.g;
-    p[2] = v.b;
-    p[3] = pixels_[i].alpha();
-  }
-  out.layers.push_back(std::move(beauty));
-  for (std::size_t l = 0; l < aovs_.size(); ++l) {
-    const AovRequest& r = aovs_[l];
+  out.layers.push_back({"", {"R", "G", "B", "A"}, beauty_type, std::vector<float>(n * 4)});
+  // Per AOV: its first layer and the channels per layer (a Ranked AOV is a
+  // layer per two ranks, "CryptoObject00": r, g, b, a; any other one layer).
+  struct Placed {
+    std::size_t layer, per_layer, channels;
+  };
+  std::vector<Placed> placed;
+  std::size_t most = 0;
+  for (const AovRequest& r : aovs_) {
     const std::vector<std::string> names = aov_channel_names(r);
-    const std::size_t nc = names.size();
-    std::vector<float> values(n * nc);
-    for (std::size_t i = 0; i < n; ++i) aov_values(l, i, &values[i * nc]);
-    // A Ranked AOV is a layer per two ranks ("CryptoObject00": r, g, b, a); any other one layer.
-    const std::size_t per_layer = aov_info(r.type).accumulation == Accumulation::Ranked ? 4 : nc;
+    const std::size_t nc = names.size(), per_layer = aov_info(r.type).accumulation == Accumulation::Ranked ? 4 : nc;
+    placed.push_back({out.layers.size(), per_layer, nc});
+    most = std::max(most, nc);
     for (std::size_t first = 0; first < nc; first += per_layer) {
-      ImageLayer layer;
-      layer.name = names[first].substr(0, names[first].find('.'));
-      layer.type = r.channel_type;
-      layer.channels.assign(names.begin() + static_cast<std::ptrdiff_t>(first),
-                            names.begin() + static_cast<std::ptrdiff_t>(first + per_layer));
-      layer.values.resize(n * per_layer);
-      for (std::size_t i = 0; i < n; ++i)
-        std::copy_n(&values[i * nc + first], per_layer, &layer.values[i * per_layer]);
-      out.layers.push_back(std::move(layer));
+      const auto from = names.begin() + static_cast<std::ptrdiff_t>(first);
+      out.layers.push_back({names[first].substr(0, names[first].find('.')), {from, from + static_cast<std::ptrdiff_t>(per_layer)},
+                            r.channel_type, std::vector<float>(n * per_layer)});
     }
   }
+  // Every pixel is resolved alone, so rows in parallel give the same bits; the
+  // tasks run with the caller's floating-point settings (as a loop here would).
+  tbb::task_group_context context;
+  context.capture_fp_settings();
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& range) {
+    std::vector<float> values(most);
+    for (std::size_t i = range.begin(); i < range.end(); ++i) {
+      const RGB v = pixels_[i].value();
+      float* p = &out.layers[0].values[i * 4];
+      p[0] = v.r;
+      p[1] = v.g;
+      p[2] = v.b;
+      p[3] = pixels_[i].alpha();
+      for (std::size_t l = 0; l < aovs_.size(); ++l) {
+        const auto [layer, per_layer, nc] = placed[l];
+        aov_values(l, i, values.data());
+        for (std::size_t first = 0; first < nc; first += per_layer)
+          std::copy_n(&values[first], per_layer, &out.layers[layer + first / per_layer].values[i * per_layer]);
+      }
+    }
+  }, tbb::auto_partitioner(), context);
   return out;
 }
 

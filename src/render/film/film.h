@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <iosfwd>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/color.h"
@@ -193,6 +194,11 @@ class Film {
   // `error` when the state does not fit or breaks `rules` (sized for its crop);
   // this film may then hold part of it (the merge discards it).
   bool add_state(std::istream& in, const StateRules& rules, std::string& error);
+  // The same from a complete film state in memory (a mapped shard file, a
+  // received message): its size is checked before anything is added, and the
+  // pixels are added in parallel (TBB, in the caller's arena), which gives the
+  // same bits: each pixel is added once, exactly.
+  bool add_state(std::string_view state, const StateRules& rules, std::string& error);
 
  private:
   // Adds another film's (or a scratch's) AOV sums `s` to pixel number `pixel`:
@@ -204,6 +210,15 @@ class Film {
   bool valid_ranked(const ExactSum* s) const;
   // Adds another film's plain AOV values `s` (first-sample layers, maxima) to pixel number `pixel`.
   void add_values(std::size_t pixel, const double* s, bool other_first);
+  // add_state's work on pixels [first, first + count) of a state over
+  // `rules.crop` (row-major), from the bytes of those pixels' sums (`p`), AOV
+  // sums (`s`) or AOV values (`v`), which need not be aligned: the first pixel
+  // that breaks the rules (too many samples; corrupt Cryptomatte slots), or
+  // SIZE_MAX. The pixels before it are added.
+  std::size_t add_state_pixels(const char* p, std::size_t first, std::size_t count, const StateRules& rules);
+  std::size_t add_state_sums(const char* s, std::size_t first, std::size_t count, const StateRules& rules);
+  void add_state_values(const char* v, std::size_t first, std::size_t count, const StateRules& rules);
+  static std::string too_many_samples(std::size_t pixel, uint64_t samples, const StateRules& rules);
   // The final values of AOV number `layer` of pixel number `pixel` (in the crop, row-major) into `out`.
   void aov_values(std::size_t layer, std::size_t pixel, float* out) const;
   std::size_t index(int x, int y) const {
@@ -211,6 +226,11 @@ class Film {
            static_cast<std::size_t>(x - crop_.x0);
   }
 
+  // A run of a pixel's AOV sums that add alike: `count` plain exact sums
+  // from `offset` (ranks 0), or one Cryptomatte layer's `ranks` slots.
+  struct SumRun {
+    int offset, count, ranks;
+  };
   int width_, height_;
   PixelRect crop_;
   std::vector<PixelSum> pixels_;
@@ -219,6 +239,7 @@ class Film {
   std::vector<int> sum_offset_, value_offset_;
   int sum_stride_ = 0, value_stride_ = 0;  // per pixel, for all AOVs
   bool wants_geometry_ = false, wants_lighting_ = false;
+  std::vector<SumRun> sum_runs_;    // the AOV sums, in order, adjacent plain sums in one run
   std::vector<ExactSum> aov_sums_;  // pixels * sum_stride_
   std::vector<double> aov_values_;  // pixels * value_stride_
   NonFiniteReport non_finite_;

@@ -1,13 +1,19 @@
 // Film::write_state / read_state: checkpoints of a film, bit for bit.
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cstddef>
 #include <cmath>
 #include <cstring>
 #include <istream>
 #include <ostream>
+#include <string_view>
 #include <vector>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "core/memory_stream.h"
 #include "render/film/film.h"
 
 namespace pt {
@@ -223,42 +229,107 @@ bool Film::read_state(std::istream& in, std::string& error) {
   return true;
 }
 
-bool Film::add_state(std::istream& in, const StateRules& rules, std::string& error) {
+namespace {
+
+// The header of a film state to add (add_state): its layout and crop checked
+// against `rules`, its non-finite report into `nf`. False with `error`.
+bool read_added_header(std::istream& in, int width, int height, const PixelRect& film_crop,
+                       const std::vector<AovRequest>& aovs, const StateRules& rules, NonFiniteReport& nf,
+                       std::string& error) {
   PixelRect c;
-  if (!read_layout(in, width_, height_, c, aovs_, error)) return false;
-  if (c != rules.crop || !crop_.contains(c)) {
-    error = "film state covers pixels " + c.text() + ", not " + rules.crop.text() + " inside " + crop_.text();
+  if (!read_layout(in, width, height, c, aovs, error)) return false;
+  if (c != rules.crop || !film_crop.contains(c)) {
+    error = "film state covers pixels " + c.text() + ", not " + rules.crop.text() + " inside " + film_crop.text();
     return false;
   }
-  NonFiniteReport nf;
   if (!read_non_finite(in, nf, error)) return false;
-  const auto width = static_cast<std::size_t>(c.width());
-  const std::size_t n = width * static_cast<std::size_t>(c.height());
+  const std::size_t n = static_cast<std::size_t>(c.width()) * static_cast<std::size_t>(c.height());
   if (rules.other_first.size() != n || rules.max_samples.size() != n) {
     error = "film state rules of the wrong size";
     return false;
   }
-  const auto x_of = [&](std::size_t i) { return c.x0 + static_cast<int>(i % width); };
-  const auto y_of = [&](std::size_t i) { return c.y0 + static_cast<int>(i / width); };
-  const auto to = [&](std::size_t i) { return index(x_of(i), y_of(i)); };
-  std::size_t bad = n;  // the first pixel with too many samples, and its count
-  uint64_t bad_samples = 0;
-  const auto add_pixels = [&](const PixelSum* p, std::size_t first, std::size_t count) {
-    for (std::size_t i = 0; i < count; ++i) {
-      if (p[i].samples > rules.max_samples[first + i]) {
-        bad = first + i;
-        bad_samples = p[i].samples;
-        return false;
-      }
-      pixels_[to(first + i)].add(p[i]);
+  return true;
+}
+
+// Pixels per block of the parallel add (about 4 MiB of state with every AOV).
+constexpr std::size_t kAddGrain = 4096;
+
+// Runs `add(first, count)` over [0, items) in blocks, in parallel (in the
+// caller's TBB arena); the smallest of the blocks' answers (a pixel number,
+// or `items` for none).
+template <typename F>
+std::size_t for_blocks(std::size_t items, F&& add) {
+  std::atomic<std::size_t> lowest{items};
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, items, kAddGrain), [&](const tbb::blocked_range<std::size_t>& r) {
+    const std::size_t found = add(r.begin(), r.size());
+    std::size_t seen = lowest.load();
+    while (found < seen && !lowest.compare_exchange_weak(seen, found)) {
     }
-    return true;
-  };
-  const bool pixels_ok = read_blocks<PixelSum>(in, n, 1, add_pixels);
-  if (bad < n) {
-    error = "its film state holds " + std::to_string(bad_samples) + " samples in pixel (" + std::to_string(x_of(bad)) +
-            ", " + std::to_string(y_of(bad)) + "), more than its pieces' " + std::to_string(rules.max_samples[bad]) +
-            " (the two do not belong together)";
+  });
+  return lowest.load();
+}
+
+}  // namespace
+
+// The state's bytes need not be aligned (a mapped shard file: its header's
+// length varies), so each pixel's values are copied out (memcpy: unaligned
+// loads) before they are added.
+std::size_t Film::add_state_pixels(const char* p, std::size_t first, std::size_t count, const StateRules& rules) {
+  const auto width = static_cast<std::size_t>(rules.crop.width());
+  for (std::size_t i = first; i < first + count; ++i) {
+    PixelSum sum;
+    std::memcpy(&sum, p + (i - first) * sizeof sum, sizeof sum);
+    if (sum.samples > rules.max_samples[i]) return i;
+    pixels_[index(rules.crop.x0 + static_cast<int>(i % width), rules.crop.y0 + static_cast<int>(i / width))].add(sum);
+  }
+  return SIZE_MAX;
+}
+
+std::size_t Film::add_state_sums(const char* s, std::size_t first, std::size_t count, const StateRules& rules) {
+  const auto width = static_cast<std::size_t>(rules.crop.width());
+  std::vector<ExactSum> sums(static_cast<std::size_t>(sum_stride_));
+  const std::size_t bytes = sums.size() * sizeof(ExactSum);
+  for (std::size_t i = first; i < first + count; ++i) {
+    std::memcpy(static_cast<void*>(sums.data()), s + (i - first) * bytes, bytes);
+    if (!valid_ranked(sums.data())) return i;
+    add_sums(index(rules.crop.x0 + static_cast<int>(i % width), rules.crop.y0 + static_cast<int>(i / width)),
+             sums.data());
+  }
+  return SIZE_MAX;
+}
+
+void Film::add_state_values(const char* v, std::size_t first, std::size_t count, const StateRules& rules) {
+  const auto width = static_cast<std::size_t>(rules.crop.width());
+  std::vector<double> values(static_cast<std::size_t>(value_stride_));
+  const std::size_t bytes = values.size() * sizeof(double);
+  for (std::size_t i = first; i < first + count; ++i) {
+    std::memcpy(values.data(), v + (i - first) * bytes, bytes);
+    add_values(index(rules.crop.x0 + static_cast<int>(i % width), rules.crop.y0 + static_cast<int>(i / width)),
+               values.data(), rules.other_first[i] != 0);
+  }
+}
+
+std::string Film::too_many_samples(std::size_t pixel, uint64_t samples, const StateRules& rules) {
+  const auto width = static_cast<std::size_t>(rules.crop.width());
+  return "its film state holds " + std::to_string(samples) + " samples in pixel (" +
+         std::to_string(rules.crop.x0 + static_cast<int>(pixel % width)) + ", " +
+         std::to_string(rules.crop.y0 + static_cast<int>(pixel / width)) + "), more than its pieces' " +
+         std::to_string(rules.max_samples[pixel]) + " (the two do not belong together)";
+}
+
+bool Film::add_state(std::istream& in, const StateRules& rules, std::string& error) {
+  NonFiniteReport nf;
+  if (!read_added_header(in, width_, height_, crop_, aovs_, rules, nf, error)) return false;
+  const std::size_t n = rules.max_samples.size();
+  std::size_t bad = SIZE_MAX;  // the first pixel with too many samples, and its count
+  uint64_t bad_samples = 0;
+  const bool pixels_ok = read_blocks<PixelSum>(in, n, 1, [&](const PixelSum* p, std::size_t first, std::size_t count) {
+    bad = add_state_pixels(reinterpret_cast<const char*>(p), first, count, rules);
+    if (bad != SIZE_MAX) bad_samples = p[bad - first].samples;
+    return bad == SIZE_MAX;
+  });
+  if (bad != SIZE_MAX) {
+    error = too_many_samples(bad, bad_samples, rules);
     return false;
   }
   const auto sums = static_cast<std::size_t>(sum_stride_), values = static_cast<std::size_t>(value_stride_);
@@ -266,18 +337,11 @@ bool Film::add_state(std::istream& in, const StateRules& rules, std::string& err
   const bool ok =
       pixels_ok &&
       read_blocks<ExactSum>(in, n, sums, [&](const ExactSum* s, std::size_t first, std::size_t count) {
-        for (std::size_t i = 0; i < count; ++i) {
-          if (!valid_ranked(s + i * sums)) {
-            corrupt = true;
-            return false;
-          }
-          add_sums(to(first + i), s + i * sums);
-        }
-        return true;
+        corrupt = add_state_sums(reinterpret_cast<const char*>(s), first, count, rules) != SIZE_MAX;
+        return !corrupt;
       }) &&
       read_blocks<double>(in, n, values, [&](const double* v, std::size_t first, std::size_t count) {
-        for (std::size_t i = 0; i < count; ++i)
-          add_values(to(first + i), v + i * values, rules.other_first[first + i] != 0);
+        add_state_values(reinterpret_cast<const char*>(v), first, count, rules);
         return true;
       });
   if (!ok) {
@@ -288,6 +352,47 @@ bool Film::add_state(std::istream& in, const StateRules& rules, std::string& err
     error = "film state has trailing data";
     return false;
   }
+  non_finite_.merge(nf);
+  return true;
+}
+
+bool Film::add_state(std::string_view state, const StateRules& rules, std::string& error) {
+  MemoryBuffer buffer(state);
+  std::istream in(&buffer);
+  NonFiniteReport nf;
+  if (!read_added_header(in, width_, height_, crop_, aovs_, rules, nf, error)) return false;
+  // The whole body is checked for its size before any of it is added.
+  const std::size_t n = rules.max_samples.size(), header = buffer.consumed();
+  const auto sums = static_cast<std::size_t>(sum_stride_), values = static_cast<std::size_t>(value_stride_);
+  const std::size_t body = n * (sizeof(PixelSum) + sums * sizeof(ExactSum) + values * sizeof(double));
+  if (state.size() - header != body) {
+    error = state.size() - header < body ? "truncated film state" : "film state has trailing data";
+    return false;
+  }
+  const std::size_t sum_bytes = sums * sizeof(ExactSum), value_bytes = values * sizeof(double);
+  const char* pixels = state.data() + header;
+  const char* sum_data = pixels + n * sizeof(PixelSum);
+  const char* value_data = sum_data + n * sum_bytes;
+  const std::size_t bad = for_blocks(n, [&](std::size_t first, std::size_t count) {
+    return std::min(n, add_state_pixels(pixels + first * sizeof(PixelSum), first, count, rules));
+  });
+  if (bad < n) {
+    PixelSum sum;
+    std::memcpy(&sum, pixels + bad * sizeof sum, sizeof sum);
+    error = too_many_samples(bad, sum.samples, rules);
+    return false;
+  }
+  if (sums > 0 && for_blocks(n, [&](std::size_t first, std::size_t count) {
+        return std::min(n, add_state_sums(sum_data + first * sum_bytes, first, count, rules));
+      }) < n) {
+    error = "corrupt film state (Cryptomatte slots)";
+    return false;
+  }
+  if (values > 0)
+    for_blocks(n, [&](std::size_t first, std::size_t count) {
+      add_state_values(value_data + first * value_bytes, first, count, rules);
+      return n;
+    });
   non_finite_.merge(nf);
   return true;
 }

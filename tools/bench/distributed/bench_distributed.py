@@ -4,6 +4,8 @@
     python3 tools/bench/distributed/bench_distributed.py [--exe build/pathtracer]
             [--scene scenes/cornell-box.json] [--width 640 --height 360] [--spp 64]
             [--shards 2,4] [--rounds 5] [--merge-width 1920 --merge-height 1080] [--merge-rounds 5]
+            [--merge-shards 2,4] [--merge-baseline OTHER_PATHTRACER] [--skip-overhead] [--tmp DIR]
+            [--shard-dir DIR]
 
 1. Overhead at equal total samples: one render of --spp samples against N
    shards of --spp/N each, run one after another on this machine (as a farm
@@ -21,8 +23,13 @@
    merge is checked to be bit-identical to the single render (idiff).
 2. The merge of a --merge-width x --merge-height frame with every AOV the path
    integrator makes, Cryptomatte included: the shard files' size, and the merge's read-and-add and
-   EXR write times, wall and CPU (its own report), medians over --merge-rounds
-   merges of 2 and 4 shards.
+   EXR write times, wall and CPU (its own report), and the whole merge
+   process's wall and CPU time, medians over --merge-rounds merges of each of
+   --merge-shards (after one merge that brings the files into the page cache).
+   With --merge-baseline EXE (e.g. main's build), its merges alternate with
+   --exe's, and each pair's EXRs are checked to be the same bytes (but for the
+   time they were written, capDate). --shard-dir DIR keeps the shard files in
+   DIR and reuses them on the next run.
 3. With --baseline EXE (a build before exact sums): the render phase and the
    CPU time of the same render with both executables, alternating, with and
    without every AOV (--ab-rounds rounds), so the cost of exact sums is
@@ -165,33 +172,83 @@ def overhead(a, tmp):
           f" shard file; the single render's: {spread([x['proc_cpu'] - x['render_cpu'] for x in base], sec)}).\n")
 
 
+def big_shards(a, tmp, n):
+    files = []
+    for k in range(n):
+        f = f"big{n}_{k}.ptshard"
+        files.append(f)
+        if a.shard_dir and os.path.exists(os.path.join(tmp, f)):
+            continue  # kept from an earlier run (--shard-dir)
+        timed([a.exe, a.scene, "--width", str(a.merge_width), "--height", str(a.merge_height), "--spp", str(n),
+               "--aov", ALL_AOVS, "--shard", f"{k}/{n}", "--shard-out", f, "--quiet"] +
+              (["--threads", str(a.threads)] if a.threads else []), tmp)
+    return files
+
+
+# The bytes of two EXR files are the same but for the capDate attribute's value (the time of writing).
+def same_exr_bytes(a, b):
+    with open(a, "rb") as f, open(b, "rb") as g:
+        x, y = bytearray(f.read()), bytearray(g.read())
+    for data in (x, y):
+        at = data.find(b"capDate\0string\0")
+        if at >= 0:
+            start = at + len(b"capDate\0string\0") + 4  # the value's size (int32), then the value
+            size = int.from_bytes(data[start - 4:start], "little")
+            data[start:start + size] = b"\0" * size
+    return x == y
+
+
+# The merge of a large frame with every AOV: with --merge-baseline, the baseline's merge and this build's
+# alternate (which goes first alternating too), and each pair's outputs are checked to be the same pixels.
 def big_merge(a, tmp):
-    sizes, times = {}, {}
-    for n in (2, 4):
-        files = []
-        for k in range(n):
-            f = f"big{n}_{k}.ptshard"
-            timed([a.exe, a.scene, "--width", str(a.merge_width), "--height", str(a.merge_height), "--spp", str(n),
-                   "--aov", ALL_AOVS, "--shard", f"{k}/{n}", "--shard-out", f, "--quiet"] +
-                  (["--threads", str(a.threads)] if a.threads else []), tmp)
-            files.append(f)
-        sizes[n] = os.path.getsize(os.path.join(tmp, files[0]))
-        times[n] = []
-    for _ in range(a.merge_rounds):
-        for n in (2, 4):
-            files = [f"big{n}_{k}.ptshard" for k in range(n)]
-            wall, out = timed([a.exe, "merge", *files, "-o", "big.exr"], tmp)
-            times[n].append((wall, *merge_times(out)))
-    exr = os.path.getsize(os.path.join(tmp, "big.exr"))
+    exes = [("this build", a.exe)] + ([("baseline", a.merge_baseline)] if a.merge_baseline else [])
+    sizes, times, files = {}, {}, {}
+    for n in a.merge_shards:
+        files[n] = big_shards(a, tmp, n)
+        sizes[n] = os.path.getsize(os.path.join(tmp, files[n][0]))
+        for e, _ in exes:
+            times[(n, e)] = []
+        timed([a.exe, "merge", *files[n], "-o", "warm.exr"], tmp)  # the shard files into the page cache
+    loads = [load_average()]
+    for r in range(a.merge_rounds):
+        for n in a.merge_shards:
+            outs = []
+            for e, exe in (exes if r % 2 == 0 else exes[::-1]):
+                out = f"big_{len(outs)}.exr"
+                wall, stdout = timed([exe, "merge", *files[n], "-o", out], tmp)
+                times[(n, e)].append((wall, CPU[0], *merge_times(stdout)))
+                outs.append(out)
+            if len(outs) == 2 and not same_exr_bytes(*[os.path.join(tmp, o) for o in outs]):
+                raise SystemExit(f"the merges of {n} shards by the two builds differ")
+        loads.append(load_average())
+        print(f"merge round {r + 1}/{a.merge_rounds} done, load average {loads[-1]}", file=sys.stderr)
+    exr = os.path.getsize(os.path.join(tmp, "big_0.exr"))
     print(f"Merge of a {a.merge_width}x{a.merge_height} frame with every AOV of the path integrator"
-          f" ({ALL_AOVS}); medians of {a.merge_rounds} merges, alternating:\n")
-    print("| shards | one shard file | read and add: wall | read and add: CPU | EXR write: wall | EXR write: CPU |"
-          " merge process: wall |")
-    print("|---|---|---|---|---|---|---|")
-    for n in (2, 4):
-        w, ra, rac, wr, wrc = [statistics.median(t[i] for t in times[n]) for i in range(5)]
-        print(f"| {n} | {sizes[n] / 2**20:.0f} MiB | {ra:.3f} s | {rac:.3f} s | {wr:.3f} s | {wrc:.3f} s | {w:.3f} s |")
-    print(f"\nThe merged EXR: {exr / 2**20:.0f} MiB.\n")
+          f" ({ALL_AOVS}), shard files in the page cache; {a.merge_rounds} rounds"
+          + (", the two builds alternating (which goes first alternates), every pair's EXRs the same bytes but"
+             " for their capDate"
+             if len(exes) == 2 else "") + "; medians [smallest, largest]. Load average (1 min) after each round: "
+          + ", ".join(x.split()[0] for x in loads[1:]) + ".\n")
+    print("| shards | build | read and add: wall | read and add: CPU | EXR write: wall | EXR write: CPU |"
+          " merge process: wall | merge process: CPU |")
+    print("|---|---|---|---|---|---|---|---|")
+    sec = lambda x: f"{x:.2f} s"  # noqa: E731
+    for n in a.merge_shards:
+        for e, _ in exes:
+            t = times[(n, e)]
+            cols = [spread([x[i] for x in t], sec) for i in (2, 3, 4, 5, 0, 1)]
+            print(f"| {n} | {e} | " + " | ".join(cols) + " |")
+    if len(exes) == 2:
+        print("\nRatios, baseline / this build, of the medians:\n")
+        print("| shards | read and add: wall | read and add: CPU | EXR write: CPU | merge process: wall |"
+              " merge process: CPU |")
+        print("|---|---|---|---|---|---|")
+        for n in a.merge_shards:
+            med = {e: [statistics.median(x[i] for x in times[(n, e)]) for i in range(6)] for e, _ in exes}
+            b, t = med["baseline"], med["this build"]
+            print(f"| {n} | " + " | ".join(f"{b[i] / t[i]:.2f}x" for i in (2, 3, 5, 0, 1)) + " |")
+    print(f"\nOne shard file: " + ", ".join(f"{sizes[n]:,} bytes ({n} shards)" for n in a.merge_shards) +
+          f"; the merged EXR: {exr / 2**20:.0f} MiB.\n")
 
 
 def ab_exact(a, tmp):
@@ -240,7 +297,11 @@ def main():
     p.add_argument("--merge-width", type=int, default=1920)
     p.add_argument("--merge-height", type=int, default=1080)
     p.add_argument("--merge-rounds", type=int, default=5)
+    p.add_argument("--merge-shards", default="2,4", help="the shard counts of the large merge")
+    p.add_argument("--merge-baseline", help="another pathtracer (e.g. main's): its merges alternate with --exe's")
     p.add_argument("--skip-merge", action="store_true", help="only the overhead table")
+    p.add_argument("--tmp", help="where the shard files go (the large merge's take 2 GiB each)")
+    p.add_argument("--shard-dir", help="the large merge's shard files here, reused if they exist")
     p.add_argument("--skip-overhead", action="store_true", help="only the merge table")
     p.add_argument("--baseline", help="a pathtracer from before exact sums: also measure their cost")
     p.add_argument("--ab-rounds", type=int, default=6)
@@ -248,7 +309,11 @@ def main():
     a = p.parse_args()
     a.exe, a.scene = os.path.abspath(a.exe), os.path.abspath(a.scene)
     a.shards = [int(n) for n in a.shards.split(",")]
+    a.merge_shards = [int(n) for n in a.merge_shards.split(",")]
+    if a.merge_baseline:
+        a.merge_baseline = os.path.abspath(a.merge_baseline)
     print(f"Machine: {machine()} (lscpu); load average (1, 5, 15 min) at the start {load_average()}.\n")
+    tempfile.tempdir = a.tmp or None
     with tempfile.TemporaryDirectory() as tmp:
         if a.baseline:
             a.baseline = os.path.abspath(a.baseline)
@@ -256,7 +321,7 @@ def main():
         if not a.skip_overhead:
             overhead(a, tmp)
         if not a.skip_merge:
-            big_merge(a, tmp)
+            big_merge(a, os.path.abspath(a.shard_dir) if a.shard_dir else tmp)
     print(f"Load average at the end: {load_average()}.")
 
 
