@@ -5,7 +5,8 @@
 //    Fresnel refraction for glass); the path integrator as Lambert +
 //    normalised Blinn-Phong + mirror lobes.
 //  - Lambert, Mirror, Glass: the physical materials (render/materials/bsdf.h).
-//  - Conductor, Dielectric, CoatedDiffuse: the microfacet materials; the
+//  - Conductor, Dielectric, CoatedDiffuse: the microfacet materials, and
+//    MetallicRoughness, glTF's blend of a conductor and a coated diffuse; the
 //    classic integrator reads the course fields make_material gives them.
 // Emission (radiance) applies to every type, normal and bump maps too.
 //
@@ -47,9 +48,11 @@ struct Material {
   FloatParam uroughness, vroughness;  // roughness, alpha = sqrt(roughness) if remap_roughness
   bool remap_roughness = true;
   RGBParam eta, k;          // a conductor's complex index
-  RGBParam reflectance;     // a conductor's F0 (when schlick), a coated diffuse's base albedo
+  RGBParam reflectance;     // a conductor's F0 (when schlick), a coated diffuse's base albedo, glTF's base colour
   bool schlick = false;
-  const CoatingTable* coating = nullptr;  // a coated diffuse's albedo tables (owned by the render scene)
+  FloatParam metallic;      // MetallicRoughness: the conductor's share, clamped to [0, 1] at the hit
+  // A coated diffuse's (and a metallic-roughness material's) albedo tables (owned by the render scene).
+  const CoatingTable* coating = nullptr;
   // Normal perturbation, any type (docs/path-tracing.md, "Normal and bump maps").
   const Texture* normal_map = nullptr;
   float normal_scale = 1;   // the map's tangent-space x and y scaled by it
