@@ -80,15 +80,28 @@ void map_surface(const AssetMaterial& m, bool glass, float length_scale, Texture
     h.value = m.bump_map.scale * length_scale;
     d.displacement = h;
   }
-  if (m.emission_map && !m.emission.is_black())
-    out.notes.push_back({"emission textures (map_Ke, emissiveTexture) are not supported yet: those surfaces do not emit "
-                         "(an untextured emission colour would make the whole surface a light)",
-                         m.emission_map.where});
   if (m.occlusion_map)
     out.notes.push_back({"occlusion maps are not used (the path tracer computes occlusion itself)", m.occlusion_map.where,
                          false});
   for (const auto& [name, where] : m.unsupported)
     out.notes.push_back({"material extension '" + name + "' is not supported: what it adds is left out", where});
+}
+
+// Emission: the colour (Ke, emissiveFactor x KHR_materials_emissive_strength)
+// times the emission texture (map_Ke, emissiveTexture; sRGB colour). glTF
+// multiplies the two as its specification says (a texture with the default
+// factor 0 emits nothing); an MTL map_Ke with no Ke (or Ke 0) emits the
+// texture itself (Ke 1), as Blender's OBJ importer and most tools read it, and
+// so does a COLLADA emission texture (COLLADA gives a colour or a texture).
+void map_emission(const AssetMaterial& m, Textures& tex, MappedMaterial& out) {
+  MaterialDesc& d = out.desc;
+  RGB factor = m.emission;
+  const bool phong = m.model == AssetMaterial::Model::Phong;
+  if (tex.usable(m.emission_map) && (phong || !factor.is_black())) {
+    tex.use(TextureSlot::Emission, m.emission_map, false);
+    if (phong && factor.is_black()) factor = RGB(1.0f);
+  }
+  d.emission = d.emission.value + factor;
 }
 
 // MTL's illumination model, or the one a COLLADA material implies.
@@ -124,8 +137,8 @@ void map_phong(const AssetMaterial& m, float length_scale, MappedMaterial& out, 
   if (glass) {
     d.type = MaterialType::Dielectric;  // roughness 0: exactly glass (the MTL's ray-traced refraction)
     d.ior = m.ior && *m.ior > 0.0f ? *m.ior : 1.5f;
-    if (!(m.transmission_filter == RGB(1.0f)))
-      out.notes.push_back({"tinted glass (Tf) is not supported: clear glass", m.where});
+    const RGB tf = m.transmission_filter;
+    d.transmittance = RGB(unit(tf.r), unit(tf.g), unit(tf.b));  // Tf: the tint of every crossing
   } else if (metal) {
     map_mtl_conductor(m, tex, out);
     if ((illum == 5 || illum == 8) && !no_diffuse)
@@ -210,6 +223,7 @@ void set_texture(MaterialDesc& d, TextureSlot slot, int index) {
     case TextureSlot::Reflectance: d.reflectance.texture = index; break;
     case TextureSlot::Roughness: d.uroughness.texture = d.vroughness.texture = index; break;
     case TextureSlot::Metallic: d.metallic.texture = index; break;
+    case TextureSlot::Emission: d.emission_texture = index; break;
     case TextureSlot::Alpha: d.alpha_texture = index; break;
     case TextureSlot::NormalMap: d.normal_map = index; break;
     case TextureSlot::Displacement:
@@ -231,7 +245,7 @@ MappedMaterial map_asset_material(const AssetMaterial& m, const std::vector<Asse
   } else {
     map_metallic_roughness(m, length_scale, out, tex);
   }
-  if (!(m.emission_map && !m.emission.is_black())) d.emission = d.emission.value + m.emission;
+  map_emission(m, tex, out);
   d.two_sided = m.double_sided;
   bool clamped = false;
   for (Sourced<RGB>* c : {&d.diffuse, &d.specular, &d.emission}) clamped = clamp_colour(*c) || clamped;

@@ -24,7 +24,7 @@ struct MaterialNote {
 };
 
 // Where a mapped material reads a texture of the file.
-enum class TextureSlot { Diffuse, Reflectance, Roughness, Metallic, Alpha, NormalMap, Displacement };
+enum class TextureSlot { Diffuse, Reflectance, Roughness, Metallic, Emission, Alpha, NormalMap, Displacement };
 
 struct TextureUse {
   TextureSlot slot;

@@ -37,14 +37,14 @@ const std::vector<std::string>& material_keys(MaterialType type) {
                                                     "displacement", "alpha", "alpha_mode"};
   static const std::vector<std::string> kMirror = {"specular",      "emission",  "two_sided",
                                                    "light_samples", "normalmap", "displacement", "alpha", "alpha_mode"};
-  static const std::vector<std::string> kGlass = {"ior",           "emission",  "two_sided",
-                                                  "light_samples", "normalmap", "displacement", "alpha", "alpha_mode"};
+  static const std::vector<std::string> kGlass = {"ior",       "transmittance", "emission",     "two_sided", "light_samples",
+                                                  "normalmap", "displacement",  "alpha",        "alpha_mode"};
   static const std::vector<std::string> kConductor = {
       "metal",    "eta",       "k",         "reflectance",   "roughness", "uroughness",  "vroughness",
       "remaproughness", "emission", "two_sided", "light_samples", "normalmap", "displacement", "alpha", "alpha_mode"};
-  static const std::vector<std::string> kDielectric = {"ior",           "roughness", "uroughness", "vroughness",
-                                                       "remaproughness", "emission", "two_sided", "light_samples",
-                                                       "normalmap",     "displacement", "alpha", "alpha_mode"};
+  static const std::vector<std::string> kDielectric = {
+      "ior",           "transmittance", "roughness", "uroughness", "vroughness", "remaproughness", "emission",
+      "two_sided",     "light_samples", "normalmap", "displacement", "alpha",     "alpha_mode"};
   static const std::vector<std::string> kCoated = {"reflectance",   "ior",       "roughness", "uroughness",
                                                    "vroughness",    "remaproughness", "emission", "two_sided",
                                                    "light_samples", "normalmap", "displacement", "alpha", "alpha_mode"};
@@ -185,6 +185,7 @@ void read_physical_keys(ImportContext& ctx, ObjectReader& r, NativeMaterial& nm)
   if (coated) read_textured(ctx, r, "reflectance", m.reflectance, nm, MaterialTexture::Reflectance, false);
   if (type == MaterialType::MetallicRoughness)
     read_textured(ctx, r, "metallic", m.metallic, nm, MaterialTexture::Metallic, true);
+  if (type == MaterialType::Glass || type == MaterialType::Dielectric) r.read("transmittance", m.transmittance);
   // pbrt-v4's default index for its dielectric and coating (glTF's for metallic-roughness).
   if ((type == MaterialType::Dielectric || coated) && !r.get("ior")) m.ior = 1.5f;
   if (const JsonValue* normal_map = r.get("normalmap"))
@@ -199,6 +200,14 @@ void read_physical_keys(ImportContext& ctx, ObjectReader& r, NativeMaterial& nm)
       r.fail();
     }
   }
+}
+
+// "emission": an rgb, or a textured rgb ({"texture": reference, "scale": rgb}:
+// the texture's colour times the scale, e.g. the emission strength).
+void read_emission(ImportContext& ctx, ObjectReader& r, NativeMaterial& nm) {
+  TexturedParam<RGB> e{nm.desc.emission, {}};
+  read_textured(ctx, r, "emission", e, nm, MaterialTexture::Emission, false);
+  nm.desc.emission = e.value;
 }
 
 NativeMaterial read_material(ImportContext& ctx, const JsonMember& member) {
@@ -228,7 +237,7 @@ NativeMaterial read_material(ImportContext& ctx, const JsonMember& member) {
   r.read("reflectivity", m.reflectivity);
   r.read("refractive", m.refractive);
   r.read("ior", m.ior);
-  r.read("emission", m.emission);
+  read_emission(ctx, r, out);
   r.read("two_sided", m.two_sided);
   if (r.get("light_samples") && r.read("light_samples", m.light_samples) && m.light_samples.value < 1) {
     ctx.diag().error(m.light_samples.where, "'light_samples' must be at least 1");
@@ -253,6 +262,7 @@ std::optional<int>& texture_slot(MaterialDesc& m, MaterialTexture slot) {
     case MaterialTexture::K: return m.k.texture;
     case MaterialTexture::Reflectance: return m.reflectance.texture;
     case MaterialTexture::Metallic: return m.metallic.texture;
+    case MaterialTexture::Emission: return m.emission_texture;
     case MaterialTexture::NormalMap: return m.normal_map;
     case MaterialTexture::Displacement: return m.displacement->texture;
     case MaterialTexture::Diffuse: break;

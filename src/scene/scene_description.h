@@ -207,6 +207,10 @@ struct MaterialDesc {
   Sourced<float> ior{1.0f};             // glass, dielectric, the coating of coateddiffuse
   std::optional<Sourced<float>> ka;     // weight of the classic ambient term; absent: kd (the path equivalent's)
   Sourced<RGB> emission{RGB(0, 0, 0)};  // emitted radiance, on the front (ng) side only unless two_sided
+  std::optional<int> emission_texture;  // index into SceneDescription::textures; multiplies `emission`
+  // Glass and dielectric: the colour transmitted light is multiplied by at
+  // each crossing of the surface (MTL's Tf); white: clear.
+  Sourced<RGB> transmittance{RGB(1, 1, 1)};
   Sourced<bool> two_sided{false};       // emission from both sides
   // The classic (whitted) integrator's samples of this emitter per shading
   // point (a Path of Light area light's "samples"); 0: its default (16).
@@ -252,7 +256,7 @@ struct MaterialDesc {
   template <class F>
   void for_each_texture(F&& f) const {
     for (const std::optional<int>& t : {texture, uroughness.texture, vroughness.texture, eta.texture, k.texture,
-                                        reflectance.texture, metallic.texture, normal_map})
+                                        reflectance.texture, metallic.texture, normal_map, emission_texture})
       if (t) f(*t);
     if (displacement && displacement->texture) f(*displacement->texture);
     if (alpha_texture) f(*alpha_texture);

@@ -93,6 +93,11 @@ class Validator {
     colour(m.diffuse, "diffuse colour");
     colour(m.specular, "specular colour");
     colour(m.emission, "emission");
+    if (m.type == MaterialType::Glass || m.type == MaterialType::Dielectric) {
+      const RGB t = m.transmittance.value;
+      if (!(t.r >= 0.0f && t.g >= 0.0f && t.b >= 0.0f && t.r <= 1.0f && t.g <= 1.0f && t.b <= 1.0f))
+        diag_.error(m.transmittance.where, "transmittance must be between 0 and 1 in every channel, got " + str(t));
+    }
     radiometric(m.emission, "emission of material '" + m.name + "'");
     if (m.type == MaterialType::Conductor || m.type == MaterialType::Dielectric ||
         m.type == MaterialType::CoatedDiffuse || m.type == MaterialType::MetallicRoughness)

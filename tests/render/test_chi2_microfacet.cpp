@@ -200,6 +200,9 @@ TEST(Microfacet, SampleWeightIsFCosOverPdf) {
   expect_consistent_samples(conductor(0.05f, 0.7f), "anisotropic conductor");
   expect_consistent_samples(microfacet(MaterialType::Dielectric, 0.3f, 0.3f), "dielectric");
   expect_consistent_samples(microfacet(MaterialType::Dielectric, 0.8f, 0.2f), "anisotropic dielectric");
+  Material tinted = microfacet(MaterialType::Dielectric, 0.3f, 0.3f);
+  tinted.transmittance = RGB(0.2f, 0.6f, 1.0f);
+  expect_consistent_samples(tinted, "tinted dielectric");
   expect_consistent_samples(coated(0.2f, 0.2f), "coated diffuse");
   expect_consistent_samples(metallic_roughness(0.2f, 0.5f), "metallic-roughness");
   expect_consistent_samples(metallic_roughness(0.05f, 0.1f), "metallic-roughness, sharp, mostly dielectric");
@@ -263,6 +266,21 @@ TEST(Microfacet, AlbedoNeverExceedsOne) {
         EXPECT_LE(a, 1.0 + 4.0 * sd + 2e-3) << static_cast<int>(m.type) << " alpha " << alpha << " theta " << theta;
       }
     }
+  }
+}
+
+// A transmittance (MTL's Tf) scales the transmitted energy, not the reflected.
+TEST(Microfacet, TransmittanceTintsOnlyTheTransmission) {
+  Material clear = microfacet(MaterialType::Dielectric, 0.3f, 0.3f), tinted = clear;
+  tinted.transmittance = RGB(0.5f, 1.0f, 1.0f);
+  const SurfaceGeometry geo = flat_surface();
+  const Vec3f wo = direction_at(30.0f);
+  Rng rng(13);
+  for (int i = 0; i < 500; ++i) {
+    const Vec3f wi = sample_uniform_sphere(Vec2f(rng.next_float(), rng.next_float()));
+    const RGB a = Bsdf(clear, geo, wo).f(wo, wi), b = Bsdf(tinted, geo, wo).f(wo, wi);
+    ASSERT_FLOAT_EQ(b.g, a.g);
+    ASSERT_FLOAT_EQ(b.r, wi.z < 0.0f ? 0.5f * a.r : a.r);
   }
 }
 

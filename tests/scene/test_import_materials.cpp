@@ -102,6 +102,54 @@ TEST(ImportMtlMaterials, NsBecomesGgxAlphaAndPartialDissolveIsAnOpacity) {
   EXPECT_EQ(diag.format().find("dissolve"), std::string::npos) << diag.format();
 }
 
+// Tf tints the glass's transmission; map_Ke is an emission texture, times Ke
+// (1 where Ke is absent or black): no warnings.
+TEST(ImportMtlMaterials, TfTintsGlassAndMapKeIsAnEmissionTexture) {
+  test::TempDir dir;
+  const std::string stripes = kAssets + "obj/stripes.png";
+  dir.write("m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nusemtl glass\nf 1 2 3\nusemtl lamp\nf 1 3 2\n"
+                     "usemtl bright\nf 2 3 1\n");
+  dir.write("m.mtl", "newmtl glass\nillum 7\nNi 1.5\nTf 0.2 0.8 0.4\n"
+                     "newmtl lamp\nKd 0.5 0.5 0.5\nmap_Ke " + stripes + "\n"
+                     "newmtl bright\nKd 0 0 0\nKe 4 4 2\nmap_Ke " + stripes + "\n");
+  Diagnostics diag;
+  const std::optional<SceneDescription> s = load_scene(dir.str() + "/m.obj", {}, diag);
+  ASSERT_TRUE(s) << diag.format();
+  const MaterialDesc& glass = named(*s, ":glass");
+  EXPECT_EQ(glass.type.value, MaterialType::Dielectric);
+  EXPECT_TRUE(test::near(glass.transmittance.value, RGB(0.2f, 0.8f, 0.4f)));
+  const MaterialDesc& lamp = named(*s, ":lamp");
+  EXPECT_TRUE(test::near(lamp.emission.value, RGB(1.0f)));
+  EXPECT_EQ(file_of(texture(*s, lamp.emission_texture)), stripes);
+  EXPECT_FALSE(texture(*s, lamp.emission_texture).raw);  // a colour: sRGB-decoded
+  const MaterialDesc& bright = named(*s, ":bright");
+  EXPECT_TRUE(test::near(bright.emission.value, RGB(4.0f, 4.0f, 2.0f)));
+  EXPECT_TRUE(bright.emission_texture);
+  EXPECT_EQ(diag.warning_count(), 0) << diag.format();
+}
+
+// glTF: emissiveFactor (x KHR_materials_emissive_strength) times emissiveTexture,
+// as the specification multiplies them (a texture with the default factor 0 emits nothing).
+TEST(ImportGltfMaterials, EmissiveTextureTimesEmissiveFactor) {
+  std::vector<AssetTexture> textures(1);
+  textures[0].name = textures[0].resolved = kAssets + "gltf/base.png";
+  AssetMaterial m;
+  m.model = AssetMaterial::Model::MetallicRoughness;
+  m.name = "glow";
+  m.emission = RGB(2.0f, 1.0f, 0.5f);
+  m.emission_map.texture = 0;
+  MappedMaterial out = map_asset_material(m, textures);
+  EXPECT_TRUE(test::near(out.desc.emission.value, RGB(2.0f, 1.0f, 0.5f)));
+  ASSERT_EQ(out.textures.size(), 1u);
+  EXPECT_EQ(out.textures[0].slot, TextureSlot::Emission);
+  EXPECT_FALSE(out.textures[0].data);
+  EXPECT_TRUE(out.notes.empty());
+  m.emission = RGB(0.0f);
+  out = map_asset_material(m, textures);
+  EXPECT_TRUE(out.desc.emission.value.is_black());
+  EXPECT_TRUE(out.textures.empty());
+}
+
 TEST(ImportGltfMaterials, MetallicRoughnessMaskNormalMapAndBlend) {
   for (const char* file : {"gltf/pbr.gltf", "gltf/pbr.glb"}) {
     SCOPED_TRACE(file);

@@ -99,6 +99,8 @@ Material make_material(const MaterialDesc& d, const std::vector<const Texture*>&
   m.reflectivity = std::clamp(d.reflectivity.value, 0.0f, 1.0f);
   m.ior = d.ior;
   m.emission = d.emission;
+  m.emission_texture = texture_of(d.emission_texture, textures);
+  m.transmittance = d.transmittance;
   m.two_sided = d.two_sided;
   m.light_samples = d.light_samples;
   m.type = d.type;

@@ -39,7 +39,9 @@ struct Material {
   float exponent = 1;
   float reflectivity = 0;  // mirror weight
   float ior = 1;
+  RGB transmittance{1, 1, 1};  // glass and dielectrics: the tint of every crossing
   RGB emission;
+  const Texture* emission_texture = nullptr;  // multiplies `emission` when set (colour)
   bool two_sided = false;            // emission from both sides (else only on the ng side)
   int light_samples = 0;             // the classic integrator's samples of this emitter; 0: its default
   const Texture* texture = nullptr;  // modulates `diffuse` when set
@@ -72,8 +74,14 @@ struct Material {
   // a conductor's normal-incidence reflectance, a coated diffuse's base albedo.
   RGB albedo_at(const TexCoord& tc) const;
   bool emits() const { return !emission.is_black(); }
-  // Radiance leaving a surface with geometric normal ng towards direction w.
-  RGB emitted(Vec3f ng, Vec3f w) const { return (two_sided || dot(ng, w) > 0.0f) ? emission : RGB(); }
+  // The emitted radiance at texture coordinates tc (both sides).
+  RGB emission_at(const TexCoord& tc) const {
+    return emission_texture ? emission * texture_rgb(*emission_texture, tc) : emission;
+  }
+  // Radiance leaving a surface with geometric normal ng towards direction w, at tc.
+  RGB emitted(Vec3f ng, Vec3f w, const TexCoord& tc) const {
+    return (two_sided || dot(ng, w) > 0.0f) ? emission_at(tc) : RGB();
+  }
 
  private:
   float roughness_alpha(float roughness) const;
