@@ -122,10 +122,12 @@ struct TriangleAreaSampler {
 
   void sample(Vec2f u, Vec3f& q, Vec3f& n) const { sample(parts, u, q, n); }
   // The same with the triangles picked by another distribution over them (an
-  // instance's, by their areas under its transform).
-  void sample(const Distribution1D& by, Vec2f u, Vec3f& q, Vec3f& n) const {
+  // instance's, by their areas under its transform); `part`, if given, is set
+  // to the triangle's index (a mesh's primitive).
+  void sample(const Distribution1D& by, Vec2f u, Vec3f& q, Vec3f& n, std::size_t* part_out = nullptr) const {
     std::size_t part = 0;
     const Vec2f v = pick_part(by, u, part);
+    if (part_out != nullptr) *part_out = part;
     const Triangle& t = triangles[part];
     const Vec3f b = sample_uniform_triangle(v);
     q = t.p0 + t.e1 * b.y + t.e2 * b.z;

@@ -91,11 +91,14 @@ struct RenderScene {
   // Alpha cutouts (docs/textures.md): per material, its constant alpha or
   // its alpha texture; the test the accelerator calls for the shapes whose
   // material has one (none: the accelerator gets no test and runs none).
+  // A blended one (stochastic) is there for a ray with probability alpha (times
+  // the texture's), decided by a hash of the ray and the candidate hit.
   struct Cutout {
     float alpha = 1.0f;
     const Texture* texture = nullptr;
     float cutoff = kAlphaCutoff;  // the surface is there where alpha >= cutoff
-    bool active() const { return texture != nullptr || !(alpha >= cutoff); }
+    bool stochastic = false;      // alpha an opacity (MaterialDesc::alpha_blend)
+    bool active() const { return texture != nullptr || !(alpha >= (stochastic ? 1.0f : cutoff)); }
   };
   static constexpr float kAlphaCutoff = 0.5f;  // the native format's cutoff (importers set others)
   std::vector<Cutout> cutouts;
@@ -129,6 +132,9 @@ struct RenderScene {
   [[gnu::noinline]] void texture_frame(const RayDifferential* differential, Intersection& out) const;
   // Whether the surface is there at a candidate hit (the cutout test; ray in the shape's space).
   bool keeps(const Ray& ray, uint32_t object, uint32_t prim, const PrimHit& hit, uint32_t instance) const;
+  // The same for a blended material (stochastic opacity).
+  bool opacity_keeps(const Cutout& c, const Ray& ray, uint32_t object, uint32_t prim, const PrimHit& hit,
+                     uint32_t instance) const;
   // The first texture read that failed during rendering (a file changed or
   // broken since the scene was built), empty if none did: the render is not to be trusted.
   std::string texture_failure() const { return texture_cache ? texture_cache->failure() : std::string(); }

@@ -1,7 +1,11 @@
 #include "render/scene_textures.h"
 
+#include <bit>
 #include <utility>
+#include <variant>
 #include <vector>
+
+#include "core/rng.h"
 
 #include "core/stopwatch.h"
 #include "render/materials/normal_map.h"
@@ -128,7 +132,7 @@ void add_materials(const SceneDescription& desc, RenderScene& scene) {
   scene.materials.reserve(desc.materials.size());
   for (const MaterialDesc& d : desc.materials) {
     const CoatingTable* coating = nullptr;
-    if (d.type == MaterialType::CoatedDiffuse) {
+    if (d.type == MaterialType::CoatedDiffuse || d.type == MaterialType::MetallicRoughness) {
       for (const std::unique_ptr<CoatingTable>& c : scene.coatings)
         if (c->ior() == d.ior.value) coating = c.get();
       if (!coating) coating = scene.coatings.emplace_back(std::make_unique<CoatingTable>(d.ior)).get();
@@ -145,6 +149,7 @@ const CutoutTest* prepare_cutouts(const SceneDescription& desc, RenderScene& sce
     c.alpha = desc.materials[i].alpha;
     c.texture = texture_at(desc.materials[i].alpha_texture, scene);
     c.cutoff = desc.materials[i].alpha_cutoff;
+    c.stochastic = desc.materials[i].alpha_blend.value;
     any = any || c.active();
   }
   if (!any) return nullptr;
@@ -166,10 +171,35 @@ const CutoutTest* prepare_cutouts(const SceneDescription& desc, RenderScene& sce
 
 bool RenderScene::keeps(const Ray& ray, uint32_t object, uint32_t prim, const PrimHit& hit, uint32_t inst) const {
   const Cutout& c = cutouts[static_cast<std::size_t>(material_of(object, inst))];
+  if (c.stochastic) return opacity_keeps(c, ray, object, prim, hit, inst);
   if (c.texture == nullptr) return c.alpha >= c.cutoff;
   // A point lookup at the hit, in the shape's own space (ray and hit are there).
   const SurfaceGeometry g = surface(geometry.shapes[object], prim, ray, hit);
   return c.texture->alpha(TexCoord(g.uv, {}, {}, g.p)) >= c.cutoff;
+}
+
+// Stochastic opacity (as pbrt-v4's alpha): the surface is there for this ray
+// with probability alpha. The uniform number is a hash of the ray, the object,
+// its placement, the primitive and (for shapes a ray may meet twice: all but
+// meshes, whose triangles it meets once) the hit's distance, so it is the same
+// however often a backend tests one candidate, independent between surfaces
+// and rays, and a pure function of the ray (renders stay deterministic).
+bool RenderScene::opacity_keeps(const Cutout& c, const Ray& ray, uint32_t object, uint32_t prim, const PrimHit& hit,
+                                uint32_t inst) const {
+  float a = c.alpha;
+  const Shape& shape = geometry.shapes[object];
+  if (c.texture != nullptr) {
+    const SurfaceGeometry g = surface(shape, prim, ray, hit);
+    a *= c.texture->alpha(TexCoord(g.uv, {}, {}, g.p));
+  }
+  if (a >= 1.0f) return true;
+  if (!(a > 0.0f)) return false;
+  const auto bits = [](float x) { return static_cast<uint64_t>(std::bit_cast<uint32_t>(x)); };
+  uint64_t h = hash_keys(bits(ray.origin.x) | bits(ray.origin.y) << 32, bits(ray.origin.z) | bits(ray.dir.x) << 32,
+                         bits(ray.dir.y) | bits(ray.dir.z) << 32);
+  const float t = std::holds_alternative<TriangleMesh>(shape) ? 0.0f : hit.t;
+  h = hash_keys(h, uint64_t{object} | uint64_t{prim} << 32, uint64_t{inst} | bits(t) << 32);
+  return static_cast<float>(h >> 40) * 0x1.0p-24f < a;
 }
 
 void RenderScene::texture_frame(const RayDifferential* differential, Intersection& out) const {

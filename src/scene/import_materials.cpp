@@ -57,23 +57,22 @@ void set_alpha(MaterialDesc& d, float alpha) {
 void map_surface(const AssetMaterial& m, bool glass, float length_scale, Textures& tex, MappedMaterial& out) {
   MaterialDesc& d = out.desc;
   if (m.model == AssetMaterial::Model::Phong && !glass) {
-    // MTL: alpha = d x map_d; the surface is there where it is at least 0.5.
+    // MTL: alpha = d x map_d; the surface is there where it is at least 0.5,
+    // or, for a partial dissolve (d strictly between 0 and 1), with probability alpha.
     const float opacity = unit(m.opacity);
     d.alpha = opacity;
-    if (tex.use(TextureSlot::Alpha, m.opacity_map, true) && opacity > 0.0f) d.alpha_cutoff = 0.5f / opacity;
-    if (opacity > 0.0f && opacity < 1.0f && !tex.usable(m.opacity_map))
-      out.notes.push_back({"partial dissolve (d, Tr between 0 and 1) is not supported: alpha cutouts are binary "
-                           "(the surface is there where d >= 0.5)",
-                           m.opacity_where.file ? m.opacity_where : m.where});
+    d.alpha_blend = opacity > 0.0f && opacity < 1.0f;
+    if (tex.use(TextureSlot::Alpha, m.opacity_map, true) && opacity > 0.0f && !d.alpha_blend.value)
+      d.alpha_cutoff = 0.5f / opacity;
   } else if (m.model == AssetMaterial::Model::MetallicRoughness && m.alpha_mode != AlphaMode::Opaque) {
-    // glTF: alpha = baseColorFactor.a x the base colour texture's alpha, against alphaCutoff (0.5 for BLEND).
+    // glTF: alpha = baseColorFactor.a x the base colour texture's alpha, against
+    // alphaCutoff (MASK), or an opacity (BLEND: the surface is there with probability alpha).
     const float factor = unit(m.opacity);
-    const float cutoff = m.alpha_mode == AlphaMode::Mask ? m.alpha_cutoff : 0.5f;
     d.alpha = factor;
-    d.alpha_cutoff = cutoff;
-    if (tex.use(TextureSlot::Alpha, m.base_color_map, false)) d.alpha_cutoff = factor > 0.0f ? cutoff / factor : 2.0f;
-    if (m.alpha_mode == AlphaMode::Blend && (factor < 1.0f || tex.usable(m.base_color_map)))
-      out.notes.push_back({"alphaMode BLEND is rendered as a cutout at alpha 0.5 (no partial transparency)", m.where});
+    d.alpha_cutoff = m.alpha_cutoff;
+    d.alpha_blend = m.alpha_mode == AlphaMode::Blend;
+    if (tex.use(TextureSlot::Alpha, m.base_color_map, false) && !d.alpha_blend.value)
+      d.alpha_cutoff = factor > 0.0f ? m.alpha_cutoff / factor : 2.0f;
   }
   if (tex.use(TextureSlot::NormalMap, m.normal_map, true)) d.normal_scale = m.normal_map.scale;
   if (tex.use(TextureSlot::Displacement, m.bump_map, true)) {
@@ -81,15 +80,28 @@ void map_surface(const AssetMaterial& m, bool glass, float length_scale, Texture
     h.value = m.bump_map.scale * length_scale;
     d.displacement = h;
   }
-  if (m.emission_map && !m.emission.is_black())
-    out.notes.push_back({"emission textures (map_Ke, emissiveTexture) are not supported yet: those surfaces do not emit "
-                         "(an untextured emission colour would make the whole surface a light)",
-                         m.emission_map.where});
   if (m.occlusion_map)
     out.notes.push_back({"occlusion maps are not used (the path tracer computes occlusion itself)", m.occlusion_map.where,
                          false});
   for (const auto& [name, where] : m.unsupported)
     out.notes.push_back({"material extension '" + name + "' is not supported: what it adds is left out", where});
+}
+
+// Emission: the colour (Ke, emissiveFactor x KHR_materials_emissive_strength)
+// times the emission texture (map_Ke, emissiveTexture; sRGB colour). glTF
+// multiplies the two as its specification says (a texture with the default
+// factor 0 emits nothing); an MTL map_Ke with no Ke (or Ke 0) emits the
+// texture itself (Ke 1), as Blender's OBJ importer and most tools read it, and
+// so does a COLLADA emission texture (COLLADA gives a colour or a texture).
+void map_emission(const AssetMaterial& m, Textures& tex, MappedMaterial& out) {
+  MaterialDesc& d = out.desc;
+  RGB factor = m.emission;
+  const bool phong = m.model == AssetMaterial::Model::Phong;
+  if (tex.usable(m.emission_map) && (phong || !factor.is_black())) {
+    tex.use(TextureSlot::Emission, m.emission_map, false);
+    if (phong && factor.is_black()) factor = RGB(1.0f);
+  }
+  d.emission = d.emission.value + factor;
 }
 
 // MTL's illumination model, or the one a COLLADA material implies.
@@ -125,8 +137,8 @@ void map_phong(const AssetMaterial& m, float length_scale, MappedMaterial& out, 
   if (glass) {
     d.type = MaterialType::Dielectric;  // roughness 0: exactly glass (the MTL's ray-traced refraction)
     d.ior = m.ior && *m.ior > 0.0f ? *m.ior : 1.5f;
-    if (!(m.transmission_filter == RGB(1.0f)))
-      out.notes.push_back({"tinted glass (Tf) is not supported: clear glass", m.where});
+    const RGB tf = m.transmission_filter;
+    d.transmittance = RGB(unit(tf.r), unit(tf.g), unit(tf.b));  // Tf: the tint of every crossing
   } else if (metal) {
     map_mtl_conductor(m, tex, out);
     if ((illum == 5 || illum == 8) && !no_diffuse)
@@ -166,13 +178,13 @@ void gltf_roughness(const AssetMaterial& m, Textures& tex, MaterialDesc& d) {
   }
 }
 
-// glTF's metallic-roughness (docs/importing.md): metals are conductors with
-// Schlick's F0 = base colour, dielectrics coated diffuse of index 1.5 (F0
-// 0.04), transmission rough dielectrics; all with GGX alpha = roughness^2.
+// glTF's metallic-roughness (docs/importing.md): the `metallicroughness`
+// material, glTF's blend of a Schlick conductor of F0 = base colour and a coated
+// diffuse of index 1.5 (F0 0.04) by metallic = metallicFactor x the blue channel
+// of metallicRoughnessTexture; transmission rough dielectrics; all with GGX
+// alpha = roughness^2.
 void map_metallic_roughness(const AssetMaterial& m, float length_scale, MappedMaterial& out, Textures& tex) {
   MaterialDesc& d = out.desc;
-  const float metallic = unit(m.metallic);
-  const bool metal = metallic >= 0.5f;
   if (m.unlit) {
     d.type = MaterialType::Lambert;
     d.diffuse = RGB(0.0f);
@@ -187,18 +199,13 @@ void map_metallic_roughness(const AssetMaterial& m, float length_scale, MappedMa
                            "rendered as clear, fully transmissive glass",
                            m.where});
   } else {
-    d.type = metal ? MaterialType::Conductor : MaterialType::CoatedDiffuse;
-    d.schlick = metal;
+    d.type = MaterialType::MetallicRoughness;
     d.ior = m.ior && *m.ior > 0.0f ? *m.ior : 1.5f;
     d.reflectance.value = m.base_color;
     tex.use(TextureSlot::Reflectance, m.base_color_map, false);
+    d.metallic.value = unit(m.metallic);
+    if (tex.use(TextureSlot::Metallic, m.metallic_roughness_map, true)) d.metallic.channel = 2;
     gltf_roughness(m, tex, d);
-    if (metallic > 0.0f && metallic < 1.0f)
-      out.notes.push_back({"metallic factors between 0 and 1 are rounded (below 0.5: dielectric, else metal)", m.where});
-    if (tex.usable(m.metallic_roughness_map) && metallic > 0.0f)
-      out.notes.push_back({"the metalness of metallicRoughnessTexture (blue) is not read per texel: metallicFactor "
-                           "decides between metal and dielectric",
-                           m.metallic_roughness_map.where});
   }
   map_surface(m, d.type == MaterialType::Dielectric, length_scale, tex, out);
 }
@@ -215,6 +222,8 @@ void set_texture(MaterialDesc& d, TextureSlot slot, int index) {
     case TextureSlot::Diffuse: d.texture = index; break;
     case TextureSlot::Reflectance: d.reflectance.texture = index; break;
     case TextureSlot::Roughness: d.uroughness.texture = d.vroughness.texture = index; break;
+    case TextureSlot::Metallic: d.metallic.texture = index; break;
+    case TextureSlot::Emission: d.emission_texture = index; break;
     case TextureSlot::Alpha: d.alpha_texture = index; break;
     case TextureSlot::NormalMap: d.normal_map = index; break;
     case TextureSlot::Displacement:
@@ -236,7 +245,7 @@ MappedMaterial map_asset_material(const AssetMaterial& m, const std::vector<Asse
   } else {
     map_metallic_roughness(m, length_scale, out, tex);
   }
-  if (!(m.emission_map && !m.emission.is_black())) d.emission = d.emission.value + m.emission;
+  map_emission(m, tex, out);
   d.two_sided = m.double_sided;
   bool clamped = false;
   for (Sourced<RGB>* c : {&d.diffuse, &d.specular, &d.emission}) clamped = clamp_colour(*c) || clamped;

@@ -1,7 +1,7 @@
 // The one place where a model file's materials (AssetMaterial, asset.h:
 // MTL, COLLADA's Phong family, glTF's metallic-roughness) become ours
 // (MaterialDesc): Lambert, the normalised Blinn-Phong of "phong", conductor,
-// dielectric and coated diffuse, with textured colours and roughness, alpha
+// dielectric, coated diffuse and glTF's metallic-roughness, with textured colours and roughness, alpha
 // cutouts, normal and bump maps (docs/importing.md has the tables). What the
 // result does not show as the file means it is returned as a note, which the
 // importer turns into one warning per kind and file.
@@ -24,7 +24,7 @@ struct MaterialNote {
 };
 
 // Where a mapped material reads a texture of the file.
-enum class TextureSlot { Diffuse, Reflectance, Roughness, Alpha, NormalMap, Displacement };
+enum class TextureSlot { Diffuse, Reflectance, Roughness, Metallic, Emission, Alpha, NormalMap, Displacement };
 
 struct TextureUse {
   TextureSlot slot;

@@ -23,31 +23,36 @@ constexpr TypeName kTypes[] = {{"phong", MaterialType::Phong},
                                {"glass", MaterialType::Glass},
                                {"conductor", MaterialType::Conductor},
                                {"dielectric", MaterialType::Dielectric},
-                               {"coateddiffuse", MaterialType::CoatedDiffuse}};
+                               {"coateddiffuse", MaterialType::CoatedDiffuse},
+                               {"metallicroughness", MaterialType::MetallicRoughness}};
 
 // The keys each material type reads besides "type" (docs/scene-format.md); a
 // key the type does not read is an error rather than silently ignored.
 const std::vector<std::string>& material_keys(MaterialType type) {
   static const std::vector<std::string> kPhong = {
       "diffuse", "kd",        "ka",            "specular", "ks",        "exponent",    "reflectivity", "refractive",
-      "ior",     "emission",  "two_sided",     "light_samples", "texture", "normalmap", "displacement", "alpha"};
+      "ior",     "emission",  "two_sided",     "light_samples", "texture", "normalmap", "displacement", "alpha", "alpha_mode"};
   static const std::vector<std::string> kLambert = {"diffuse",   "kd",        "ka",           "texture",
                                                     "emission",  "two_sided", "light_samples", "normalmap",
-                                                    "displacement", "alpha"};
+                                                    "displacement", "alpha", "alpha_mode"};
   static const std::vector<std::string> kMirror = {"specular",      "emission",  "two_sided",
-                                                   "light_samples", "normalmap", "displacement", "alpha"};
-  static const std::vector<std::string> kGlass = {"ior",           "emission",  "two_sided",
-                                                  "light_samples", "normalmap", "displacement", "alpha"};
+                                                   "light_samples", "normalmap", "displacement", "alpha", "alpha_mode"};
+  static const std::vector<std::string> kGlass = {"ior",       "transmittance", "emission",     "two_sided", "light_samples",
+                                                  "normalmap", "displacement",  "alpha",        "alpha_mode"};
   static const std::vector<std::string> kConductor = {
       "metal",    "eta",       "k",         "reflectance",   "roughness", "uroughness",  "vroughness",
-      "remaproughness", "emission", "two_sided", "light_samples", "normalmap", "displacement", "alpha"};
-  static const std::vector<std::string> kDielectric = {"ior",           "roughness", "uroughness", "vroughness",
-                                                       "remaproughness", "emission", "two_sided", "light_samples",
-                                                       "normalmap",     "displacement", "alpha"};
+      "remaproughness", "emission", "two_sided", "light_samples", "normalmap", "displacement", "alpha", "alpha_mode"};
+  static const std::vector<std::string> kDielectric = {
+      "ior",           "transmittance", "roughness", "uroughness", "vroughness", "remaproughness", "emission",
+      "two_sided",     "light_samples", "normalmap", "displacement", "alpha",     "alpha_mode"};
   static const std::vector<std::string> kCoated = {"reflectance",   "ior",       "roughness", "uroughness",
                                                    "vroughness",    "remaproughness", "emission", "two_sided",
-                                                   "light_samples", "normalmap", "displacement", "alpha"};
+                                                   "light_samples", "normalmap", "displacement", "alpha", "alpha_mode"};
+  static const std::vector<std::string> kMetallicRoughness = {
+      "reflectance", "metallic",       "ior",      "roughness", "uroughness",    "vroughness",   "remaproughness",
+      "emission",    "two_sided",      "light_samples", "normalmap", "displacement", "alpha", "alpha_mode"};
   switch (type) {
+    case MaterialType::MetallicRoughness: return kMetallicRoughness;
     case MaterialType::Lambert: return kLambert;
     case MaterialType::Mirror: return kMirror;
     case MaterialType::Glass: return kGlass;
@@ -174,13 +179,15 @@ void read_conductor(ImportContext& ctx, ObjectReader& r, NativeMaterial& nm) {
 void read_physical_keys(ImportContext& ctx, ObjectReader& r, NativeMaterial& nm) {
   MaterialDesc& m = nm.desc;
   const MaterialType type = m.type;
-  if (type == MaterialType::Conductor || type == MaterialType::Dielectric || type == MaterialType::CoatedDiffuse)
-    read_roughness(ctx, r, nm);
+  const bool coated = type == MaterialType::CoatedDiffuse || type == MaterialType::MetallicRoughness;
+  if (type == MaterialType::Conductor || type == MaterialType::Dielectric || coated) read_roughness(ctx, r, nm);
   if (type == MaterialType::Conductor) read_conductor(ctx, r, nm);
-  if (type == MaterialType::CoatedDiffuse)
-    read_textured(ctx, r, "reflectance", m.reflectance, nm, MaterialTexture::Reflectance, false);
-  // pbrt-v4's default index for its dielectric and coating.
-  if ((type == MaterialType::Dielectric || type == MaterialType::CoatedDiffuse) && !r.get("ior")) m.ior = 1.5f;
+  if (coated) read_textured(ctx, r, "reflectance", m.reflectance, nm, MaterialTexture::Reflectance, false);
+  if (type == MaterialType::MetallicRoughness)
+    read_textured(ctx, r, "metallic", m.metallic, nm, MaterialTexture::Metallic, true);
+  if (type == MaterialType::Glass || type == MaterialType::Dielectric) r.read("transmittance", m.transmittance);
+  // pbrt-v4's default index for its dielectric and coating (glTF's for metallic-roughness).
+  if ((type == MaterialType::Dielectric || coated) && !r.get("ior")) m.ior = 1.5f;
   if (const JsonValue* normal_map = r.get("normalmap"))
     nm.textures.push_back(PendingTexture{normal_map, "normalmap", MaterialTexture::NormalMap, true});
   if (r.get("displacement")) {
@@ -193,6 +200,14 @@ void read_physical_keys(ImportContext& ctx, ObjectReader& r, NativeMaterial& nm)
       r.fail();
     }
   }
+}
+
+// "emission": an rgb, or a textured rgb ({"texture": reference, "scale": rgb}:
+// the texture's colour times the scale, e.g. the emission strength).
+void read_emission(ImportContext& ctx, ObjectReader& r, NativeMaterial& nm) {
+  TexturedParam<RGB> e{nm.desc.emission, {}};
+  read_textured(ctx, r, "emission", e, nm, MaterialTexture::Emission, false);
+  nm.desc.emission = e.value;
 }
 
 NativeMaterial read_material(ImportContext& ctx, const JsonMember& member) {
@@ -222,7 +237,7 @@ NativeMaterial read_material(ImportContext& ctx, const JsonMember& member) {
   r.read("reflectivity", m.reflectivity);
   r.read("refractive", m.refractive);
   r.read("ior", m.ior);
-  r.read("emission", m.emission);
+  read_emission(ctx, r, out);
   r.read("two_sided", m.two_sided);
   if (r.get("light_samples") && r.read("light_samples", m.light_samples) && m.light_samples.value < 1) {
     ctx.diag().error(m.light_samples.where, "'light_samples' must be at least 1");
@@ -231,6 +246,8 @@ NativeMaterial read_material(ImportContext& ctx, const JsonMember& member) {
   if (const JsonValue* texture = r.get("texture"))
     out.textures.push_back(PendingTexture{texture, "texture", MaterialTexture::Diffuse, false});
   out.alpha = r.get("alpha");  // resolved with the textures
+  SourceLocation mode_at;
+  if (read_choice(r, "alpha_mode", {"cutout", "blend"}, &mode_at) == 1) m.alpha_blend = Sourced<bool>(true, mode_at);
   read_physical_keys(ctx, r, out);
   r.finish();
   out.ok = r.ok();
@@ -244,6 +261,8 @@ std::optional<int>& texture_slot(MaterialDesc& m, MaterialTexture slot) {
     case MaterialTexture::Eta: return m.eta.texture;
     case MaterialTexture::K: return m.k.texture;
     case MaterialTexture::Reflectance: return m.reflectance.texture;
+    case MaterialTexture::Metallic: return m.metallic.texture;
+    case MaterialTexture::Emission: return m.emission_texture;
     case MaterialTexture::NormalMap: return m.normal_map;
     case MaterialTexture::Displacement: return m.displacement->texture;
     case MaterialTexture::Diffuse: break;
@@ -253,7 +272,7 @@ std::optional<int>& texture_slot(MaterialDesc& m, MaterialTexture slot) {
 
 // "alpha": a number from 0 to 1, or a texture reference. Cutouts are binary
 // (present where alpha >= 0.5), which a constant strictly between 0 and 1 is
-// warned about.
+// warned about, unless "alpha_mode" is "blend" (an opacity).
 void resolve_alpha(ImportContext& ctx, NativeTextures& textures, const JsonValue& v, MaterialDesc& m) {
   if (!v.is_number()) {
     m.alpha_texture = resolve_texture_ref(ctx, textures, v, "alpha");
@@ -263,7 +282,7 @@ void resolve_alpha(ImportContext& ctx, NativeTextures& textures, const JsonValue
   const float a = m.alpha.value;
   if (!(a >= 0.0f && a <= 1.0f)) {
     ctx.diag().error(m.alpha.where, "'alpha' must be from 0 to 1");
-  } else if (a > 0.0f && a < 1.0f) {
+  } else if (a > 0.0f && a < 1.0f && !m.alpha_blend.value) {
     ctx.diag().warning(m.alpha.where, std::string("alpha cutouts are binary (the surface is there where alpha >= 0.5): ") +
                                           (a >= 0.5f ? "this makes it fully opaque" : "this makes it invisible"));
   }

@@ -12,7 +12,9 @@
 namespace pt {
 
 // Which of a material's parameters a texture reference is for.
-enum class MaterialTexture { Diffuse, URoughness, VRoughness, Eta, K, Reflectance, NormalMap, Displacement };
+enum class MaterialTexture {
+  Diffuse, URoughness, VRoughness, Eta, K, Reflectance, Metallic, Emission, NormalMap, Displacement
+};
 
 // A texture reference (native_textures.h: a name, an image file or an inline
 // texture) read with its material, resolved once a shape uses the material.

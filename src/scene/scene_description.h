@@ -173,9 +173,10 @@ struct RenderDesc {
 // normalised Blinn-Phong BRDF with a mirror lobe, or a dielectric when
 // `refractive`. Lambert, Mirror and Glass are the physical materials of the
 // path integrator; Conductor, Dielectric and CoatedDiffuse its microfacet
-// materials (GGX, docs/path-tracing.md). Each type reads only some of the keys
-// (docs/scene-format.md).
-enum class MaterialType { Phong, Lambert, Mirror, Glass, Conductor, Dielectric, CoatedDiffuse };
+// materials (GGX, docs/path-tracing.md); MetallicRoughness glTF's blend of a
+// Schlick conductor and a coated diffuse by `metallic`. Each type reads only
+// some of the keys (docs/scene-format.md).
+enum class MaterialType { Phong, Lambert, Mirror, Glass, Conductor, Dielectric, CoatedDiffuse, MetallicRoughness };
 
 // A material parameter that may be textured (docs/scene-format.md, "Textured
 // parameters"): the constant `value`, times the texture's value where
@@ -206,6 +207,10 @@ struct MaterialDesc {
   Sourced<float> ior{1.0f};             // glass, dielectric, the coating of coateddiffuse
   std::optional<Sourced<float>> ka;     // weight of the classic ambient term; absent: kd (the path equivalent's)
   Sourced<RGB> emission{RGB(0, 0, 0)};  // emitted radiance, on the front (ng) side only unless two_sided
+  std::optional<int> emission_texture;  // index into SceneDescription::textures; multiplies `emission`
+  // Glass and dielectric: the colour transmitted light is multiplied by at
+  // each crossing of the surface (MTL's Tf); white: clear.
+  Sourced<RGB> transmittance{RGB(1, 1, 1)};
   Sourced<bool> two_sided{false};       // emission from both sides
   // The classic (whitted) integrator's samples of this emitter per shading
   // point (a Path of Light area light's "samples"); 0: its default (16).
@@ -219,6 +224,10 @@ struct MaterialDesc {
   // The alpha from which the surface is there: 0.5 in the native format; the
   // importers set it (glTF's alphaCutoff, MTL's d times map_d; docs/importing.md).
   float alpha_cutoff = 0.5f;
+  // "alpha_mode": "blend": alpha is an opacity instead: a ray meets the surface
+  // with probability alpha (the constant times the texture's alpha, cutoff not
+  // used) and passes through otherwise (glTF's BLEND, MTL's partial dissolve).
+  Sourced<bool> alpha_blend{false};
 
   // Microfacet materials: GGX roughness along the shading frame's two tangent
   // axes ("roughness" sets both; "uroughness", "vroughness" each), in [0, 1];
@@ -230,10 +239,13 @@ struct MaterialDesc {
   // values when "metal" names one; copper by default, as pbrt-v4), or, when
   // `schlick`, Schlick's Fresnel term with normal-incidence reflectance
   // `reflectance`. CoatedDiffuse: `reflectance` is the diffuse base's albedo.
+  // MetallicRoughness: `reflectance` is glTF's base colour (the metal's F0 and
+  // the coated diffuse's albedo), `metallic` the blend in [0, 1].
   TexturedParam<RGB> eta{Sourced<RGB>(RGB(0.3512f, 0.5855f, 1.2923f)), {}};
   TexturedParam<RGB> k{Sourced<RGB>(RGB(4.3225f, 2.6787f, 2.1364f)), {}};
   TexturedParam<RGB> reflectance{Sourced<RGB>(RGB(0.5f)), {}};
   bool schlick = false;
+  TexturedParam<float> metallic{Sourced<float>(0.0f), {}};
   // Any type: a tangent-space normal map and a bump map (displacement along
   // the normal, in scene units; docs/path-tracing.md, "Normal and bump maps").
   std::optional<int> normal_map;
@@ -244,7 +256,7 @@ struct MaterialDesc {
   template <class F>
   void for_each_texture(F&& f) const {
     for (const std::optional<int>& t : {texture, uroughness.texture, vroughness.texture, eta.texture, k.texture,
-                                        reflectance.texture, normal_map})
+                                        reflectance.texture, metallic.texture, normal_map, emission_texture})
       if (t) f(*t);
     if (displacement && displacement->texture) f(*displacement->texture);
     if (alpha_texture) f(*alpha_texture);

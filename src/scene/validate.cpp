@@ -93,9 +93,14 @@ class Validator {
     colour(m.diffuse, "diffuse colour");
     colour(m.specular, "specular colour");
     colour(m.emission, "emission");
+    if (m.type == MaterialType::Glass || m.type == MaterialType::Dielectric) {
+      const RGB t = m.transmittance.value;
+      if (!(t.r >= 0.0f && t.g >= 0.0f && t.b >= 0.0f && t.r <= 1.0f && t.g <= 1.0f && t.b <= 1.0f))
+        diag_.error(m.transmittance.where, "transmittance must be between 0 and 1 in every channel, got " + str(t));
+    }
     radiometric(m.emission, "emission of material '" + m.name + "'");
     if (m.type == MaterialType::Conductor || m.type == MaterialType::Dielectric ||
-        m.type == MaterialType::CoatedDiffuse)
+        m.type == MaterialType::CoatedDiffuse || m.type == MaterialType::MetallicRoughness)
       microfacet(m);
   }
 
@@ -111,7 +116,9 @@ class Validator {
         diag_.error(m.eta.value.where, "a conductor's eta must be > 0 in every channel, got " + str(eta));
       colour(m.k.value, "a conductor's k");
     }
-    if (m.type == MaterialType::CoatedDiffuse || m.schlick) {
+    if (m.type == MaterialType::MetallicRoughness)
+      unit_interval(m.metallic.value, m.metallic.texture ? "metallic scale" : "metallic");
+    if (m.type == MaterialType::CoatedDiffuse || m.type == MaterialType::MetallicRoughness || m.schlick) {
       const RGB r = m.reflectance.value;
       if (!(r.r >= 0.0f && r.g >= 0.0f && r.b >= 0.0f && r.r <= 1.0f && r.g <= 1.0f && r.b <= 1.0f))
         diag_.error(m.reflectance.value.where, "reflectance must be between 0 and 1 in every channel, got " + str(r));

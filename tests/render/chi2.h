@@ -35,7 +35,7 @@ namespace pt::test {
 
 // The number of chi-square tests in the suite (tests/core/test_warps.cpp and
 // tests/render/test_chi2_*.cpp), for the Sidak correction.
-inline constexpr int kChi2TestCount = 74;  // 11 warps, 21 + 21 microfacet BSDF, 16 light, 2 filter, 3 light choice tests
+inline constexpr int kChi2TestCount = 79;  // 11 warps, 21 + 26 microfacet BSDF, 16 light, 2 filter, 3 light choice tests
 inline double chi2_significance(double alpha = 0.01, int tests = kChi2TestCount) {
   return 1.0 - std::pow(1.0 - alpha, 1.0 / tests);
 }

@@ -1,4 +1,5 @@
-// The microfacet BSDFs (conductor, rough dielectric, coated diffuse):
+// The microfacet BSDFs (conductor, rough dielectric, coated diffuse, glTF's
+// metallic-roughness blend of the first and the last):
 // sampling against the density (chi-square, chi2.h) over roughness 0.05 to 1
 // and several angles, sample weights against f cos / pdf, reciprocity,
 // energy (albedo <= 1, furnace), the GGX distribution's own normalisation,
@@ -53,6 +54,15 @@ const CoatingTable& coating_15() {
 Material coated(float ax, float ay, RGB albedo = RGB(0.6f, 0.4f, 0.2f)) {
   Material m = microfacet(MaterialType::CoatedDiffuse, ax, ay);
   m.reflectance.value = albedo;
+  m.coating = &coating_15();
+  return m;
+}
+
+// glTF's metallic-roughness: base colour `base`, the blend `metallic`.
+Material metallic_roughness(float alpha, float metallic, RGB base = RGB(0.9f, 0.6f, 0.3f)) {
+  Material m = microfacet(MaterialType::MetallicRoughness, alpha, alpha);
+  m.reflectance.value = base;
+  m.metallic.value = metallic;
   m.coating = &coating_15();
   return m;
 }
@@ -144,6 +154,20 @@ INSTANTIATE_TEST_SUITE_P(RoughnessAndAngles, CoatedChi2,
                          ::testing::Values(Chi2Case{0.05f, 30.0f}, Chi2Case{0.3f, 30.0f}, Chi2Case{0.3f, 75.0f},
                                            Chi2Case{1.0f, 60.0f}, Chi2Case{0.0f, 45.0f}));
 
+class MetallicRoughnessChi2 : public ::testing::TestWithParam<Chi2Case> {};
+
+TEST_P(MetallicRoughnessChi2, SamplesMatchPdf) {
+  const Chi2Case c = GetParam();
+  const Vec3f wo = direction_at(c.theta, 30.0f);
+  const auto r = bsdf_chi2(metallic_roughness(c.alpha, 0.5f), wo, mirror_of(wo), c.alpha > 0.0f && c.alpha < 0.1f);
+  EXPECT_TRUE(r.passed) << r.message;
+}
+
+// Alpha 0: both reflections are delta lobes (not binned), the base's diffuse lobe is.
+INSTANTIATE_TEST_SUITE_P(RoughnessAndAngles, MetallicRoughnessChi2,
+                         ::testing::Values(Chi2Case{0.05f, 30.0f}, Chi2Case{0.3f, 30.0f}, Chi2Case{0.3f, 75.0f},
+                                           Chi2Case{1.0f, 60.0f}, Chi2Case{0.0f, 45.0f}));
+
 // ---------------------------------------------------------------- weights and reciprocity
 // Every sample: pdf() gives its density and its weight is f |cos| / pdf
 // (times the refraction scale for transmission, which f includes).
@@ -176,7 +200,13 @@ TEST(Microfacet, SampleWeightIsFCosOverPdf) {
   expect_consistent_samples(conductor(0.05f, 0.7f), "anisotropic conductor");
   expect_consistent_samples(microfacet(MaterialType::Dielectric, 0.3f, 0.3f), "dielectric");
   expect_consistent_samples(microfacet(MaterialType::Dielectric, 0.8f, 0.2f), "anisotropic dielectric");
+  Material tinted = microfacet(MaterialType::Dielectric, 0.3f, 0.3f);
+  tinted.transmittance = RGB(0.2f, 0.6f, 1.0f);
+  expect_consistent_samples(tinted, "tinted dielectric");
   expect_consistent_samples(coated(0.2f, 0.2f), "coated diffuse");
+  expect_consistent_samples(metallic_roughness(0.2f, 0.5f), "metallic-roughness");
+  expect_consistent_samples(metallic_roughness(0.05f, 0.1f), "metallic-roughness, sharp, mostly dielectric");
+  expect_consistent_samples(metallic_roughness(0.6f, 0.9f), "metallic-roughness, rough, mostly metal");
 }
 
 // f(wo, wi) = f(wi, wo) for reflection; for refraction the radiance BTDF obeys
@@ -186,7 +216,7 @@ TEST(Microfacet, Reciprocity) {
   const SurfaceGeometry geo = flat_surface();
   Rng rng(31);
   const Material materials[] = {conductor(0.2f, 0.6f), microfacet(MaterialType::Dielectric, 0.3f, 0.5f),
-                                coated(0.4f, 0.4f)};
+                                coated(0.4f, 0.4f), metallic_roughness(0.4f, 0.5f)};
   for (const Material& m : materials) {
     int checked = 0;
     for (int i = 0; i < 4000; ++i) {
@@ -230,12 +260,27 @@ TEST(Microfacet, AlbedoNeverExceedsOne) {
     for (const float theta : {0.0f, 45.0f, 75.0f, 89.0f}) {
       const Vec3f wo = direction_at(theta);
       for (const Material& m : {white_conductor(alpha, alpha), microfacet(MaterialType::Dielectric, alpha, alpha),
-                                coated(alpha, alpha, RGB(1.0f))}) {
+                                coated(alpha, alpha, RGB(1.0f)), metallic_roughness(alpha, 0.5f, RGB(1.0f))}) {
         double sd = 0.0;
         const double a = albedo(m, wo, 20000, &sd);
         EXPECT_LE(a, 1.0 + 4.0 * sd + 2e-3) << static_cast<int>(m.type) << " alpha " << alpha << " theta " << theta;
       }
     }
+  }
+}
+
+// A transmittance (MTL's Tf) scales the transmitted energy, not the reflected.
+TEST(Microfacet, TransmittanceTintsOnlyTheTransmission) {
+  Material clear = microfacet(MaterialType::Dielectric, 0.3f, 0.3f), tinted = clear;
+  tinted.transmittance = RGB(0.5f, 1.0f, 1.0f);
+  const SurfaceGeometry geo = flat_surface();
+  const Vec3f wo = direction_at(30.0f);
+  Rng rng(13);
+  for (int i = 0; i < 500; ++i) {
+    const Vec3f wi = sample_uniform_sphere(Vec2f(rng.next_float(), rng.next_float()));
+    const RGB a = Bsdf(clear, geo, wo).f(wo, wi), b = Bsdf(tinted, geo, wo).f(wo, wi);
+    ASSERT_FLOAT_EQ(b.g, a.g);
+    ASSERT_FLOAT_EQ(b.r, wi.z < 0.0f ? 0.5f * a.r : a.r);
   }
 }
 
@@ -258,6 +303,79 @@ TEST(Microfacet, SmoothishSurfacesKeepAlmostAllEnergy) {
   EXPECT_GT(albedo(microfacet(MaterialType::Dielectric, 0.05f, 0.05f), direction_at(30.0f), 20000, &sd), 0.99);
   // A white base under a smooth coating keeps everything (E + T = 1).
   EXPECT_NEAR(albedo(coated(0.0f, 0.0f, RGB(1.0f)), direction_at(30.0f), 40000, &sd), 1.0, 4.0 * sd + 2e-3);
+  // The white furnace of metallic-roughness: a white base (F0 1 for the metal) keeps everything, smooth, at any blend.
+  for (const float metallic : {0.25f, 0.5f, 0.9f}) {
+    const double a = albedo(metallic_roughness(0.0f, metallic, RGB(1.0f)), direction_at(30.0f), 40000, &sd);
+    EXPECT_NEAR(a, 1.0, 4.0 * sd + 2e-3) << metallic;
+  }
+}
+
+bool same_sample(const BsdfSample& a, const BsdfSample& b);
+
+// ---------------------------------------------------------------- metallic-roughness
+// glTF's mix(dielectric, metal, metallic): f and the albedo are the blend of
+// the coated diffuse's and the Schlick conductor's, at every pair of directions.
+TEST(MetallicRoughness, IsTheBlendOfTheCoatedDiffuseAndTheConductor) {
+  const SurfaceGeometry geo = flat_surface();
+  const RGB base(0.9f, 0.6f, 0.3f);
+  Material metal = white_conductor(0.3f, 0.3f);
+  metal.reflectance.value = base;
+  const Material dielectric = coated(0.3f, 0.3f, base);
+  Rng rng(41);
+  int checked = 0;
+  for (const float metallic : {0.2f, 0.5f, 0.8f}) {
+    const Material m = metallic_roughness(0.3f, metallic, base);
+    for (int i = 0; i < 2000; ++i) {
+      const Vec3f wo = sample_uniform_hemisphere(Vec2f(rng.next_float(), rng.next_float()));
+      const Vec3f wi = sample_uniform_hemisphere(Vec2f(rng.next_float(), rng.next_float()));
+      const RGB f = Bsdf(m, geo, wo).f(wo, wi);
+      const RGB expected = Bsdf(metal, geo, wo).f(wo, wi) * metallic + Bsdf(dielectric, geo, wo).f(wo, wi) * (1.0f - metallic);
+      for (int c = 0; c < 3; ++c) ASSERT_NEAR(f[c], expected[c], 1e-5f * (1.0f + expected[c])) << metallic;
+      const RGB fd = Bsdf(m, geo, wo).f_diffuse(wo, wi);
+      ASSERT_NEAR(fd.g, Bsdf(dielectric, geo, wo).f_diffuse(wo, wi).g * (1.0f - metallic), 1e-6f);
+      checked += f.g > 0.0f;
+    }
+    // The albedo is the blend of the albedos (each estimated by its own sampling).
+    for (const float theta : {20.0f, 70.0f}) {
+      double sd_m = 0, sd_a = 0, sd_b = 0;
+      const Vec3f wo = direction_at(theta);
+      const double a = albedo(m, wo, 40000, &sd_m);
+      const double expected = metallic * albedo(metal, wo, 40000, &sd_a) + (1.0f - metallic) * albedo(dielectric, wo, 40000, &sd_b);
+      EXPECT_NEAR(a, expected, 4.0 * std::sqrt(sd_m * sd_m + sd_a * sd_a + sd_b * sd_b)) << metallic << " " << theta;
+    }
+  }
+  EXPECT_GT(checked, 5000);
+}
+
+// At metallic 0 and 1 the material is the coated diffuse and the Schlick
+// conductor themselves: the same kind, the same samples bit for bit.
+TEST(MetallicRoughness, MetallicZeroAndOneAreExactlyTheCoatedDiffuseAndTheConductor) {
+  const SurfaceGeometry geo = flat_surface();
+  const RGB base(0.7f, 0.5f, 0.2f);
+  for (const float alpha : {0.0f, 0.3f}) {
+    Material metal = white_conductor(alpha, alpha);
+    metal.reflectance.value = base;
+    const Material pairs[2][2] = {{metallic_roughness(alpha, 0.0f, base), coated(alpha, alpha, base)},
+                                  {metallic_roughness(alpha, 1.0f, base), metal}};
+    Rng rng(9);
+    for (const auto& pair : pairs) {
+      for (int i = 0; i < 1000; ++i) {
+        const Vec3f wo = sample_uniform_hemisphere(Vec2f(rng.next_float(), rng.next_float()));
+        const Vec3f wi = sample_uniform_hemisphere(Vec2f(rng.next_float(), rng.next_float()));
+        const float ul = rng.next_float();
+        const Vec2f u(rng.next_float(), rng.next_float());
+        const Bsdf a(pair[0], geo, wo), b(pair[1], geo, wo);
+        ASSERT_EQ(a.needs_lobe_choice(), b.needs_lobe_choice());
+        ASSERT_EQ(a.delta_only(), b.delta_only());
+        ASSERT_EQ(a.f(wo, wi), b.f(wo, wi));
+        ASSERT_EQ(a.pdf(wo, wi), b.pdf(wo, wi));
+        BsdfSample sa, sb;
+        ASSERT_EQ(a.sample(wo, ul, u, sa), b.sample(wo, ul, u, sb));
+        ASSERT_TRUE(same_sample(sa, sb));
+      }
+    }
+    EXPECT_EQ(metallic_roughness(alpha, 1.0f, base).albedo_at({}), base);
+  }
 }
 
 TEST(Microfacet, TheVisibleNormalDensityIsNormalised) {

@@ -1,6 +1,9 @@
 // Alpha cutouts (docs/textures.md): camera, bounce and shadow rays pass
 // through the holes, on both backends, and the two backends agree hit for
 // hit on random rays through a scene of cut-out meshes, spheres and instances.
+// Blended surfaces (stochastic opacity: glTF's BLEND, MTL's partial dissolve)
+// stop a fraction alpha of the camera, bounce and shadow rays, independently
+// per surface, on both backends.
 #include <cmath>
 #include <memory>
 #include <random>
@@ -9,6 +12,7 @@
 
 #include "core/parallel.h"
 #include "render/integrators/builtin.h"
+#include "path_test_util.h"
 #include "test_scenes.h"
 
 namespace pt {
@@ -154,6 +158,107 @@ TEST_P(Cutouts, AnInstanceMaterialCutsOut) {
   EXPECT_EQ(isect.hit.instance, 0u);
   EXPECT_FALSE(scene->intersect(Ray{{1, 0, 5}, {0, 0, -1}}, isect));
   EXPECT_FALSE(scene->occluded(Ray{{1, 0, 5}, {0, 0, -1}, 0.0f, 10.0f}));
+}
+
+// ---------------------------------------------------------------- blended (stochastic) opacity
+MaterialDesc blended(float alpha, RGB colour = RGB(0.5f)) {
+  MaterialDesc m = test::diffuse_material(colour);
+  m.alpha = alpha;
+  m.alpha_blend = true;
+  return m;
+}
+
+// The share of `n` rays a test stops, within 4 standard deviations of p.
+void expect_fraction(int stopped, int n, double p, const char* what) {
+  const double sigma = std::sqrt(p * (1.0 - p) / n);
+  EXPECT_NEAR(static_cast<double>(stopped) / n, p, 4.0 * sigma + 1e-9) << what;
+}
+
+// A 0.25-alpha square over the floor: a quarter of the camera rays stop on it
+// and a quarter of the shadow rays from the floor; two such squares stop
+// 1 - 0.75^2 (independent surfaces), a 0.5-alpha sphere on the way in and on
+// the way out independently (its two hits are two surfaces), and with an
+// alpha texture the opacity is alpha times the texel (holes let everything through).
+TEST_P(Cutouts, BlendedSurfacesStopAFractionAlphaOfEveryKindOfRay) {
+  SceneDescription d = test::empty_scene(8, 8, {0, 0, 5}, {0, 0, 0}, {0, 1, 0});
+  const int floor = test::add_material(d, test::diffuse_material(RGB(0.8f)));
+  test::add_z_square(d, 0.0f, 4.0f, floor);                          // object 0
+  test::add_z_square(d, 1.0f, 1.0f, test::add_material(d, blended(0.25f)));  // object 1
+  MaterialDesc textured = blended(0.5f);
+  textured.alpha_texture = add_checker_alpha(d);
+  SceneDescription two = d, tex = d, ball = d;
+  test::add_z_square(two, 2.0f, 1.0f, test::add_material(two, blended(0.25f)));
+  tex.shapes.pop_back();
+  test::add_z_square(tex, 1.0f, 1.0f, test::add_material(tex, textured));
+  ball.shapes.pop_back();
+  test::add_sphere(ball, {0, 0, 2}, 0.5f, test::add_material(ball, blended(0.5f)));
+  const auto one_scene = build(d), two_scene = build(two), tex_scene = build(tex), ball_scene = build(ball);
+  ASSERT_TRUE(one_scene && two_scene && tex_scene && ball_scene);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-0.45f, 0.45f);
+  const int n = 20000;
+  int camera = 0, shadow = 0, both = 0, ball_front = 0, ball_through = 0, tex_opaque = 0, tex_hole = 0;
+  for (int i = 0; i < n; ++i) {
+    const Vec3f o(u(rng), u(rng), 5.0f), target(u(rng), u(rng), 0.0f);
+    const Ray down{o, normalize(target - o)};
+    Intersection isect;
+    ASSERT_TRUE(one_scene->intersect(down, isect));
+    camera += isect.hit.shape == 1u;
+    const Ray up{target, normalize(Vec3f(u(rng), u(rng), 3.0f) - target), 1e-3f, 2.5f};
+    shadow += one_scene->occluded(up);
+    ASSERT_TRUE(two_scene->intersect(down, isect));
+    both += isect.hit.shape != 0u;
+    ASSERT_TRUE(ball_scene->intersect(Ray{Vec3f(o.x * 0.6f, o.y * 0.6f, o.z), {0, 0, -1}}, isect));  // all meet the ball
+    ball_front += isect.hit.shape == 1u && isect.hit.t < 3.0f;
+    ball_through += isect.hit.shape == 0u;
+    // The checker's opaque square around (0.5, -0.5) and its hole around (-0.5, -0.5).
+    ASSERT_TRUE(tex_scene->intersect(Ray{kOpaque + Vec3f(u(rng) * 0.5f, u(rng) * 0.5f, 5.0f), {0, 0, -1}}, isect));
+    tex_opaque += isect.hit.shape == 1u;
+    ASSERT_TRUE(tex_scene->intersect(Ray{kHole + Vec3f(u(rng) * 0.5f, u(rng) * 0.5f, 5.0f), {0, 0, -1}}, isect));
+    tex_hole += isect.hit.shape == 1u;
+  }
+  expect_fraction(camera, n, 0.25, "camera rays stopped by a 0.25 square");
+  expect_fraction(shadow, n, 0.25, "shadow rays stopped by a 0.25 square");
+  expect_fraction(both, n, 1.0 - 0.75 * 0.75, "rays stopped by one of two 0.25 squares");
+  expect_fraction(ball_front, n, 0.5, "rays stopped by a 0.5 sphere's near side");
+  expect_fraction(ball_through, n, 0.25, "rays through both sides of a 0.5 sphere");
+  expect_fraction(tex_opaque, n, 0.5, "rays stopped by the opaque texels (alpha 0.5 x 1)");
+  EXPECT_EQ(tex_hole, 0) << "rays stopped by the holes (alpha 0.5 x 0)";
+}
+
+// What a user sees: a black 0.25-alpha plane in front of an emitter of
+// radiance 1 lets 75% of it through, to the camera (path and whitted) and to
+// a floor lit through it (light sampling and BSDF sampling alike: MIS).
+TEST_P(Cutouts, ABlendedPlaneInFrontOfAnEmitterTransmitsOneMinusAlpha) {
+  SceneDescription d = test::empty_scene(16, 16, {0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 20.0f);
+  test::add_z_square(d, 0.0f, 3.0f, test::add_material(d, test::emitter_material(RGB(1.0f))));
+  test::add_z_square(d, 1.0f, 3.0f, test::add_material(d, blended(0.25f, RGB(0.0f))));
+  BuildOptions options;
+  options.accel = GetParam();
+  for (const char* integrator : {"path", "whitted"}) {
+    const Image img = test::render_with(d, integrator, test::path_settings(64, 4, 3), 2, options);
+    const test::Stats s = test::image_stats(img);
+    EXPECT_NEAR(s.mean, 0.75, 0.015) << integrator;  // 16 x 16 x 64 binary samples: sigma 0.0034
+  }
+  // A white floor under an emitter (facing down, 4 x 4 at height 2) seen through the same plane at height 1:
+  // lit through it (x 0.75) and seen through it from above (x 0.75 again): 0.5625 of the unblocked image.
+  SceneDescription lit = test::empty_scene(8, 8, {0, 0, 0.9f}, {0, 0, 0}, {0, 1, 0}, 30.0f);
+  test::add_z_square(lit, 0.0f, 3.0f, test::add_material(lit, test::diffuse_material(RGB(1.0f))));
+  Quad lamp;
+  lamp.v[0] = Vec3f(-2, -2, 2);
+  lamp.v[1] = Vec3f(-2, 2, 2);
+  lamp.v[2] = Vec3f(2, 2, 2);
+  lamp.v[3] = Vec3f(2, -2, 2);
+  test::add_shape(lit, lamp, test::add_material(lit, test::emitter_material(RGB(1.0f))));
+  SceneDescription open = lit;
+  test::add_z_square(lit, 1.0f, 3.0f, test::add_material(lit, blended(0.25f, RGB(0.0f))));
+  for (const LightStrategy strategy : {LightStrategy::Mis, LightStrategy::LightOnly, LightStrategy::BsdfOnly}) {
+    IntegratorSettings settings = test::path_settings(512, 1, 5);  // direct light only
+    settings.light_strategy = strategy;
+    const double through = test::image_stats(test::render_with(lit, "path", settings, 2, options)).mean;
+    const double clear = test::image_stats(test::render_with(open, "path", settings, 2, options)).mean;
+    EXPECT_NEAR(through / clear, 0.75, 0.02) << static_cast<int>(strategy);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, Cutouts, ::testing::Values(AccelKind::Embree, AccelKind::Bvh),

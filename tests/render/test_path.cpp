@@ -2,6 +2,7 @@
 // pbrt's analytic sphere, glass of index 1, total internal reflection, the
 // units of delta lights, one-sided emission. Tolerances are stated per test,
 // derived from the noise measured at the sample counts used.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -226,6 +227,114 @@ TEST(PathLights, EmissionIsOneSidedUnlessTwoSided) {
     const Image img = test::render_path(d, test::path_settings(4, 0));
     EXPECT_FLOAT_EQ(img.at(2, 2).r, 2.0f);                     // the front of the left quad
     EXPECT_FLOAT_EQ(img.at(5, 2).r, two_sided ? 2.0f : 0.0f);  // the back of the right one
+  }
+}
+
+// ---------------------------------------------------------------- textured emission
+// A white floor lit from z = 1 by a 1 x 1 light facing down whose emission
+// texture is white on one half (u < 0.5) and black on the other, seen from
+// below the light by a camera looking straight down: by symmetry the image's
+// mean is half the untextured light's, whichever way the light is sampled.
+// The light is a quad (sampled as a parallelogram), an 8-triangle mesh
+// (triangles picked by area) or that mesh squeezed by an instance's
+// non-uniform scale (triangles picked by world area).
+SceneDescription floor_under_textured_light(int kind, bool textured) {
+  SceneDescription d = test::empty_scene(8, 8, {0, 0, 0.9f}, {0, 0, 0}, {0, 1, 0}, 60);
+  test::add_z_square(d, 0.0f, 3.0f, add_material(d, test::diffuse_material(RGB(1.0f))));
+  TextureDesc halves;
+  halves.type = TextureType::Checker;
+  halves.color0 = RGB(1.0f);
+  halves.color1 = RGB(0.0f);
+  halves.scale = Vec3f(2, 1, 1);  // floor(2u) + floor(v): u < 0.5 is color0
+  d.textures.push_back(halves);
+  MaterialDesc e = test::emitter_material(RGB(1.0f));
+  if (textured) e.emission_texture = 0;
+  const int light = add_material(d, e);
+  if (kind == 0) {
+    Quad q;  // u along +y, v along +x; (v1 - v0) x (v3 - v0) = -z
+    q.v[0] = Vec3f(-0.5f, -0.5f, 1);
+    q.v[1] = Vec3f(-0.5f, 0.5f, 1);
+    q.v[2] = Vec3f(0.5f, 0.5f, 1);
+    q.v[3] = Vec3f(0.5f, -0.5f, 1);
+    add_shape(d, q, light);
+    return d;
+  }
+  const float sx = kind == 2 ? 0.5f : 1.0f;  // squeezed in x, stretched back by the instance
+  TriangleMesh m;
+  for (int j = 0; j <= 2; ++j)
+    for (int i = 0; i <= 2; ++i) {
+      const float x = -0.5f + 0.5f * static_cast<float>(i), y = -0.5f + 0.5f * static_cast<float>(j);
+      m.positions.emplace_back(x * sx, y, 1.0f);
+      m.uvs.emplace_back(y + 0.5f, x + 0.5f);  // as the quad's
+    }
+  for (uint32_t j = 0; j < 2; ++j)
+    for (uint32_t i = 0; i < 2; ++i) {
+      const uint32_t a = j * 3 + i, b = a + 1, c = a + 4, dd = a + 3;
+      m.indices.insert(m.indices.end(), {a, dd, c, a, c, b});  // clockwise from +z: facing down
+    }
+  if (kind == 1) {
+    add_shape(d, m, light);
+    return d;
+  }
+  ObjectDesc o;
+  o.name = "lamp";
+  ShapeDesc s;
+  s.geometry = m;
+  s.material = light;
+  o.shapes.push_back(s);
+  d.objects.push_back(o);
+  InstanceDesc inst;
+  inst.transform = Sourced<Transform>(Transform(Affine::scale(2.0f, 1.0f, 1.0f)));
+  d.instances.push_back(inst);
+  return d;
+}
+
+TEST(PathLights, TexturedEmittersLightWithTheirTextureForEveryStrategy) {
+  for (int kind = 0; kind < 3; ++kind) {
+    const SceneDescription textured = floor_under_textured_light(kind, true);
+    const SceneDescription plain = floor_under_textured_light(kind, false);
+    for (const LightStrategy strategy : {LightStrategy::Mis, LightStrategy::LightOnly, LightStrategy::BsdfOnly}) {
+      IntegratorSettings settings = test::path_settings(256, 1, 7);  // direct light only
+      settings.light_strategy = strategy;
+      const double half = test::image_stats(test::render_path(textured, settings)).mean;
+      const double full = test::image_stats(test::render_path(plain, settings)).mean;
+      EXPECT_GT(full, 0.1) << kind;
+      EXPECT_NEAR(half / full, 0.5, 0.03) << "light " << kind << ", strategy " << static_cast<int>(strategy);
+    }
+  }
+  // Seen directly (from below, the light filling the view): half of it white, half black.
+  SceneDescription seen = floor_under_textured_light(0, true);
+  seen.camera.position = Vec3f(0, 0, 0.2f);
+  seen.camera.look_at = Vec3f(0, 0, 1);
+  seen.camera.fov_y_deg = 40.0f;
+  const Image img = test::render_path(seen, test::path_settings(16, 0));
+  float lo = 1e9f, hi = -1e9f;
+  for (const RGB& p : img.pixels) {
+    lo = std::min(lo, p.r);
+    hi = std::max(hi, p.r);
+  }
+  EXPECT_NEAR(test::image_stats(img).mean, 0.5, 0.05);
+  EXPECT_NEAR(lo, 0.0f, 1e-3f);
+  EXPECT_NEAR(hi, 1.0f, 1e-3f);
+}
+
+// Glass's transmittance (MTL's Tf) tints each crossing: a glass square of
+// index 1 (no reflection) in front of a white emitter shows the tint.
+TEST(PathGlass, TransmittanceTintsTheLightThatCrosses) {
+  SceneDescription d = test::empty_scene(4, 4, {0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 20);
+  test::add_z_square(d, 0.0f, 3.0f, add_material(d, test::emitter_material(RGB(1.0f))));
+  MaterialDesc glass;
+  glass.type = MaterialType::Glass;
+  glass.ior = 1.0f;
+  glass.transmittance = RGB(0.5f, 0.25f, 1.0f);
+  test::add_z_square(d, 1.0f, 3.0f, add_material(d, glass));
+  for (const char* integrator : {"path", "whitted"}) {
+    const Image img = test::render_with(d, integrator, test::path_settings(4, 4));
+    for (const RGB& p : img.pixels) {
+      ASSERT_NEAR(p.r, 0.5f, 1e-5f) << integrator;
+      ASSERT_NEAR(p.g, 0.25f, 1e-5f) << integrator;
+      ASSERT_NEAR(p.b, 1.0f, 1e-5f) << integrator;
+    }
   }
 }
 

@@ -134,7 +134,8 @@ TEST(PathAgreement, LightSamplingBsdfSamplingAndMisConvergeToTheSameImage) {
 }
 
 // The MIS scene with its glossy sphere an anisotropic rough conductor, its
-// diffuse sphere a rough coated diffuse, and a rough dielectric sphere in front.
+// diffuse sphere a rough coated diffuse, a rough dielectric sphere in front
+// and a metallic-roughness sphere (metallic 0.5) beside it.
 SceneDescription microfacet_scene() {
   SceneDescription d = mis_scene();
   d.materials[2] = microfacet_desc(MaterialType::Conductor, 0.15f, 0.4f);
@@ -142,6 +143,10 @@ SceneDescription microfacet_scene() {
   plastic.reflectance.value = RGB(0.3f, 0.6f, 0.4f);
   d.materials[3] = plastic;
   add_sphere(d, {0.15f, 0.45f, 0.9f}, 0.3f, add_material(d, microfacet_desc(MaterialType::Dielectric, 0.2f, 0.2f)));
+  MaterialDesc gltf = microfacet_desc(MaterialType::MetallicRoughness, 0.25f, 0.25f);
+  gltf.reflectance.value = RGB(0.9f, 0.6f, 0.3f);
+  gltf.metallic.value = 0.5f;
+  add_sphere(d, {-0.9f, 0.3f, 1.0f}, 0.3f, add_material(d, gltf));
   return d;
 }
 

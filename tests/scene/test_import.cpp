@@ -111,11 +111,12 @@ void expect_hierarchy(const SceneDescription& s) {
   const TriangleMesh& ground = test::geometry_of<TriangleMesh>(s, 0);
   EXPECT_EQ(ground.uvs[0], Vec2f(0, 1));
   const MaterialDesc& tiles = material_named(s, ":tiles");
-  EXPECT_EQ(tiles.type.value, MaterialType::CoatedDiffuse);
+  EXPECT_EQ(tiles.type.value, MaterialType::MetallicRoughness);  // glTF's own, metallic 0: the coated diffuse
+  EXPECT_FLOAT_EQ(tiles.metallic.value.value, 0.0f);
   ASSERT_TRUE(tiles.reflectance.texture);
   const MaterialDesc& gold = material_named(s, ":gold");  // metallic 1, roughness 0.02: alpha 0.0004
-  EXPECT_EQ(gold.type.value, MaterialType::Conductor);
-  EXPECT_TRUE(gold.schlick);
+  EXPECT_EQ(gold.type.value, MaterialType::MetallicRoughness);  // metallic 1: the Schlick conductor of F0 = base
+  EXPECT_FLOAT_EQ(gold.metallic.value.value, 1.0f);
   EXPECT_TRUE(test::near(gold.reflectance.value.value, RGB(1.0f, 0.77f, 0.33f)));
   EXPECT_NEAR(gold.uroughness.value.value, 0.0004f, 1e-7f);
   EXPECT_FALSE(gold.remap_roughness.value);

@@ -60,7 +60,7 @@ class PathTracer {
       const Material& m = *isect.material;
       const Vec3f wo = -ray.dir;
       if (m.emits()) {
-        const RGB le = m.emitted(isect.geo.ng, wo);
+        const RGB le = m.emitted(isect.geo.ng, wo, tex_coord(isect.geo));
         if (!le.is_black()) {
           const RGB term = beta * le * emitter_weight(isect, ray.dir, specular, prev_pdf, prev_p, prev_n);
           L += term;

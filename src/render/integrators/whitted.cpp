@@ -203,20 +203,21 @@ class Whitted {
     area_lighting(scene_, isect, n, wo, sampler_, direct, aov != nullptr ? &parts : nullptr);
     RGB ambient;
     RGB local;
+    const RGB emission = m.emission_texture ? m.emission_at(tex_coord(isect.geo)) : m.emission;
     if (scene_.ambient.is_black()) {
-      local = m.emission + direct;
+      local = emission + direct;
     } else {
       ambient = m.ka * (m.diffuse_at(tex_coord(isect.geo)) * scene_.ambient);
-      local = m.emission + ambient + direct;
+      local = emission + ambient + direct;
     }
     if (m.reflectivity <= 0.0f) {
-      if (aov != nullptr) record(*aov, m.emission, ambient, parts, 1.0f);
+      if (aov != nullptr) record(*aov, emission, ambient, parts, 1.0f);
       return local;
     }
     RGB mirrored;  // beyond the depth limit a ray carries nothing
     if (depth < max_depth_) mirrored = trace(spawn_ray(isect.geo, reflect(wo, n)), depth + 1);
     if (aov != nullptr) {
-      record(*aov, m.emission, ambient, parts, 1.0f - m.reflectivity);
+      record(*aov, emission, ambient, parts, 1.0f - m.reflectivity);
       aov->specular_indirect += mirrored * m.reflectivity;
     }
     return local * (1.0f - m.reflectivity) + mirrored * m.reflectivity;
@@ -241,7 +242,7 @@ class Whitted {
       const float sin2_t = eta * eta * std::max(0.0f, 1.0f - cos_i * cos_i);
       const float cos_t = std::sqrt(std::max(0.0f, 1.0f - sin2_t));
       const Vec3f t = refract_dir(ray.dir, n, eta, cos_i, cos_t);
-      result += trace(spawn_ray(isect.geo, t), depth + 1) * (1.0f - F);
+      result += trace(spawn_ray(isect.geo, t), depth + 1) * (m.transmittance * (1.0f - F));
     }
     return result;
   }

@@ -1,5 +1,6 @@
 #include "render/lights/shape_light.h"
 
+#include <algorithm>
 #include <cmath>
 #include <type_traits>
 #include <variant>
@@ -197,17 +198,21 @@ bool ShapeLight::bounds(LightBounds& out) const {
   return std::isfinite(out.intensity) && out.intensity > 0.0f;
 }
 
-void ShapeLight::sample_area(Vec2f u, Vec3f& q, Vec3f& n) const {
+void ShapeLight::sample_area(Vec2f u, Vec3f& q, Vec3f& n, int& prim) const {
+  prim = -1;
   if (parallelogram_) {
     q = para_.p0 + para_.e1 * u.x + para_.e2 * u.y;
     n = para_.n;
     return;
   }
-  if (world_triangles_) {
-    triangle_sampler()->sample(world_parts_, u, q, n);
+  std::size_t part = 0;
+  if (const TriangleAreaSampler* t = triangle_sampler()) {
+    t->sample(world_triangles_ ? world_parts_ : t->parts, u, q, n, &part);
   } else {
     std::visit([&](const auto& sampler) { sampler.sample(u, q, n); }, *sampler_);
   }
+  // A mesh's triangle is its primitive; every other shape is one primitive.
+  prim = std::holds_alternative<TriangleMesh>(*shape_) ? static_cast<int>(part) : 0;
   if (transform_ != nullptr) {
     q = transform_->point(q);
     n = normalize(transform_->normal(n));
@@ -252,8 +257,10 @@ bool ShapeLight::sample(Vec3f p, Vec2f u, LightSample& s) const {
   if (parallelogram_ && !material_->two_sided && !(dot(p - para_.p0, para_.n) > 0.0f)) return false;
   const Sphere* sphere = cone_sphere();
   SphericalRectangle rect;
+  int prim = -1;
   if (sphere && length_squared(p - sphere->center) > sphere->radius * sphere->radius * 1.0001f) {
     sample_sphere_cone(*sphere, p, u, s);
+    prim = 0;
   } else if (spherical_rectangle(p, rect)) {
     s.p_light = sample_spherical_rectangle(rect, u);
     s.n_light = para_.n;
@@ -263,7 +270,7 @@ bool ShapeLight::sample(Vec3f p, Vec2f u, LightSample& s) const {
     s.wi = d / std::sqrt(d2);
     s.pdf = 1.0f / rect.solid_angle;
   } else {
-    sample_area(u, s.p_light, s.n_light);
+    sample_area(u, s.p_light, s.n_light, prim);
     const Vec3f d = s.p_light - p;
     const float d2 = length_squared(d);
     if (!(d2 > 0.0f)) return false;
@@ -273,8 +280,33 @@ bool ShapeLight::sample(Vec3f p, Vec2f u, LightSample& s) const {
     s.pdf = d2 / (cos_l * area_at(s.n_light));
   }
   if (!(s.pdf > 0.0f) || !std::isfinite(s.pdf)) return false;
-  s.L = material_->emitted(s.n_light, -s.wi);
+  s.L = material_->emitted(s.n_light, -s.wi,
+                           material_->emission_texture ? tex_coord_at(s.p_light, s.n_light, prim) : TexCoord());
   return true;
+}
+
+TexCoord ShapeLight::tex_coord_at(Vec3f q, Vec3f n, int prim) const {
+  if (transform_ != nullptr) {
+    q = transform_->inverse_point(q);
+    n = normalize(transform_->transpose_vector(n));
+  }
+  // From just off the surface along n, back onto q: the nearest hit of the
+  // primitive is q itself (h is far below any shape's size, far above float spacing).
+  const float h = 1e-3f * (1.0f + std::max(std::fabs(q.x), std::max(std::fabs(q.y), std::fabs(q.z))));
+  const uint32_t first = prim >= 0 ? static_cast<uint32_t>(prim) : 0u;
+  const uint32_t last = prim >= 0 ? first + 1 : std::min(primitive_count(*shape_), 2u);
+  for (const float side : {1.0f, -1.0f}) {
+    const Ray ray{q + n * (side * h), n * -side, 0.0f, 4.0f * h};
+    for (uint32_t i = first; i < last; ++i) {
+      PrimHit hit;
+      const bool found =
+          std::visit([&](const auto& shape) { return intersect_primitive(shape, i, ray, hit); }, *shape_);
+      if (!found) continue;
+      const SurfaceGeometry g = surface(*shape_, i, ray, hit);
+      return TexCoord(g.uv, {}, {}, g.p);
+    }
+  }
+  return TexCoord();  // never met (a degenerate sample): the texture's lookup at uv (0, 0)
 }
 
 float ShapeLight::pdf(Vec3f p, Vec3f wi, Vec3f q, Vec3f n) const {

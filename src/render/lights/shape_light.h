@@ -27,7 +27,11 @@
 // areas from a distribution of its own (8 bytes per triangle), so the density
 // is the uniform 1 / A_world again.
 // Emission is one-sided (the side of the shape's geometric normal) unless the
-// material is two-sided; see Material::emitted.
+// material is two-sided; see Material::emitted. A textured emission (MTL's
+// map_Ke, glTF's emissiveTexture) is sampled as an untextured one, by area or
+// solid angle, and the texture read at the sampled point (tex_coord_at): the
+// density does not follow the texture (power and the light BVH read the
+// emission factor), which costs variance on a mostly dark texture, not bias.
 #pragma once
 
 #include <cstdint>
@@ -78,8 +82,13 @@ class ShapeLight {
   bool sampled_by_solid_angle_as_rectangle() const { return rectangle_; }
 
  private:
-  // A point uniformly distributed by area (the density is 1 / area_).
-  void sample_area(Vec2f u, Vec3f& q, Vec3f& n) const;
+  // A point uniformly distributed by area (the density is 1 / area_), and
+  // the primitive it is on (-1: not known, one of a parallelogram's two).
+  void sample_area(Vec2f u, Vec3f& q, Vec3f& n, int& prim) const;
+  // The texture coordinates of the shape at a sampled point q with normal n
+  // (world space), for a textured emission: the shape's own surface where a
+  // short ray along -n meets primitive `prim` at q (object space).
+  TexCoord tex_coord_at(Vec3f q, Vec3f n, int prim) const;
   // The area of the shape around a point with unit normal n, as the density
   // 1 / that of sample_area() there: area_, scaled for a transformed shape.
   float area_at(Vec3f n) const;

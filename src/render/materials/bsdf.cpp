@@ -5,20 +5,21 @@
 namespace pt {
 
 static_assert(BsdfKindType<ClassicLobes> && BsdfKindType<DielectricBsdf> && BsdfKindType<ConductorBsdf> &&
-              BsdfKindType<RoughDielectricBsdf> && BsdfKindType<CoatedDiffuseBsdf>);
+              BsdfKindType<RoughDielectricBsdf> && BsdfKindType<CoatedDiffuseBsdf> &&
+              BsdfKindType<MetallicRoughnessBsdf>);
 
 void Bsdf::set_kind(const Material& m, const TexCoord& tc, Vec3f wo) {
   switch (m.type) {
     case MaterialType::Glass:
-      emplace<DielectricBsdf>(m.ior);
+      emplace<DielectricBsdf>(m.ior, m.transmittance);
       return;
     case MaterialType::Dielectric: {
       const Vec2f a = m.alpha_at(tc);
       // Index 1 passes light straight through however rough the interface is.
       if (TrowbridgeReitz::smooth(a.x, a.y) || m.ior == 1.0f) {
-        emplace<DielectricBsdf>(m.ior);
+        emplace<DielectricBsdf>(m.ior, m.transmittance);
       } else {
-        emplace<RoughDielectricBsdf>(m.ior, a.x, a.y);
+        emplace<RoughDielectricBsdf>(m.ior, a.x, a.y, m.transmittance);
       }
       return;
     }
@@ -39,6 +40,24 @@ void Bsdf::set_kind(const Material& m, const TexCoord& tc, Vec3f wo) {
       if (!m.coating) break;  // a material made without its tables: its classic meaning
       const Vec2f a = m.alpha_at(tc);
       emplace<CoatedDiffuseBsdf>(m.reflectance.at(tc), a.x, a.y, *m.coating, frame_.to_local(wo));
+      return;
+    }
+    case MaterialType::MetallicRoughness: {
+      if (!m.coating) break;
+      const Vec2f a = m.alpha_at(tc);
+      const RGB base = m.reflectance.at(tc);
+      const float metal = m.metallic.at(tc);
+      // The ends are the two materials themselves, bit for bit (metallic_roughness.h).
+      if (!(metal > 0.0f)) {
+        emplace<CoatedDiffuseBsdf>(base, a.x, a.y, *m.coating, frame_.to_local(wo));
+      } else if (metal >= 1.0f) {
+        ConductorFresnel fresnel;
+        fresnel.schlick = true;
+        fresnel.f0 = base;
+        emplace<ConductorBsdf>(a.x, a.y, fresnel);
+      } else {
+        emplace<MetallicRoughnessBsdf>(base, metal, a.x, a.y, *m.coating, frame_.to_local(wo));
+      }
       return;
     }
     case MaterialType::Phong:

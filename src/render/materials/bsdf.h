@@ -9,7 +9,9 @@
 //  - ConductorBsdf (conductor.h): rough (GGX) or smooth conductor;
 //  - RoughDielectricBsdf (rough_dielectric.h): rough dielectric (GGX, Walter et al.);
 //  - CoatedDiffuseBsdf (coated_diffuse.h): a Lambert base under a rough or
-//    smooth dielectric coating.
+//    smooth dielectric coating;
+//  - MetallicRoughnessBsdf (metallic_roughness.h): glTF's blend of a Schlick
+//    conductor and a coated diffuse.
 //
 // Every kind has the same members, checked by the BsdfKindType concept below:
 // kTransmits (whether wi may lie on the other side of the surface), delta_only,
@@ -38,6 +40,7 @@
 #include "render/materials/conductor.h"
 #include "render/materials/dielectric.h"
 #include "render/materials/material.h"
+#include "render/materials/metallic_roughness.h"
 #include "render/materials/rough_dielectric.h"
 
 namespace pt {
@@ -55,7 +58,8 @@ concept BsdfKindType = requires(const K& k, Vec3f w, Vec2f u, BsdfSample& s) {
 };
 
 // DielectricBsdf first: the cheapest to construct before the kind is emplaced.
-using BsdfKind = std::variant<DielectricBsdf, ClassicLobes, ConductorBsdf, RoughDielectricBsdf, CoatedDiffuseBsdf>;
+using BsdfKind = std::variant<DielectricBsdf, ClassicLobes, ConductorBsdf, RoughDielectricBsdf, CoatedDiffuseBsdf,
+                              MetallicRoughnessBsdf>;
 
 class Bsdf {
  public:

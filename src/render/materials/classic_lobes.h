@@ -74,6 +74,7 @@ inline ClassicLobes::ClassicLobes(const Material& m, const TexCoord& tc) noexcep
     case MaterialType::Phong:
     case MaterialType::Conductor:      // (never: a kind of its own)
     case MaterialType::CoatedDiffuse:  // made without its tables (bsdf.cpp): its classic meaning
+    case MaterialType::MetallicRoughness:
       if (m.kd > 0.0f) kd_cd = m.diffuse_at(tc) * m.kd;
       ks_cs = m.specular * m.ks;
       rho = std::clamp(m.reflectivity, 0.0f, 1.0f);

@@ -82,6 +82,7 @@ CoatedDiffuseBsdf::CoatedDiffuseBsdf(RGB albedo, float alpha_x, float alpha_y, c
   if (!(wo.z > 0.0f)) return;
   const float e = table.albedo(wo.z, alpha_);
   const float d = (1.0f - e) * t_int * mean(series);
+  albedo_estimate_ = e + d;
   p_spec_ = e + d > 0.0f ? e / (e + d) : 1.0f;
 }
 

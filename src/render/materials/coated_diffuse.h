@@ -65,6 +65,9 @@ class CoatedDiffuseBsdf {
   float pdf(Vec3f wo, Vec3f wi) const;
   bool sample(Vec3f wo, float u_lobe, Vec2f u, BsdfSample& s) const;
   RGB f_diffuse(Vec3f wo, Vec3f wi) const;
+  // E(wo) + the diffuse albedo estimate (mean over the channels): what the
+  // lobe choice weighs (0 for wo below the surface).
+  float albedo_estimate() const { return albedo_estimate_; }
 
  private:
   float spec_f(Vec3f wo, Vec3f wi) const;
@@ -77,6 +80,7 @@ class CoatedDiffuseBsdf {
   bool smooth_;
   RGB diffuse_scale_;  // R / (pi eta^2 (1 - R Fdr))
   float p_spec_ = 1.0f;  // probability of sampling the coating's lobe (depends on wo)
+  float albedo_estimate_ = 0.0f;
 };
 
 }  // namespace pt

@@ -45,7 +45,7 @@ bool DielectricBsdf::sample(Vec3f wo, float u, BsdfSample& s) const {
   const float side = entering ? 1.0f : -1.0f;
   const Vec3f n(0.0f, 0.0f, side);
   s.wi = normalize(-wo * eta_rel + n * (eta_rel * cos_i - cos_t));
-  s.weight = RGB(eta_rel * eta_rel);  // 1 / (eta_t / eta_i)^2
+  s.weight = tint * (eta_rel * eta_rel);  // 1 / (eta_t / eta_i)^2
   s.eta2 = 1.0f / (eta_rel * eta_rel);
   s.pdf = 1.0f - F;
   return true;

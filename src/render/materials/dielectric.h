@@ -9,7 +9,7 @@
 // both weights are 1 apart from the radiance scale 1/eta^2 of refraction
 // (eta = eta_t / eta_i): radiance is compressed into a denser medium's
 // narrower cone. With ior = 1, F = 0 and the ray passes straight through
-// with weight 1.
+// with weight 1 (times the tint: MTL's transmission filter Tf, white by default).
 #pragma once
 
 #include "render/materials/bsdf_sample.h"
@@ -25,6 +25,7 @@ float fresnel_dielectric(float cos_i, float eta_i, float eta_t);
 struct DielectricBsdf {
   static constexpr bool kTransmits = true;
   float ior = 1.5f;
+  RGB tint{1.0f, 1.0f, 1.0f};  // multiplies the refracted weight (Material::transmittance, MTL's Tf)
 
   bool delta_only() const { return true; }
   bool black() const { return false; }

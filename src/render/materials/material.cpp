@@ -50,15 +50,21 @@ void give_classic_meaning(Material& m) {
       m.reflectivity = smooth ? 1.0f : 0.0f;
       break;
     }
-    case MaterialType::CoatedDiffuse: {
+    case MaterialType::CoatedDiffuse:
+    case MaterialType::MetallicRoughness: {
+      // The metallic-roughness blend: (1 - metallic) the coated diffuse, metallic a Schlick conductor of F0 = base.
+      const float metal = m.type == MaterialType::MetallicRoughness ? std::clamp(m.metallic.value, 0.0f, 1.0f) : 0.0f;
       const float f0 = ((m.ior - 1.0f) / (m.ior + 1.0f)) * ((m.ior - 1.0f) / (m.ior + 1.0f));
-      m.kd = 1.0f;
+      // (A coated diffuse: ks = F0 of a white specular colour, as it always was.)
+      const RGB spec = metal > 0.0f ? RGB(f0 * (1.0f - metal)) + m.reflectance.value * metal : RGB(1.0f);
+      const float ks = metal > 0.0f ? 1.0f : f0;
+      m.kd = 1.0f - metal;
       m.diffuse = m.reflectance.value;
       m.texture = m.reflectance.texture;
-      m.ks = smooth ? 0.0f : f0;
-      m.specular = RGB(1.0f);
+      m.ks = smooth ? 0.0f : ks;
+      m.specular = spec;
       m.exponent = phong_exponent(alpha);
-      m.reflectivity = smooth ? f0 : 0.0f;
+      m.reflectivity = smooth ? f0 * (1.0f - metal) + metal : 0.0f;  // the conductor's is an untinted mirror
       break;
     }
     default:
@@ -76,7 +82,8 @@ RGB Material::albedo_at(const TexCoord& tc) const {
     case MaterialType::Mirror: return specular;
     case MaterialType::Conductor:
       return schlick ? reflectance.at(tc) : fresnel_conductor(1.0f, eta.at(tc), k.at(tc));
-    case MaterialType::CoatedDiffuse: return reflectance.at(tc);
+    case MaterialType::CoatedDiffuse:
+    case MaterialType::MetallicRoughness: return reflectance.at(tc);
     default: return diffuse_at(tc) * kd;
   }
 }
@@ -92,6 +99,8 @@ Material make_material(const MaterialDesc& d, const std::vector<const Texture*>&
   m.reflectivity = std::clamp(d.reflectivity.value, 0.0f, 1.0f);
   m.ior = d.ior;
   m.emission = d.emission;
+  m.emission_texture = texture_of(d.emission_texture, textures);
+  m.transmittance = d.transmittance;
   m.two_sided = d.two_sided;
   m.light_samples = d.light_samples;
   m.type = d.type;
@@ -102,6 +111,7 @@ Material make_material(const MaterialDesc& d, const std::vector<const Texture*>&
   resolve(m.eta, d.eta, textures);
   resolve(m.k, d.k, textures);
   resolve(m.reflectance, d.reflectance, textures);
+  resolve(m.metallic, d.metallic, textures);
   m.schlick = d.schlick;
   m.coating = coating;
   m.normal_map = texture_of(d.normal_map, textures);
@@ -124,6 +134,7 @@ Material make_material(const MaterialDesc& d, const std::vector<const Texture*>&
       break;
     case MaterialType::Conductor:
     case MaterialType::CoatedDiffuse:
+    case MaterialType::MetallicRoughness:
       give_classic_meaning(m);
       break;
     case MaterialType::Phong:

@@ -5,7 +5,8 @@
 //    Fresnel refraction for glass); the path integrator as Lambert +
 //    normalised Blinn-Phong + mirror lobes.
 //  - Lambert, Mirror, Glass: the physical materials (render/materials/bsdf.h).
-//  - Conductor, Dielectric, CoatedDiffuse: the microfacet materials; the
+//  - Conductor, Dielectric, CoatedDiffuse: the microfacet materials, and
+//    MetallicRoughness, glTF's blend of a conductor and a coated diffuse; the
 //    classic integrator reads the course fields make_material gives them.
 // Emission (radiance) applies to every type, normal and bump maps too.
 //
@@ -38,7 +39,9 @@ struct Material {
   float exponent = 1;
   float reflectivity = 0;  // mirror weight
   float ior = 1;
+  RGB transmittance{1, 1, 1};  // glass and dielectrics: the tint of every crossing
   RGB emission;
+  const Texture* emission_texture = nullptr;  // multiplies `emission` when set (colour)
   bool two_sided = false;            // emission from both sides (else only on the ng side)
   int light_samples = 0;             // the classic integrator's samples of this emitter; 0: its default
   const Texture* texture = nullptr;  // modulates `diffuse` when set
@@ -47,9 +50,11 @@ struct Material {
   FloatParam uroughness, vroughness;  // roughness, alpha = sqrt(roughness) if remap_roughness
   bool remap_roughness = true;
   RGBParam eta, k;          // a conductor's complex index
-  RGBParam reflectance;     // a conductor's F0 (when schlick), a coated diffuse's base albedo
+  RGBParam reflectance;     // a conductor's F0 (when schlick), a coated diffuse's base albedo, glTF's base colour
   bool schlick = false;
-  const CoatingTable* coating = nullptr;  // a coated diffuse's albedo tables (owned by the render scene)
+  FloatParam metallic;      // MetallicRoughness: the conductor's share, clamped to [0, 1] at the hit
+  // A coated diffuse's (and a metallic-roughness material's) albedo tables (owned by the render scene).
+  const CoatingTable* coating = nullptr;
   // Normal perturbation, any type (docs/path-tracing.md, "Normal and bump maps").
   const Texture* normal_map = nullptr;
   float normal_scale = 1;   // the map's tangent-space x and y scaled by it
@@ -69,8 +74,14 @@ struct Material {
   // a conductor's normal-incidence reflectance, a coated diffuse's base albedo.
   RGB albedo_at(const TexCoord& tc) const;
   bool emits() const { return !emission.is_black(); }
-  // Radiance leaving a surface with geometric normal ng towards direction w.
-  RGB emitted(Vec3f ng, Vec3f w) const { return (two_sided || dot(ng, w) > 0.0f) ? emission : RGB(); }
+  // The emitted radiance at texture coordinates tc (both sides).
+  RGB emission_at(const TexCoord& tc) const {
+    return emission_texture ? emission * texture_rgb(*emission_texture, tc) : emission;
+  }
+  // Radiance leaving a surface with geometric normal ng towards direction w, at tc.
+  RGB emitted(Vec3f ng, Vec3f w, const TexCoord& tc) const {
+    return (two_sided || dot(ng, w) > 0.0f) ? emission_at(tc) : RGB();
+  }
 
  private:
   float roughness_alpha(float roughness) const;

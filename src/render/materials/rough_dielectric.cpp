@@ -35,7 +35,7 @@ RGB RoughDielectricBsdf::f(Vec3f wo, Vec3f wi) const {
   const float wim = dot(wi, m), wom = dot(wo, m);
   const float denom = wim + wom / etap;
   const float ft = (1.0f - F) * DG * std::fabs(wim * wom / (cos_oi * denom * denom));
-  return RGB(ft / (etap * etap));
+  return tint_ * (ft / (etap * etap));
 }
 
 float RoughDielectricBsdf::pdf(Vec3f wo, Vec3f wi) const {

@@ -18,7 +18,8 @@
 // is D_wo(m) times the Jacobian of m -> wi (1 / (4 |wo . m|) for a reflection,
 // |wi . m| / (wi . m + wo . m / eta')^2 for a refraction) times that
 // probability. Below kSmoothAlpha the material is the smooth DielectricBsdf
-// (bsdf.cpp chooses), so roughness 0 is exactly the glass.
+// (bsdf.cpp chooses), so roughness 0 is exactly the glass. A tint (MTL's Tf)
+// multiplies the transmission (f and the weight; not the density).
 // A BSDF kind of render/materials/bsdf.h.
 #pragma once
 
@@ -31,7 +32,9 @@ class RoughDielectricBsdf {
  public:
   static constexpr bool kTransmits = true;
 
-  RoughDielectricBsdf(float ior, float alpha_x, float alpha_y) noexcept : ior_(ior), distribution_(alpha_x, alpha_y) {}
+  // `tint`: what transmission is multiplied by (Material::transmittance; white: clear).
+  RoughDielectricBsdf(float ior, float alpha_x, float alpha_y, RGB tint = RGB(1.0f)) noexcept
+      : ior_(ior), distribution_(alpha_x, alpha_y), tint_(tint) {}
 
   bool delta_only() const { return false; }
   bool black() const { return false; }
@@ -51,6 +54,7 @@ class RoughDielectricBsdf {
 
   float ior_;
   TrowbridgeReitz distribution_;
+  RGB tint_;
 };
 
 }  // namespace pt

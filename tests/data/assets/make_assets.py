@@ -9,7 +9,7 @@
                                normal.png
   gltf/pbr.gltf + .bin         five quads in a row: alphaMode MASK on the base colour texture's
                                alpha, a metal with metallicRoughnessTexture and a normal map
-                               (scale 0.5), a dielectric, metallic 0.3, alphaMode BLEND; with
+                               (scale 0.5), a dielectric, metallic 0.5 x the same texture, alphaMode BLEND; with
                                base.png (RGBA), mr.png, normal.png
   gltf/pbr.glb                 the same, its images embedded
   obj/halves.png               the texture: top half red, bottom half blue (uv orientation)
@@ -418,7 +418,8 @@ def pbr_scene(embed):
             {"name": "plastic", "pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.4, 0.8, 1], "metallicFactor": 0,
                                                          "roughnessFactor": 0.5}},
             {"name": "half_metal", "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.8, 0.8, 1],
-                                                            "metallicFactor": 0.3, "roughnessFactor": 0.3}},
+                                                            "metallicFactor": 0.5, "roughnessFactor": 0.3,
+                                                            "metallicRoughnessTexture": {"index": 1}}},
             {"name": "blend", "alphaMode": "BLEND",
              "pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0, 0.3], "metallicFactor": 0}},
         ],
