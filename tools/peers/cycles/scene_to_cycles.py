@@ -665,6 +665,8 @@ def main():
         with open(args.stats, "w") as f:
             json.dump({"render_seconds": total, "path_tracing_seconds": tracing, "spp": args.spp,
                        "seed": args.seed, "threads": args.threads,
+                       "terminator_geometry_offset": args.terminator_geometry_offset,
+                       "terminator_shading_offset": args.terminator_shading_offset,
                        "blender": bpy.app.version_string}, f, indent=1)
     return 0
 
