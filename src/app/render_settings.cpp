@@ -37,6 +37,7 @@ bool resolve_render_settings(const SceneDescription& desc, const SettingsOverrid
   s.roulette_threshold = o.roulette_threshold;
   s.film_transparent = o.film_transparent || desc.render.film_transparent.value;
   out.light_sampler = desc.render.light_sampler.value;
+  out.shadow_terminator_offset = desc.render.shadow_terminator_geometry_offset.value;
   BuildOptions size;
   size.width_override = o.width;
   size.height_override = o.height;
@@ -51,6 +52,7 @@ BuildOptions RenderSettings::build_options(AccelKind accel) const {
   options.width_override = width;
   options.height_override = height;
   options.light_sampler = light_sampler;
+  options.shadow_terminator_offset = shadow_terminator_offset;
   return options;
 }
 
@@ -93,6 +95,8 @@ nlohmann::ordered_json RenderSettings::identity() const {
   if (integration.film_transparent) id["film_transparent"] = true;
   if (light_sampler != LightSamplerType::Bvh)
     id["light_sampler"] = kLightSamplerNames[static_cast<int>(light_sampler)];
+  if (shadow_terminator_offset != kDefaultShadowTerminatorOffset)
+    id["shadow_terminator_geometry_offset"] = shadow_terminator_offset;
   return id;
 }
 

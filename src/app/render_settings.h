@@ -45,6 +45,7 @@ struct RenderSettings {
   IntegratorSettings integration;
   int width = 0, height = 0;  // the image, after the overrides
   LightSamplerType light_sampler = LightSamplerType::Bvh;  // the scene's render.light_sampler
+  float shadow_terminator_offset = kDefaultShadowTerminatorOffset;  // render.shadow_terminator_geometry_offset
 
   std::string integrator_name() const { return integrator->name; }
   // The integrator of one pass (or replay, or the can_render question).
@@ -65,7 +66,8 @@ struct RenderSettings {
   void describe(RunRecord& record) const;
   // The settings a checkpoint must match to be resumed (not the pass size):
   // integrator, width, height, max_depth, seed, sampler, filter, clamp, and
-  // film_transparent and light_sampler when not the default.
+  // film_transparent, light_sampler and shadow_terminator_geometry_offset
+  // when not the default.
   nlohmann::ordered_json identity() const;
 };
 

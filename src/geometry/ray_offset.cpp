@@ -8,6 +8,7 @@
 
 #include "geometry/float_util.h"
 #include "geometry/shapes.h"
+#include "geometry/terminator.h"
 
 namespace pt {
 
@@ -52,12 +53,48 @@ Vec3f offset_ray_origin(Vec3f p, Vec3f ng, Vec3f dir) {
   return offset_ray_origin(p, Vec3f(fp::gamma(16) * max_component(abs(p))), ng, dir);
 }
 
-Ray spawn_ray(const SurfaceGeometry& sg, Vec3f dir) {
-  return Ray{offset_ray_origin(sg.p, sg.p_error, sg.ng, dir), dir, 0.0f, kInfinity};
+namespace {
+
+// The origin of a ray leaving a point of a smooth-shaded mesh towards `dir`
+// (geometry/terminator.h): the point moved towards the smooth surface on the
+// side of the shading normal that dir leaves on, by the part of Hanika's
+// offset that terminator_amount gives, then offset as every origin is, to the
+// side of the triangle's plane the shading normal is on for dir. So a
+// direction below the triangle but above the shading normal (the terminator)
+// starts above the triangle, and meets the triangle if it crosses it: light
+// never comes through the surface, it reaches the smooth surface or nothing.
+// The error bound grows by the rounding of the sum and of the offset (the
+// offset itself only moves the point away from the plane, never through it).
+[[gnu::noinline]] Vec3f smooth_origin(const SurfaceGeometry& sg, Vec3f dir) {
+  const float cos_n = dot(dir, sg.ns);
+  const bool outer = cos_n >= 0.0f;
+  const Vec3f leaves = outer ? sg.ns : -sg.ns;
+  Vec3f p = sg.p;
+  Vec3f error = sg.p_error;
+  const float len = length(dir);
+  if (len > 0.0f) {
+    const float cos_g = dot(outer ? sg.ng : -sg.ng, dir) / len;
+    const float amount = terminator_amount(std::fabs(cos_n) / len, cos_g, sg.smooth.cutoff);
+    if (amount > 0.0f) {
+      const Vec3f offset = terminator_offset(sg.smooth, outer) * amount;
+      p = sg.p + offset;
+      error = sg.p_error + fp::gamma(2) * abs(p) + fp::gamma(4) * abs(offset);
+    }
+  }
+  return offset_ray_origin(p, error, sg.ng, leaves);
 }
 
+Vec3f leaving_origin(const SurfaceGeometry& sg, Vec3f dir) {
+  if (sg.smooth.mesh != nullptr) [[unlikely]] return smooth_origin(sg, dir);
+  return offset_ray_origin(sg.p, sg.p_error, sg.ng, dir);
+}
+
+}  // namespace
+
+Ray spawn_ray(const SurfaceGeometry& sg, Vec3f dir) { return Ray{leaving_origin(sg, dir), dir, 0.0f, kInfinity}; }
+
 Ray spawn_ray_to(const SurfaceGeometry& sg, Vec3f target) {
-  const Vec3f o = offset_ray_origin(sg.p, sg.p_error, sg.ng, target - sg.p);
+  const Vec3f o = leaving_origin(sg, target - sg.p);
   return Ray{o, target - o, 0.0f, 1.0f - kShadowEpsilon};
 }
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,20 @@ struct PrimHit {
   Vec2f uv;
 };
 
+struct TriangleMesh;
+struct Transform;
+
+// Where a hit lies on a mesh whose vertex normals imply a smooth surface: what
+// the shadow-terminator offset of the rays leaving it needs (geometry/terminator.h,
+// docs/rendering.md "Shadow terminator"). `mesh` is null everywhere else.
+struct SmoothSurface {
+  const TriangleMesh* mesh = nullptr;
+  const Transform* to_world = nullptr;  // an instance's transform; null for a mesh placed directly
+  uint32_t tri = 0;
+  Vec2f b;              // the hit's barycentrics (b1, b2)
+  float cutoff = 0.0f;  // render.shadow_terminator_geometry_offset (> 0 where mesh is set)
+};
+
 // Local geometry at a hit point.
 struct SurfaceGeometry {
   Vec3f p;        // position
@@ -43,6 +58,9 @@ struct SurfaceGeometry {
   // directly). Zero otherwise, and from surface(): a point lookup.
   Vec2f duvdx, duvdy;
   Vec3f p_object, dpdx, dpdy;
+  // Set by RenderScene::intersect on meshes with normals when the shadow
+  // terminator offset is on; surface() leaves it empty (rays leave p itself).
+  SmoothSurface smooth;
 };
 
 // The derivatives of position with respect to the texture coordinates at a

@@ -151,6 +151,10 @@ Vec3f offset_ray_origin(Vec3f p, Vec3f p_error, Vec3f ng, Vec3f dir);
 Vec3f offset_ray_origin(Vec3f p, Vec3f ng, Vec3f dir);
 
 // A ray leaving a surface point towards `dir`, origin offset as above, tmin = 0.
+// At a point of a smooth-shaded mesh with sg.smooth set (the shadow-terminator
+// offset on), the origin is first moved towards the smooth surface the vertex
+// normals imply, for directions near the triangle's plane, and is offset to
+// the side of the plane the shading normal is on for `dir` (geometry/terminator.h).
 Ray spawn_ray(const SurfaceGeometry& sg, Vec3f dir);
 // A shadow ray from a surface point to a point `target` (e.g. a light), which
 // stops just short of the target: dir = target - origin, tmin = 0,

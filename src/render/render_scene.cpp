@@ -28,6 +28,14 @@ bool RenderScene::intersect(const Ray& ray, Intersection& out, const RayDifferen
     out.geo = surface(shape, out.hit.prim, ray, prim_hit);
     out.material = &materials[static_cast<std::size_t>(shape_material[out.hit.shape])];
   }
+  if (shadow_terminator_offset > 0.0f) {
+    // A mesh with vertex normals: its rays leave from the smooth surface (geometry/terminator.h).
+    const auto* mesh = std::get_if<TriangleMesh>(&shape);
+    if (mesh != nullptr && !mesh->normals.empty()) {
+      const Transform* t = out.hit.instance != kNoInstance ? &geometry.instances[out.hit.instance].transform : nullptr;
+      out.geo.smooth = SmoothSurface{mesh, t, out.hit.prim, out.hit.uv, shadow_terminator_offset};
+    }
+  }
   if (footprints || out.material->perturbs_normal()) [[unlikely]]
     texture_frame(differential, out);
   return true;
@@ -306,6 +314,7 @@ std::unique_ptr<RenderScene> build(Desc& desc, const BuildOptions& options, Work
   const CutoutTest* cutouts = prepare_cutouts(desc, *scene);
   scene->accel = build_accelerator(options.accel, scene->geometry, pool, diag, cutouts);
   if (!scene->accel) return nullptr;
+  scene->shadow_terminator_offset = options.shadow_terminator_offset;
   scene->lights = build_light_set(desc, *scene, options.light_sampler);
   for (const LightDesc& l : desc.lights)
     if (const auto* ambient = std::get_if<AmbientLightDesc>(&l)) scene->ambient += ambient->intensity.value;

@@ -108,6 +108,10 @@ struct RenderScene {
   // ray differentials at first hits, else from the camera's spread.
   bool footprints = false;
   CameraSpread camera_spread;
+  // render.shadow_terminator_geometry_offset (0: off): rays leaving a mesh
+  // with vertex normals near its terminator leave from the smooth surface the
+  // normals imply (geometry/terminator.h; docs/rendering.md, "Shadow terminator").
+  float shadow_terminator_offset = kDefaultShadowTerminatorOffset;
   std::unique_ptr<Accelerator> accel;  // after what its cutout test reads
   double texture_load_seconds = 0;  // decoding the textures and the environment map; 0 if there are none
 
@@ -164,6 +168,7 @@ struct BuildOptions {
   TextureLimits textures;            // every texture and environment map, checked before decoding
   uint64_t texture_cache_bytes = TextureCache::kDefaultBytes;  // --texture-cache
   LightSamplerType light_sampler = LightSamplerType::Bvh;  // render.light_sampler (LightSet)
+  float shadow_terminator_offset = kDefaultShadowTerminatorOffset;  // render.shadow_terminator_geometry_offset
 };
 
 // The image size build_render_scene gives `film` under `options` (an override

@@ -144,6 +144,7 @@ void read_render(ImportContext& ctx, const JsonValue& v) {
   const int sampler =
       read_choice(r, "light_sampler", {std::begin(kLightSamplerNames), std::end(kLightSamplerNames)}, &sampler_at);
   if (sampler >= 0) render.light_sampler = Sourced<LightSamplerType>(static_cast<LightSamplerType>(sampler), sampler_at);
+  r.read("shadow_terminator_geometry_offset", render.shadow_terminator_geometry_offset);
   r.read("film_transparent", render.film_transparent);
   Sourced<std::string> image;
   if (r.read("background_image", image) && image.where.valid()) {

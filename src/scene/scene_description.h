@@ -147,6 +147,11 @@ inline constexpr const char* kPixelFilterNames[] = {"box", "gaussian", "mitchell
 enum class LightSamplerType { Bvh, Power };
 inline constexpr const char* kLightSamplerNames[] = {"bvh", "power"};
 
+// Cycles' per-object "Shadow Terminator > Geometry Offset" (its default): how
+// near the terminator the rays leaving a smooth-shaded mesh start from the
+// smooth surface its vertex normals imply (docs/rendering.md, "Shadow terminator").
+inline constexpr float kDefaultShadowTerminatorOffset = 0.1f;
+
 struct RenderDesc {
   Sourced<std::string> integrator{std::string("whitted")};  // registry name, see render/integrators
   Sourced<int> max_depth{5};     // recursion limit (nbounces in the course files)
@@ -157,6 +162,8 @@ struct RenderDesc {
   Sourced<PixelFilterType> filter{PixelFilterType::Box};
   Sourced<float> clamp{0.0f};    // firefly clamp on each sample's radiance; 0 = off
   Sourced<LightSamplerType> light_sampler{LightSamplerType::Bvh};  // the path integrator's light choice
+  // In [0, 1]; 0 turns the shadow-terminator offset off.
+  Sourced<float> shadow_terminator_geometry_offset{kDefaultShadowTerminatorOffset};
   // An image behind the scene in screen space, stretched over the frame: what
   // camera rays that leave the scene see instead of `background` or the
   // environment. Bounce rays do not see it and it lights nothing.

@@ -80,6 +80,10 @@ class Validator {
     radiometric(render.background, "background colour");
     if (!(render.clamp.value >= 0.0f))
       diag_.error(render.clamp.where, "clamp must be >= 0 (0 turns it off), got " + str(render.clamp.value));
+    const Sourced<float>& terminator = render.shadow_terminator_geometry_offset;
+    if (!(terminator.value >= 0.0f && terminator.value <= 1.0f))
+      diag_.error(terminator.where, "shadow_terminator_geometry_offset must be between 0 and 1 (0 turns it off), got " +
+                                        str(terminator.value));
   }
 
   void material(const MaterialDesc& m) {

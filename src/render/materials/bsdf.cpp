@@ -68,7 +68,7 @@ void Bsdf::set_kind(const Material& m, const TexCoord& tc, Vec3f wo) {
   emplace<ClassicLobes>(m, tc);
 }
 
-Bsdf::Bsdf(const Material& m, const SurfaceGeometry& geo, Vec3f wo) {
+Bsdf::Bsdf(const Material& m, const SurfaceGeometry& geo, Vec3f wo) : smooth_(geo.smooth.mesh != nullptr) {
   const bool above = dot(geo.ng, wo) > 0.0f;
   if (m.glass()) {
     // Transmissive kinds keep the shape's orientation (+z = outside).
@@ -95,7 +95,7 @@ RGB Bsdf::f(Vec3f wo, Vec3f wi) const {
         using K = std::decay_t<decltype(k)>;
         if (delta_only_) return {};
         if constexpr (!K::kTransmits) {
-          if (!(dot(wi, ng_) > 0.0f)) return {};
+          if (!reflects_to(wi)) return {};
         }
         const Vec3f lo = frame_.to_local(wo), li = frame_.to_local(wi);
         if constexpr (K::kTransmits) {
@@ -111,7 +111,7 @@ float Bsdf::pdf(Vec3f wo, Vec3f wi) const {
         using K = std::decay_t<decltype(k)>;
         if (delta_only_) return 0.0f;
         if constexpr (!K::kTransmits) {
-          if (!(dot(wi, ng_) > 0.0f)) return 0.0f;
+          if (!reflects_to(wi)) return 0.0f;
         }
         const Vec3f lo = frame_.to_local(wo), li = frame_.to_local(wi);
         if constexpr (K::kTransmits) {
@@ -128,7 +128,7 @@ RGB Bsdf::f_diffuse(Vec3f wo, Vec3f wi) const {
         if constexpr (K::kTransmits) {
           return {};  // no transmissive kind has a diffuse part
         } else {
-          if (!(dot(wi, ng_) > 0.0f)) return {};
+          if (!reflects_to(wi)) return {};
           return k.f_diffuse(frame_.to_local(wo), frame_.to_local(wi));
         }
       });
@@ -145,7 +145,7 @@ bool Bsdf::sample(Vec3f wo, float u_lobe, Vec2f u, BsdfSample& s) const {
         if constexpr (K::kTransmits) {
           return s.delta || sides_agree(wo, s.wi, lo, li);
         } else {
-          return dot(s.wi, ng_) > 0.0f;
+          return reflects_to(s.wi);
         }
       });
 }

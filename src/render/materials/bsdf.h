@@ -21,7 +21,9 @@
 // Shading normals never let light through a surface. Reflective kinds: the
 // frame is the shading normal flipped to the viewer's side (the geometric
 // normal if the viewer is below the shading hemisphere), and f, pdf and sample
-// need wo and wi on the same side of the geometric normal. Transmissive kinds:
+// need wo and wi on the same side of the geometric normal, except on a
+// smooth-shaded mesh with the shadow-terminator offset on (reflects_to).
+// Transmissive kinds:
 // the frame keeps the shape's orientation (+z = the side of the geometric
 // normal, outside), with the geometric normal in place of a shading normal
 // that disagrees with it about the viewer's side; a non-delta direction counts
@@ -128,10 +130,19 @@ class Bsdf {
     return li.z != 0.0f && geometric_reflection == (lo.z * li.z > 0.0f);
   }
 
+  // Reflective kinds: whether light may arrive from (or leave towards) wi at
+  // all. Above the geometric normal; or, at a point of a smooth-shaded mesh
+  // whose rays leave from the smooth surface (`smooth_`: the shadow-terminator
+  // offset, geometry/terminator.h), wherever the kind's shading frame allows:
+  // there a direction below the triangle but above the shading normal is
+  // traced from above the triangle, so it cannot pass through the surface.
+  bool reflects_to(Vec3f wi) const { return smooth_ || dot(wi, ng_) > 0.0f; }
+
   Frame frame_;
   Vec3f ng_;  // geometric normal: on wo's side for reflective kinds, the shape's own for transmissive ones
   BsdfKind kind_;
   bool delta_only_ = false, black_ = false, needs_lobe_choice_ = false;
+  bool smooth_ = false;
 };
 
 }  // namespace pt
