@@ -9,6 +9,7 @@
 
 #include "core/stopwatch.h"
 #include "render/materials/normal_map.h"
+#include "scene/material_kinds.h"
 
 namespace pt {
 
@@ -132,7 +133,7 @@ void add_materials(const SceneDescription& desc, RenderScene& scene) {
   scene.materials.reserve(desc.materials.size());
   for (const MaterialDesc& d : desc.materials) {
     const CoatingTable* coating = nullptr;
-    if (d.type == MaterialType::CoatedDiffuse || d.type == MaterialType::MetallicRoughness) {
+    if (has_coated_diffuse(d.type)) {
       for (const std::unique_ptr<CoatingTable>& c : scene.coatings)
         if (c->ior() == d.ior.value) coating = c.get();
       if (!coating) coating = scene.coatings.emplace_back(std::make_unique<CoatingTable>(d.ior)).get();

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/material_kinds.h"
 #include "scene/metal_presets.h"
 #include "scene/native_shapes.h"
 #include "scene/suggest.h"
@@ -179,8 +180,8 @@ void read_conductor(ImportContext& ctx, ObjectReader& r, NativeMaterial& nm) {
 void read_physical_keys(ImportContext& ctx, ObjectReader& r, NativeMaterial& nm) {
   MaterialDesc& m = nm.desc;
   const MaterialType type = m.type;
-  const bool coated = type == MaterialType::CoatedDiffuse || type == MaterialType::MetallicRoughness;
-  if (type == MaterialType::Conductor || type == MaterialType::Dielectric || coated) read_roughness(ctx, r, nm);
+  const bool coated = has_coated_diffuse(type);
+  if (is_microfacet(type)) read_roughness(ctx, r, nm);
   if (type == MaterialType::Conductor) read_conductor(ctx, r, nm);
   if (coated) read_textured(ctx, r, "reflectance", m.reflectance, nm, MaterialTexture::Reflectance, false);
   if (type == MaterialType::MetallicRoughness)

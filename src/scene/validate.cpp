@@ -7,6 +7,7 @@
 
 #include "geometry/shapes.h"
 #include "scene/json_reader.h"
+#include "scene/material_kinds.h"
 
 namespace pt {
 namespace {
@@ -103,9 +104,7 @@ class Validator {
         diag_.error(m.transmittance.where, "transmittance must be between 0 and 1 in every channel, got " + str(t));
     }
     radiometric(m.emission, "emission of material '" + m.name + "'");
-    if (m.type == MaterialType::Conductor || m.type == MaterialType::Dielectric ||
-        m.type == MaterialType::CoatedDiffuse || m.type == MaterialType::MetallicRoughness)
-      microfacet(m);
+    if (is_microfacet(m.type)) microfacet(m);
   }
 
   // The keys of the microfacet types (docs/scene-format.md).
@@ -122,7 +121,7 @@ class Validator {
     }
     if (m.type == MaterialType::MetallicRoughness)
       unit_interval(m.metallic.value, m.metallic.texture ? "metallic scale" : "metallic");
-    if (m.type == MaterialType::CoatedDiffuse || m.type == MaterialType::MetallicRoughness || m.schlick) {
+    if (has_coated_diffuse(m.type) || m.schlick) {
       const RGB r = m.reflectance.value;
       if (!(r.r >= 0.0f && r.g >= 0.0f && r.b >= 0.0f && r.r <= 1.0f && r.g <= 1.0f && r.b <= 1.0f))
         diag_.error(m.reflectance.value.where, "reflectance must be between 0 and 1 in every channel, got " + str(r));
