@@ -4,6 +4,7 @@
 #include "accel/bvh/bvh_accel.h"
 #include "accel/embree/embree_accel.h"
 #include "accel/unbounded.h"
+#include "core/heap.h"
 
 namespace pt {
 
@@ -48,6 +49,7 @@ bool geometry_usable(const SceneGeometry& geometry) {
 
 std::unique_ptr<Accelerator> build_accelerator(AccelKind kind, const SceneGeometry& geometry, WorkerPool& pool,
                                                Diagnostics& diag, const CutoutTest* cutouts) {
+  release_free_heap();  // what loading freed, so that it does not stay under the build's peak
   std::unique_ptr<Accelerator> backend;
   switch (kind) {
     case AccelKind::Embree:

@@ -50,7 +50,12 @@ bool convert_mesh(const aiMesh& m, int uv_set, AssetMesh& out, std::string& erro
   TriangleMesh& t = out.mesh;
   const bool normals = m.HasNormals(), uvs = uv_set >= 0 && m.HasTextureCoords(static_cast<unsigned>(uv_set));
   const bool tangents = m.HasTangentsAndBitangents() && normals;
-  t.positions.reserve(m.mNumVertices + 1);  // one spare: the Embree backend can share the buffer
+  // Exact sizes (no doubling growth left unused under the build's peak); one
+  // spare position: the Embree backend can share the buffer.
+  t.positions.reserve(m.mNumVertices + 1);
+  if (normals) t.normals.reserve(m.mNumVertices);
+  if (uvs) t.uvs.reserve(m.mNumVertices);
+  if (tangents) out.tangents.reserve(m.mNumVertices);
   for (unsigned v = 0; v < m.mNumVertices; ++v) {
     if (!finite(m.mVertices[v])) {
       error = "mesh '" + std::string(m.mName.C_Str()) + "': vertex " + std::to_string(v) + " has a non-finite position";

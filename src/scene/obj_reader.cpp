@@ -122,6 +122,17 @@ constexpr const char* kUnsupported[] = {"vp",   "cstype", "deg",   "bmat",      
                                         "d_interp", "lod", "maplib", "usemap",   "shadow_obj", "trace_obj",
                                         "ctech", "stech", "call",  "csh"};
 
+// `v` moved into an array of exactly its size plus `spare` elements: the
+// doubling growth of reading leaves up to half of each array unused.
+template <typename T>
+void fit(std::vector<T>& v, std::size_t spare) {
+  if (v.capacity() == v.size() + spare) return;
+  std::vector<T> exact;
+  exact.reserve(v.size() + spare);
+  exact.assign(v.begin(), v.end());
+  v.swap(exact);
+}
+
 class ObjParser {
  public:
   ObjParser(const std::string& path, const ObjReadOptions& options, ObjModel& out, Diagnostics& diag)
@@ -504,15 +515,25 @@ bool ObjParser::finish() {
                                      : "unknown OBJ statement '" + key + "' left out (" + count + ")");
   }
   end_run();
+  // The file's element arrays and the run's table are done with: freed before
+  // the meshes are copied to their exact sizes, which then reuse the space.
+  v_ = {};
+  vn_ = {};
+  vt_ = {};
+  keys_ = {};
+  table_ = {};
   out_.material_used.resize(out_.materials.size());
   for (ObjMesh& m : out_.meshes) {
     std::vector<Vec3f>& p = m.mesh.positions;
-    if (p.capacity() == p.size()) p.reserve(p.size() + 1);  // one spare: the Embree backend can share the buffer
     if (options_.one_mesh && !all_normals_) m.mesh.normals = {};
     if (options_.one_mesh && !all_uvs_) m.mesh.uvs = {};
     // A run whose later vertices named no vt/vn: zero for them too.
     if (!m.mesh.normals.empty()) m.mesh.normals.resize(p.size());
     if (!m.mesh.uvs.empty()) m.mesh.uvs.resize(p.size());
+    fit(p, 1);  // one spare: the Embree backend can share the buffer
+    fit(m.mesh.indices, 0);
+    fit(m.mesh.normals, 0);
+    fit(m.mesh.uvs, 0);
   }
   return true;
 }
