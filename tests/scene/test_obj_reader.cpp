@@ -179,5 +179,43 @@ TEST(ObjReader, MaterialLibrariesAreAskedForInFileOrder) {
   EXPECT_EQ(model.material_used, (std::vector<bool>{false, false, false, true}));
 }
 
+
+// The meshes leave the reader at their exact sizes (the doubling growth of
+// reading would otherwise stay allocated under the build's peak,
+// docs/bench/scale.md), positions with the one spare element the Embree
+// backend needs to share the buffer (it reads 16 bytes from the last vertex).
+TEST(ObjReader, MeshArraysLeaveAtTheirExactSizesWithOneSparePosition) {
+  test::TempDir dir;
+  std::string text;
+  const int n = 37;  // (n + 1)^2 vertices, 2 n^2 triangles: sizes no doubling lands on
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) text += "v " + std::to_string(i) + " 0 " + std::to_string(j) + "\nvt 0 0\nvn 0 1 0\n";
+  for (int pass = 0; pass < 2; ++pass) {
+    text += pass == 0 ? "o first\n" : "o second\n";
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const int a = j * (n + 1) + i + 1, b = a + 1, c = b + n + 1, d = a + n + 1;
+        const auto corner = [](int k) { const std::string s = std::to_string(k); return s + "/" + s + "/" + s; };
+        text += "f " + corner(a) + " " + corner(b) + " " + corner(c) + " " + corner(d) + "\n";
+      }
+  }
+  for (const bool one_mesh : {false, true}) {
+    Read r = read_text(dir, text, one_mesh);
+    ASSERT_TRUE(r.ok) << r.diag.format();
+    ASSERT_EQ(r.model.meshes.size(), one_mesh ? 1u : 2u);
+    for (const ObjMesh& om : r.model.meshes) {
+      const TriangleMesh& m = om.mesh;
+      EXPECT_EQ(m.indices.size(), (one_mesh ? 12u : 6u) * n * n);
+      EXPECT_EQ(m.positions.size(), static_cast<std::size_t>((n + 1) * (n + 1)) * (one_mesh ? 2u : 1u));
+      EXPECT_EQ(m.positions.capacity(), m.positions.size() + 1);
+      EXPECT_EQ(m.indices.capacity(), m.indices.size());
+      EXPECT_EQ(m.normals.size(), m.positions.size());
+      EXPECT_EQ(m.normals.capacity(), m.normals.size());
+      EXPECT_EQ(m.uvs.size(), m.positions.size());
+      EXPECT_EQ(m.uvs.capacity(), m.uvs.size());
+    }
+  }
+}
+
 }  // namespace
 }  // namespace pt
