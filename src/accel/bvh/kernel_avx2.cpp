@@ -3,7 +3,8 @@
 // declarations (layout.h explains why).
 //
 // Nodes: one 8-wide slab test. Triangles: the watertight test of
-// geometry/triangle.cpp on 4 triangles at once, with exactly its operations and
+// geometry/triangle.cpp on a leaf's blocks, 8 triangles (two blocks) at once,
+// a last odd block on 4 lanes, with exactly its operations and
 // roundings (the shear as a multiply then an add, the edge functions as the
 // FMA difference of products, t, the bound on its error and the barycentrics
 // as the same sums, products and divisions), so that each lane's answer is
