@@ -38,7 +38,7 @@ using LeafEmitter = FunctionRef<uint32_t(const uint32_t* prims, uint32_t count, 
 // first child right after its parent) and gathers the statistics.
 class Flattener {
  public:
-  Flattener(const BuildTree& tree, std::vector<Node8>& out, TreeStats& stats, LeafEmitter emit)
+  Flattener(const BuildTree& tree, NodeArray& out, TreeStats& stats, LeafEmitter emit)
       : tree_(tree), out_(out), stats_(stats), emit_(emit), root_area_(surface_area(tree.bounds)) {}
 
   uint32_t run() {
@@ -86,7 +86,7 @@ class Flattener {
   }
 
   const BuildTree& tree_;
-  std::vector<Node8>& out_;
+  NodeArray& out_;
   TreeStats& stats_;
   LeafEmitter emit_;
   float root_area_;

@@ -8,6 +8,7 @@
 
 #include "accel/bvh/analytic.h"
 #include "accel/bvh/build.h"
+#include "accel/bvh/huge_pages.h"
 #include "accel/bvh/layout.h"
 #include "geometry/shapes.h"
 
@@ -32,9 +33,13 @@ struct TreeStats {
   void add(const TreeStats& o);  // sums counts and bytes; depth is the maximum; SAH costs add
 };
 
+// The traversal arrays: large ones on huge pages (huge_pages.h).
+using NodeArray = std::vector<Node8, HugePageAllocator<Node8>>;
+using BlockArray = std::vector<TriangleBlock, HugePageAllocator<TriangleBlock>>;
+
 struct Blas {
-  std::vector<Node8> nodes;
-  std::vector<TriangleBlock> blocks;  // kind Triangles
+  NodeArray nodes;
+  BlockArray blocks;  // kind Triangles
   std::vector<AnalyticPrim> prims;    // kind Analytic
   uint32_t root = kEmptyRef;
   BlasKind kind = BlasKind::Triangles;
@@ -55,7 +60,7 @@ Blas build_analytic_blas(std::vector<AnalyticPrim> prims, const std::vector<Boun
 
 // The top level: leaves index bottom-level BVHs (`boxes[i]` bounds BLAS i).
 struct TopLevel {
-  std::vector<Node8> nodes;
+  NodeArray nodes;
   uint32_t root = kEmptyRef;
   TreeStats stats;
 };

@@ -112,9 +112,9 @@ class Fnv1a {
     const auto* p = static_cast<const unsigned char*>(data);
     for (std::size_t i = 0; i < size; ++i) hash_ = (hash_ ^ p[i]) * 0x100000001b3ull;
   }
-  template <class T>
-  void add_all(const std::vector<T>& v) {
-    add(v.data(), v.size() * sizeof(T));
+  template <class V>
+  void add_all(const V& v) {
+    add(v.data(), v.size() * sizeof(v[0]));
   }
   uint64_t value() const { return hash_; }
 

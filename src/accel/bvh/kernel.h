@@ -3,7 +3,9 @@
 //   uint32_t ops.intersect_node(const Node8&, float tmax, float dist[8]):
 //       mask of the children whose box the ray enters before tmax, their entry
 //       distances in dist;
-//   bool ops.intersect_block<kAnyHit>(const TriangleBlock&, uint32_t object, RayQuery&, HitRecord&).
+//   bool ops.intersect_leaf<kAnyHit>(const TriangleBlock* blocks, uint32_t count, uint32_t object,
+//                                    RayQuery&, HitRecord&): the leaf's `count` blocks, nearest hit
+//       (the first block's lowest lane on a tie, as if tested in order) or any hit.
 //
 // Included only by kernel_sse2.cpp and kernel_avx2.cpp, whose Ops types live in
 // anonymous namespaces, so every instantiation has internal linkage and is
@@ -115,17 +117,12 @@ inline bool traverse_blas(const Ops& ops, const BlasData& b, RayQuery& q, HitRec
     return traverse<kAnyHit, kCount>(ops, b.nodes, b.root, q, counters, [&](uint32_t ref) {
       const TriangleBlock* block = b.blocks + (ref & kLeafIndexMask);
       const uint32_t count = item_count(ref);
-      bool found = false;
-      for (uint32_t i = 0; i < count; ++i) {
-        if constexpr (kCount) {
+      if constexpr (kCount) {
+        for (uint32_t i = 0; i < count; ++i) {
           for (uint32_t lane = 0; lane < 4; ++lane) counters->prims += block[i].prim[lane] != kNoPrim ? 1u : 0u;
         }
-        if (ops.template intersect_block<kAnyHit>(block[i], b.object, q, hit)) {
-          found = true;
-          if constexpr (kAnyHit) return true;
-        }
       }
-      return found;
+      return ops.template intersect_leaf<kAnyHit>(block, count, b.object, q, hit);
     });
   }
   return traverse<kAnyHit, kCount>(ops, b.nodes, b.root, q, counters, [&](uint32_t ref) {

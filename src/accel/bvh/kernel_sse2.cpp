@@ -42,13 +42,16 @@ class Sse2Ops {
   }
 
   template <bool kAnyHit>
-  bool intersect_block(const TriangleBlock& block, uint32_t object, RayQuery& q, HitRecord& hit) const {
+  bool intersect_leaf(const TriangleBlock* blocks, uint32_t count, uint32_t object, RayQuery& q,
+                      HitRecord& hit) const {
     bool found = false;
-    for (uint32_t lane = 0; lane < 4; ++lane) {
-      if (block.prim[lane] == kNoPrim) continue;
-      if (intersect_block_lane(block, lane, object, q, hit)) {
-        found = true;
-        if constexpr (kAnyHit) return true;
+    for (uint32_t i = 0; i < count; ++i) {
+      for (uint32_t lane = 0; lane < 4; ++lane) {
+        if (blocks[i].prim[lane] == kNoPrim) continue;
+        if (intersect_block_lane(blocks[i], lane, object, q, hit)) {
+          found = true;
+          if constexpr (kAnyHit) return true;
+        }
       }
     }
     return found;

@@ -19,7 +19,7 @@ struct KernelTable {
 // Baseline x86-64 (SSE2): 8-wide nodes tested as two 4-wide halves, triangles
 // through the reference routine one by one.
 KernelTable sse2_kernels();
-// AVX2 + FMA: 8-wide node test, and a 4-wide watertight triangle filter that
+// AVX2 + FMA: 8-wide node test, and an 8-wide (two blocks) watertight triangle filter that
 // computes exactly what the reference routine computes (same operations, same
 // rounding), which then confirms each candidate. Call only where the CPU has
 // AVX2 and FMA (cpu_has_avx2_fma()).

@@ -33,10 +33,12 @@ inline constexpr uint32_t kEmptyRef = kLeafBit;
 // ---------------------------------------------------------------- nodes
 // An 8-wide node, bounds in SoA rows: rows 2a and 2a + 1 hold the lower and
 // upper bounds of axis a for the 8 children. Empty slots have lo = +inf,
-// hi = -inf, which no ray hits.
+// hi = -inf, which no ray hits. The child references come first, so that they
+// share a cache line with the first row of bounds (half the nodes) or lie in
+// the line before it, fetched with the bounds rather than after the test.
 struct alignas(32) Node8 {
-  float bounds[6][8];
   uint32_t child[8];
+  float bounds[6][8];
 };
 static_assert(sizeof(Node8) == 224);
 
