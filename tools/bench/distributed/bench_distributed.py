@@ -84,7 +84,9 @@ def run_record(report):
 
 
 def merge_times(stdout):
-    m = re.search(r"read and add ([0-9.]+) s \(CPU ([0-9.]+) s\), write ([0-9.]+) s \(CPU ([0-9.]+) s\)", stdout)
+    # "read and add" (the merged film; its write resolves it), or "read, add and resolve" (the band merge).
+    m = re.search(r"read(?:,)? (?:and )?add(?: and resolve)? ([0-9.]+) s \(CPU ([0-9.]+) s\), write ([0-9.]+) s"
+                  r" \(CPU ([0-9.]+) s\)", stdout)
     if not m:
         raise SystemExit(f"the merge printed no times:\n{stdout}")
     return tuple(float(m.group(i)) for i in range(1, 5))
@@ -191,10 +193,11 @@ def same_exr_bytes(a, b):
         x, y = bytearray(f.read()), bytearray(g.read())
     for data in (x, y):
         at = data.find(b"capDate\0string\0")
-        if at >= 0:
+        while at >= 0:  # one per part of a multi-part file
             start = at + len(b"capDate\0string\0") + 4  # the value's size (int32), then the value
             size = int.from_bytes(data[start - 4:start], "little")
             data[start:start + size] = b"\0" * size
+            at = data.find(b"capDate\0string\0", start)
     return x == y
 
 
@@ -202,53 +205,61 @@ def same_exr_bytes(a, b):
 # alternate (which goes first alternating too), and each pair's outputs are checked to be the same pixels.
 def big_merge(a, tmp):
     exes = [("this build", a.exe)] + ([("baseline", a.merge_baseline)] if a.merge_baseline else [])
-    sizes, times, files = {}, {}, {}
+    sizes, times, files, exr = {}, {}, {}, {}
+    cases = [(n, c) for n in a.merge_shards for c in a.merge_compressions]
+    extra = ["--threads", str(a.merge_threads)] if a.merge_threads else []
     for n in a.merge_shards:
         files[n] = big_shards(a, tmp, n)
         sizes[n] = os.path.getsize(os.path.join(tmp, files[n][0]))
-        for e, _ in exes:
-            times[(n, e)] = []
         timed([a.exe, "merge", *files[n], "-o", "warm.exr"], tmp)  # the shard files into the page cache
+    for case in cases:
+        for e, _ in exes:
+            times[(case, e)] = []
     loads = [load_average()]
     for r in range(a.merge_rounds):
-        for n in a.merge_shards:
+        for n, c in cases:
             outs = []
             for e, exe in (exes if r % 2 == 0 else exes[::-1]):
                 out = f"big_{len(outs)}.exr"
-                wall, stdout = timed([exe, "merge", *files[n], "-o", out], tmp)
-                times[(n, e)].append((wall, CPU[0], *merge_times(stdout)))
+                wall, stdout = timed([exe, "merge", *files[n], "-o", out, "--exr-compression", c]
+                                     + (extra if e == "this build" else []), tmp)
+                times[((n, c), e)].append((wall, CPU[0], *merge_times(stdout)))
                 outs.append(out)
+            exr[(n, c)] = os.path.getsize(os.path.join(tmp, outs[0]))
             if len(outs) == 2 and not same_exr_bytes(*[os.path.join(tmp, o) for o in outs]):
-                raise SystemExit(f"the merges of {n} shards by the two builds differ")
+                raise SystemExit(f"the merges of {n} shards ({c}) by the two builds differ")
         loads.append(load_average())
         print(f"merge round {r + 1}/{a.merge_rounds} done, load average {loads[-1]}", file=sys.stderr)
-    exr = os.path.getsize(os.path.join(tmp, "big_0.exr"))
     print(f"Merge of a {a.merge_width}x{a.merge_height} frame with every AOV of the path integrator"
           f" ({ALL_AOVS}), shard files in the page cache; {a.merge_rounds} rounds"
           + (", the two builds alternating (which goes first alternates), every pair's EXRs the same bytes but"
              " for their capDate"
              if len(exes) == 2 else "") + "; medians [smallest, largest]. Load average (1 min) after each round: "
           + ", ".join(x.split()[0] for x in loads[1:]) + ".\n")
-    print("| shards | build | read and add: wall | read and add: CPU | EXR write: wall | EXR write: CPU |"
-          " merge process: wall | merge process: CPU |")
-    print("|---|---|---|---|---|---|---|---|")
+    print("(\"Read and add\" is the merge's first phase: with the merged film, reading and adding (its write then"
+          " resolves the film); band by band, reading, adding and resolving.)\n")
+    print("| shards | compression | build | read and add: wall | read and add: CPU | EXR write: wall | EXR write: CPU |"
+          " merge process: wall | merge process: CPU | EXR |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     sec = lambda x: f"{x:.2f} s"  # noqa: E731
-    for n in a.merge_shards:
+    for n, c in cases:
         for e, _ in exes:
-            t = times[(n, e)]
+            t = times[((n, c), e)]
             cols = [spread([x[i] for x in t], sec) for i in (2, 3, 4, 5, 0, 1)]
-            print(f"| {n} | {e} | " + " | ".join(cols) + " |")
+            print(f"| {n} | {c} | {e} | " + " | ".join(cols) + f" | {exr[(n, c)] / 2**20:.0f} MiB |")
     if len(exes) == 2:
-        print("\nRatios, baseline / this build, of the medians:\n")
-        print("| shards | read and add: wall | read and add: CPU | EXR write: CPU | merge process: wall |"
-              " merge process: CPU |")
-        print("|---|---|---|---|---|---|")
-        for n in a.merge_shards:
-            med = {e: [statistics.median(x[i] for x in times[(n, e)]) for i in range(6)] for e, _ in exes}
-            b, t = med["baseline"], med["this build"]
-            print(f"| {n} | " + " | ".join(f"{b[i] / t[i]:.2f}x" for i in (2, 3, 5, 0, 1)) + " |")
-    print(f"\nOne shard file: " + ", ".join(f"{sizes[n]:,} bytes ({n} shards)" for n in a.merge_shards) +
-          f"; the merged EXR: {exr / 2**20:.0f} MiB.\n")
+        print("\nRatios, baseline / this build, of the medians [smallest, largest ratio of a round's pair]:\n")
+        print("| shards | compression | merge process: wall | merge process: CPU |")
+        print("|---|---|---|---|")
+        for case in cases:
+            b, t = times[(case, "baseline")], times[(case, "this build")]
+            cols = []
+            for i in (0, 1):
+                ratios = [x[i] / y[i] for x, y in zip(b, t)]
+                cols.append(f"{statistics.median(x[i] for x in b) / statistics.median(y[i] for y in t):.2f}x"
+                            f" [{min(ratios):.2f}, {max(ratios):.2f}]")
+            print(f"| {case[0]} | {case[1]} | " + " | ".join(cols) + " |")
+    print(f"\nOne shard file: " + ", ".join(f"{sizes[n]:,} bytes ({n} shards)" for n in a.merge_shards) + ".\n")
 
 
 def ab_exact(a, tmp):
@@ -299,6 +310,8 @@ def main():
     p.add_argument("--merge-rounds", type=int, default=5)
     p.add_argument("--merge-shards", default="2,4", help="the shard counts of the large merge")
     p.add_argument("--merge-baseline", help="another pathtracer (e.g. main's): its merges alternate with --exe's")
+    p.add_argument("--merge-compressions", default="zip", help="--exr-compression of the large merges, e.g. zip,none")
+    p.add_argument("--merge-threads", type=int, default=0, help="--threads of --exe's merges (default: all)")
     p.add_argument("--skip-merge", action="store_true", help="only the overhead table")
     p.add_argument("--tmp", help="where the shard files go (the large merge's take 2 GiB each)")
     p.add_argument("--shard-dir", help="the large merge's shard files here, reused if they exist")
@@ -310,6 +323,7 @@ def main():
     a.exe, a.scene = os.path.abspath(a.exe), os.path.abspath(a.scene)
     a.shards = [int(n) for n in a.shards.split(",")]
     a.merge_shards = [int(n) for n in a.merge_shards.split(",")]
+    a.merge_compressions = a.merge_compressions.split(",")
     if a.merge_baseline:
         a.merge_baseline = os.path.abspath(a.merge_baseline)
     print(f"Machine: {machine()} (lscpu); load average (1, 5, 15 min) at the start {load_average()}.\n")
