@@ -77,28 +77,34 @@ void add_ranked(ExactSum* slots, int ranks, float id, float w) {
 
 // The ranked ids and coverages (weight / the pixel's total weight, clamped
 // to [0, 1]) into out[0 .. 2 * ranks), highest coverage first (ties: the
-// smaller id first); free slots give (0, 0).
+// smaller id first); free slots give (0, 0). The used slots come first (the
+// ids in increasing order: add_ranked), so only they are sorted; their ids
+// differ, so the order is total and any sort gives it.
 void ranked_values(const ExactSum* slots, int ranks, const ExactSum& weight, float* out) {
+  std::fill(out, out + 2 * ranks, 0.0f);
+  if (weight.is_zero()) return;
   std::array<int, kCryptomatteMaxRanks> order{};
   std::array<double, kCryptomatteMaxRanks> w{};
   std::array<float, kCryptomatteMaxRanks> id{};
-  for (int k = 0; k < ranks; ++k) {
-    const auto i = static_cast<std::size_t>(k);
-    order[i] = k;
-    w[i] = slots[2 * k + 1].value();
-    id[i] = std::bit_cast<float>(slot_id(slots[2 * k]));
+  int used = 0;
+  for (; used < ranks && !slots[2 * used].is_zero(); ++used) {
+    const auto i = static_cast<std::size_t>(used);
+    w[i] = slots[2 * used + 1].value();
+    id[i] = std::bit_cast<float>(slot_id(slots[2 * used]));
+    // Insertion: a few slots at most.
+    int k = used;
+    for (; k > 0; --k) {
+      const auto o = static_cast<std::size_t>(order[static_cast<std::size_t>(k - 1)]);
+      if (std::make_tuple(-w[o], id[o]) < std::make_tuple(-w[i], id[i])) break;
+      order[static_cast<std::size_t>(k)] = static_cast<int>(o);
+    }
+    order[static_cast<std::size_t>(k)] = used;
   }
-  const auto key = [&](int k) {
-    const auto i = static_cast<std::size_t>(k);
-    return std::make_tuple(slots[2 * k].is_zero(), -w[i], id[i]);
-  };
-  std::sort(order.begin(), order.begin() + ranks, [&](int a, int b) { return key(a) < key(b); });
   const double total = weight.value();
-  for (int k = 0; k < ranks; ++k) {
-    const int o = order[static_cast<std::size_t>(k)];
-    const bool used = !slots[2 * o].is_zero() && !weight.is_zero();
-    out[2 * k] = used ? id[static_cast<std::size_t>(o)] : 0.0f;
-    out[2 * k + 1] = used ? static_cast<float>(std::clamp(w[static_cast<std::size_t>(o)] / total, 0.0, 1.0)) : 0.0f;
+  for (int k = 0; k < used; ++k) {
+    const auto o = static_cast<std::size_t>(order[static_cast<std::size_t>(k)]);
+    out[2 * k] = id[o];
+    out[2 * k + 1] = static_cast<float>(std::clamp(w[o] / total, 0.0, 1.0));
   }
 }
 
