@@ -5,7 +5,7 @@
             [--scene scenes/cornell-box.json] [--width 640 --height 360] [--spp 64]
             [--shards 2,4] [--rounds 5] [--merge-width 1920 --merge-height 1080] [--merge-rounds 5]
             [--merge-shards 2,4] [--merge-baseline OTHER_PATHTRACER] [--skip-overhead] [--tmp DIR]
-            [--shard-dir DIR]
+            [--shard-dir DIR] [--merge-compressions zip,none] [--merge-threads N] [--render-write]
 
 1. Overhead at equal total samples: one render of --spp samples against N
    shards of --spp/N each, run one after another on this machine (as a farm
@@ -29,11 +29,16 @@
    With --merge-baseline EXE (e.g. main's build), its merges alternate with
    --exe's, and each pair's EXRs are checked to be the same bytes (but for the
    time they were written, capDate). --shard-dir DIR keeps the shard files in
-   DIR and reuses them on the next run.
+   DIR and reuses them on the next run. --merge-compressions zip,none measures
+   each --exr-compression; --merge-threads N gives --exe's merges --threads N.
 3. With --baseline EXE (a build before exact sums): the render phase and the
    CPU time of the same render with both executables, alternating, with and
    without every AOV (--ab-rounds rounds), so the cost of exact sums is
    measured at equal error (the images agree to float rounding).
+
+4. With --render-write and --merge-baseline: the single render's EXR write
+   (the writer the merge shares), a --merge-width x --merge-height render of
+   1 spp with every AOV by both executables, alternating, EXRs compared.
 
 Prints markdown for docs/distributed.md, with lscpu's model and core count and
 the load average before and after (progress goes to stderr).
@@ -187,17 +192,20 @@ def big_shards(a, tmp, n):
     return files
 
 
-# The bytes of two EXR files are the same but for the capDate attribute's value (the time of writing).
-def same_exr_bytes(a, b):
+# The bytes of two EXR files are the same but for the capDate attribute's value (the time of writing) and,
+# for renders, `timed` attributes (pathtracer:renderTime).
+def same_exr_bytes(a, b, timed=()):
     with open(a, "rb") as f, open(b, "rb") as g:
         x, y = bytearray(f.read()), bytearray(g.read())
+    keys = [b"capDate\0string\0"] + [name.encode() + b"\0float\0" for name in timed]
     for data in (x, y):
-        at = data.find(b"capDate\0string\0")
-        while at >= 0:  # one per part of a multi-part file
-            start = at + len(b"capDate\0string\0") + 4  # the value's size (int32), then the value
-            size = int.from_bytes(data[start - 4:start], "little")
-            data[start:start + size] = b"\0" * size
-            at = data.find(b"capDate\0string\0", start)
+        for key in keys:
+            at = data.find(key)
+            while at >= 0:  # one per part of a multi-part file
+                start = at + len(key) + 4  # the value's size (int32), then the value
+                size = int.from_bytes(data[start - 4:start], "little")
+                data[start:start + size] = b"\0" * size
+                at = data.find(key, start)
     return x == y
 
 
@@ -262,6 +270,35 @@ def big_merge(a, tmp):
     print(f"\nOne shard file: " + ", ".join(f"{sizes[n]:,} bytes ({n} shards)" for n in a.merge_shards) + ".\n")
 
 
+# The single render's EXR write (the writer the merge shares): a --merge-width x --merge-height render of
+# 1 spp with every AOV by --exe and --merge-baseline, alternating; the run record's write phase (wall) and
+# the process's CPU time outside its render phase (start-up, scene, the write), and the EXRs' bytes.
+def render_write(a, tmp):
+    exes = [("this build", a.exe), ("baseline", a.merge_baseline)]
+    runs = {e: [] for e, _ in exes}
+    for r in range(a.merge_rounds):
+        outs = []
+        for e, exe in (exes if r % 2 == 0 else exes[::-1]):
+            out = f"single_{len(outs)}.exr"
+            timed([exe, a.scene, "--width", str(a.merge_width), "--height", str(a.merge_height), "--spp", "1",
+                   "--aov", ALL_AOVS, "-o", out, "--quiet", "--report", "single.json"], tmp)
+            rec = run_record(os.path.join(tmp, "single.json"))
+            runs[e].append((rec["write"], CPU[0] - rec["render_cpu"]))
+            outs.append(out)
+        if not same_exr_bytes(*[os.path.join(tmp, o) for o in outs], timed=["pathtracer:renderTime"]):
+            raise SystemExit("the single renders' EXRs by the two builds differ")
+    print(f"The single render's EXR write: {a.merge_width}x{a.merge_height}, 1 spp, every AOV, zip; {a.merge_rounds}"
+          " rounds, the builds alternating, every pair's EXRs the same bytes but for their capDate and"
+          " pathtracer:renderTime; medians"
+          " [smallest, largest]. Load average (1 min) at the end: " + load_average().split()[0] + ".\n")
+    print("| build | write phase (wall) | process CPU outside the render phase |")
+    print("|---|---|---|")
+    sec = lambda x: f"{x:.2f} s"  # noqa: E731
+    for e, _ in exes:
+        print(f"| {e} | {spread([x[0] for x in runs[e]], sec)} | {spread([x[1] for x in runs[e]], sec)} |")
+    print()
+
+
 def ab_exact(a, tmp):
     variants = [("beauty", []), ("every AOV", ["--aov", ALL_AOVS])]
     exes = [("baseline", a.baseline), ("this build", a.exe)]
@@ -312,6 +349,8 @@ def main():
     p.add_argument("--merge-baseline", help="another pathtracer (e.g. main's): its merges alternate with --exe's")
     p.add_argument("--merge-compressions", default="zip", help="--exr-compression of the large merges, e.g. zip,none")
     p.add_argument("--merge-threads", type=int, default=0, help="--threads of --exe's merges (default: all)")
+    p.add_argument("--render-write", action="store_true",
+                   help="also the single render's EXR write, --exe against --merge-baseline")
     p.add_argument("--skip-merge", action="store_true", help="only the overhead table")
     p.add_argument("--tmp", help="where the shard files go (the large merge's take 2 GiB each)")
     p.add_argument("--shard-dir", help="the large merge's shard files here, reused if they exist")
@@ -336,6 +375,8 @@ def main():
             overhead(a, tmp)
         if not a.skip_merge:
             big_merge(a, os.path.abspath(a.shard_dir) if a.shard_dir else tmp)
+        if a.render_write and a.merge_baseline:
+            render_write(a, tmp)
     print(f"Load average at the end: {load_average()}.")
 
 
