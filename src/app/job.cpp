@@ -95,7 +95,7 @@ bool plan_job(const Options& o, Job& job, Messages& m) {
   }
   plan.equal_passes = job.settings.equal_passes();
 
-  job.exr = {o.exr_compression, o.multipart};
+  job.exr = {o.exr_compression, o.multipart, o.threads};
   for (const AovRequest& r : job.aovs)
     if (r.ranks > 0 && exr_compression_rounds_floats(job.exr.compression) && !o.replaying()) {
       m.error("--exr-compression " + job.exr.compression + " rounds 32-bit floats to 24 bits, which destroys " +

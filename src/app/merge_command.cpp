@@ -15,6 +15,7 @@
 #include "app/shard_merge.h"
 #include "core/mapped_file.h"
 #include "core/memory_stream.h"
+#include "core/parallel.h"
 #include "core/stopwatch.h"
 
 namespace pt {
@@ -28,6 +29,7 @@ struct MergeOptions {
   ExrSettings exr;
   bool allow_partial = false;
   bool quiet = false;
+  int threads = 0;  // 0: every hardware thread
 };
 
 void add_merge_options(CLI::App& app, MergeOptions& m) {
@@ -46,6 +48,8 @@ void add_merge_options(CLI::App& app, MergeOptions& m) {
         return check_exr_compression(value, error) ? std::string() : error;
       });
   app.add_flag("--multipart", m.exr.multipart, "EXR: one part per layer");
+  app.add_option("--threads", m.threads, "Worker threads of the merge and the EXR write (default: all hardware threads)")
+      ->check(CLI::NonNegativeNumber);
   app.add_flag("--quiet", m.quiet, "Print errors only");
 }
 
@@ -78,24 +82,45 @@ bool read_headers(const MergeOptions& m, std::vector<Input>& inputs, std::string
   return true;
 }
 
-// Each shard file is mapped (not copied into buffers) and its film state
-// added in parallel; one file is mapped at a time.
+// A shard file mapped (not copied into buffers), its header read again
+// (`info`) and its film state (the bytes after the header) in `state`.
+bool map_shard(const Input& input, std::optional<MappedFile>& file, ShardInfo& info, std::string_view& state,
+               std::string& error) {
+  std::string why;
+  file = MappedFile::open(input.path, why);
+  if (!file) {
+    error = "cannot read shard file '" + input.path + "': " + why;
+    return false;
+  }
+  MemoryBuffer buffer(file->bytes());
+  std::istream in(&buffer);
+  if (!read_shard_info(in, input.path, info, error)) return false;
+  state = file->bytes().substr(buffer.consumed());
+  return true;
+}
+
+// The merged film, for --shard-out: each shard's film state added in
+// parallel, one file mapped at a time.
 bool add_films(const std::vector<Input>& inputs, ShardMerger& merger, std::string& error) {
   for (const Input& input : inputs) {
-    std::string why;
-    const std::optional<MappedFile> file = MappedFile::open(input.path, why);
-    if (!file) {
-      error = "cannot read shard file '" + input.path + "': " + why;
-      return false;
-    }
-    MemoryBuffer buffer(file->bytes());
-    std::istream in(&buffer);
+    std::optional<MappedFile> file;
     ShardInfo again;
-    if (!read_shard_info(in, input.path, again, error) ||
-        !merger.add(input.path, again, file->bytes().substr(buffer.consumed()), error))
-      return false;
+    std::string_view state;
+    if (!map_shard(input, file, again, state, error) || !merger.add(input.path, again, state, error)) return false;
   }
   return true;
+}
+
+// Images only: the band merge, every shard file mapped at once (only the
+// pages of the band being added are read at a time).
+bool merge_bands(const std::vector<Input>& inputs, ShardMerger& merger, LayeredImage& layers, std::string& error) {
+  std::vector<std::optional<MappedFile>> files(inputs.size());
+  std::vector<std::string_view> states(inputs.size());
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    ShardInfo again;
+    if (!map_shard(inputs[i], files[i], again, states[i], error)) return false;
+  }
+  return merger.merge_layers(states, layers, error);
 }
 
 // Every output checked before any shard is read (as a render's: app/output_checks.h),
@@ -130,6 +155,29 @@ bool check_compression(const MergeOptions& m, const ShardInfo& info, std::string
   return true;
 }
 
+// The shards read and added, and the outputs written: images alone by the
+// band merge; with --shard-out through the merged film. `phase` is the
+// first phase's name in the report (they differ in what they include).
+bool merge_and_write(const MergeOptions& m, const std::vector<Input>& inputs, ShardMerger& merger,
+                     OutputStamps& stamps, std::string& phase, double times[4], std::string& error) {
+  const auto t0 = Clock::now();
+  const double cpu0 = process_cpu_seconds();
+  LayeredImage layers;
+  const bool bands = m.shard_out.empty();
+  phase = bands ? "read, add and resolve" : "read and add";
+  bool ok = (bands ? merge_bands(inputs, merger, layers, error) : add_films(inputs, merger, error)) &&
+            merger.finish(error);
+  times[0] = seconds_since(t0);
+  times[1] = process_cpu_seconds() - cpu0;
+  const auto t1 = Clock::now();
+  const double cpu1 = process_cpu_seconds();
+  ok = ok && (bands ? write_merged_images(merger, layers, m.outputs, m.ocio_config, m.exr, stamps, error)
+                    : write_merged(merger, m.outputs, m.shard_out, m.ocio_config, m.exr, stamps, error));
+  times[2] = seconds_since(t1);
+  times[3] = process_cpu_seconds() - cpu1;
+  return ok;
+}
+
 int merge(const MergeOptions& m) {
   std::string error;
   if (m.outputs.empty() && m.shard_out.empty()) {
@@ -143,8 +191,6 @@ int merge(const MergeOptions& m) {
   }
   OutputStamps stamps;
   stamps.take(files);
-  const auto t0 = Clock::now();
-  const double cpu0 = process_cpu_seconds();
   std::vector<Input> inputs;
   ShardMerger merger(m.allow_partial);
   bool ok = read_headers(m, inputs, error);
@@ -153,10 +199,12 @@ int merge(const MergeOptions& m) {
     return kExitUsage;
   }
   for (std::size_t i = 0; ok && i < inputs.size(); ++i) ok = merger.check(inputs[i].path, inputs[i].info, error);
-  ok = ok && add_films(inputs, merger, error) && merger.finish(error);
-  const double merge_s = seconds_since(t0), cpu1 = process_cpu_seconds();
-  const auto t1 = Clock::now();
-  ok = ok && write_merged(merger, m.outputs, m.shard_out, m.ocio_config, m.exr, stamps, error);
+  std::string phase;
+  double times[4] = {};
+  MergeOptions options = m;
+  options.exr.threads = m.threads;
+  WorkerPool pool(m.threads);  // --threads bounds the adds, the resolve and the EXR write
+  if (ok) pool.run([&] { ok = merge_and_write(options, inputs, merger, stamps, phase, times, error); });
   if (!ok) {
     std::cerr << "error: merge: " << error << '\n';
     return kExitFailure;
@@ -166,12 +214,12 @@ int merge(const MergeOptions& m) {
   if (!m.quiet) {
     std::vector<std::string> written = m.outputs;
     if (!m.shard_out.empty()) written.push_back(m.shard_out);
-    const Film& film = merger.film();
+    const PixelRect& window = merger.info().window;
     std::cout << std::fixed << std::setprecision(3) << "merged " << merger.shards() << " shard"
-              << (merger.shards() == 1 ? "" : "s") << " into " << join(written, ", ") << " (" << film.crop().width()
-              << "x" << film.crop().height() << ", " << merger.spp() << " spp"
-              << (merger.info().partial ? ", partial" : "") << "): read and add " << merge_s << " s (CPU "
-              << cpu1 - cpu0 << " s), write " << seconds_since(t1) << " s (CPU " << process_cpu_seconds() - cpu1 << " s)\n";
+              << (merger.shards() == 1 ? "" : "s") << " into " << join(written, ", ") << " (" << window.width()
+              << "x" << window.height() << ", " << merger.spp() << " spp"
+              << (merger.info().partial ? ", partial" : "") << "): " << phase << " " << times[0] << " s (CPU "
+              << times[1] << " s), write " << times[2] << " s (CPU " << times[3] << " s)\n";
   }
   return 0;
 }

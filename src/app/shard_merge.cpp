@@ -87,6 +87,7 @@ bool ShardMerger::check(const std::string& name, const ShardInfo& info, std::str
     warnings_.push_back("'" + name + "' comes from another build of pathtracer (" + info.build + ", not " +
                         merged_.build + "): its samples may differ from the others' in the last bits");
   names_.push_back(name);
+  infos_.push_back(info);
   for (const ShardPiece& p : info.pieces) {
     placed_.push_back({p, name});
     merged_.pieces.push_back(p);
@@ -138,23 +139,28 @@ bool ShardMerger::add(const std::string& name, const ShardInfo& info, const Film
 }
 
 StateRules ShardMerger::rules(const ShardInfo& info, const std::map<Key, std::pair<bool, int>>& order) const {
+  return rules(info, order, info.crop.y0, info.crop.y1);
+}
+
+StateRules ShardMerger::rules(const ShardInfo& info, const std::map<Key, std::pair<bool, int>>& order, int y0,
+                              int y1) const {
   const PixelRect& c = info.crop;
   const auto width = static_cast<std::size_t>(c.width());
   StateRules rules;
   rules.crop = c;
-  rules.other_first.assign(width * static_cast<std::size_t>(c.height()), 0);
+  rules.first = static_cast<std::size_t>(y0 - c.y0) * width;
+  rules.other_first.assign(width * static_cast<std::size_t>(y1 - y0), 0);
   rules.max_samples.assign(rules.other_first.size(), 0);
+  const auto at = [&](int x, int y) { return static_cast<std::size_t>(y - y0) * width + static_cast<std::size_t>(x - c.x0); };
   std::map<Key, uint64_t> done;  // the samples each crop's pixels may hold
   for (const ShardPiece& p : info.pieces)
     done[{p.crop.x0, p.crop.y0, p.crop.x1, p.crop.y1}] += static_cast<uint64_t>(p.done.size());
   for (const auto& [key, n] : done)
-    for (int y = std::get<1>(key); y < std::get<3>(key); ++y)
-      for (int x = std::get<0>(key); x < std::get<2>(key); ++x)
-        rules.max_samples[static_cast<std::size_t>(y - c.y0) * width + static_cast<std::size_t>(x - c.x0)] += n;
+    for (int y = std::max(y0, std::get<1>(key)); y < std::min(y1, std::get<3>(key)); ++y)
+      for (int x = std::get<0>(key); x < std::get<2>(key); ++x) rules.max_samples[at(x, y)] += n;
   for (const auto& [key, first] : order)
-    for (int y = std::get<1>(key); first.first && y < std::get<3>(key); ++y)
-      for (int x = std::get<0>(key); x < std::get<2>(key); ++x)
-        rules.other_first[static_cast<std::size_t>(y - c.y0) * width + static_cast<std::size_t>(x - c.x0)] = 1;
+    for (int y = std::max(y0, std::get<1>(key)); first.first && y < std::min(y1, std::get<3>(key)); ++y)
+      for (int x = std::get<0>(key); x < std::get<2>(key); ++x) rules.other_first[at(x, y)] = 1;
   return rules;
 }
 
@@ -265,19 +271,30 @@ ImageMetadata ShardMerger::metadata() const {
   return m;
 }
 
-bool write_merged(const ShardMerger& merger, const std::vector<std::string>& outputs, const std::string& shard_out,
-                  const std::string& ocio_config, const ExrSettings& exr, OutputStamps& stamps, std::string& error) {
-  const ShardInfo& info = merger.info();
+ChannelType ShardMerger::beauty_type() const {
   std::vector<AovRequest> aovs;
-  ChannelType beauty;
-  if (!info.film_aovs(aovs, beauty, error)) return false;
+  ChannelType beauty = ChannelType::Float;
+  std::string error;
+  merged_.film_aovs(aovs, beauty, error);  // checked by make_film / merge_layers before any layers exist
+  return beauty;
+}
+
+bool write_merged_images(const ShardMerger& merger, const LayeredImage& layers, const std::vector<std::string>& outputs,
+                         const std::string& ocio_config, const ExrSettings& exr, OutputStamps& stamps,
+                         std::string& error) {
+  const ShardInfo& info = merger.info();
   DisplaySettings display = info.display;
   if (!ocio_config.empty()) display.ocio_config = ocio_config;
   display.alpha = info.settings.value("film_transparent", false);  // PNG: RGBA, as the render's
-  if (!outputs.empty() &&
-      !write_outputs(outputs, merger.film().layers(beauty), display, exr, merger.metadata(), stamps, error))
+  return write_outputs(outputs, layers, display, exr, merger.metadata(), stamps, error);
+}
+
+bool write_merged(const ShardMerger& merger, const std::vector<std::string>& outputs, const std::string& shard_out,
+                  const std::string& ocio_config, const ExrSettings& exr, OutputStamps& stamps, std::string& error) {
+  if (!outputs.empty() && !write_merged_images(merger, merger.film().layers(merger.beauty_type()), outputs,
+                                               ocio_config, exr, stamps, error))
     return false;
-  return shard_out.empty() || write_shard(shard_out, info, merger.film(), error);
+  return shard_out.empty() || write_shard(shard_out, merger.info(), merger.film(), error);
 }
 
 }  // namespace pt

@@ -45,6 +45,18 @@ class ShardMerger {
   // after its header, a received message): its size checked first, then
   // added in parallel (Film::add_state), the same bits.
   bool add(const std::string& name, const ShardInfo& info, std::string_view state, std::string& error);
+  // The band merge (`pathtracer merge`; docs/distributed.md, "The merge"):
+  // the merged layers straight from the film states of every checked shard,
+  // `states[i]` that of the i-th checked (in memory: a mapped shard file
+  // after its header), without a merged film: per band of rows, in parallel,
+  // every shard's rows are added into a band film, in the order checked, and
+  // resolved into `out`, so that only the shards' bytes stream through
+  // memory, once. The same bits as add() of each, then film().layers(); the
+  // same checks (a state's size before anything is added, samples per pixel,
+  // Cryptomatte slots). False with `error` naming the shard.
+  bool merge_layers(const std::vector<std::string_view>& states, LayeredImage& out, std::string& error);
+  // The merged beauty's half/float type.
+  ChannelType beauty_type() const;
   // After the last shard: every tile of the window and every sample of the
   // target present? Missing pieces are an error, unless allowed: then the
   // result is marked partial and notes() says what is missing.
@@ -72,7 +84,9 @@ class ShardMerger {
   bool check_pieces(const std::string& name, const ShardInfo& info, std::string& error) const;
   bool make_film(std::string& error);
   // What a film state of `info` may add (Film::add_state), with `order` its precedence().
+  // Rows [y0, y1) of its crop only, when given (a band).
   StateRules rules(const ShardInfo& info, const std::map<Key, std::pair<bool, int>>& order) const;
+  StateRules rules(const ShardInfo& info, const std::map<Key, std::pair<bool, int>>& order, int y0, int y1) const;
   template <typename State>
   bool add_state(const std::string& name, const ShardInfo& info, State&& state, std::string& error);
   // Per crop of `info`'s pieces: whether its first-sample values come first
@@ -84,6 +98,7 @@ class ShardMerger {
 
   bool allow_partial_;
   std::vector<std::string> names_;
+  std::vector<ShardInfo> infos_;  // as checked
   ShardInfo merged_;
   std::vector<Placed> placed_;
   std::optional<Film> film_;
@@ -98,6 +113,10 @@ class ShardMerger {
 // empty, the merged state (a shard file of all the pieces, to merge again).
 // False with the first error; files written before it stay.
 // `exr` and `stamps` as for a render's outputs (app/outputs.h).
+// The images alone, from the merged layers (film().layers() or merge_layers()).
+bool write_merged_images(const ShardMerger& merger, const LayeredImage& layers, const std::vector<std::string>& outputs,
+                         const std::string& ocio_config, const ExrSettings& exr, OutputStamps& stamps,
+                         std::string& error);
 bool write_merged(const ShardMerger& merger, const std::vector<std::string>& outputs, const std::string& shard_out,
                   const std::string& ocio_config, const ExrSettings& exr, OutputStamps& stamps, std::string& error);
 

@@ -34,7 +34,7 @@
 
 namespace pt {
 
-inline constexpr int kImageLibraryAbi = 1;
+inline constexpr int kImageLibraryAbi = 2;
 
 // What an image file's header says.
 struct ImageHeader {

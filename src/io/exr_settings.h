@@ -11,6 +11,8 @@ struct ExrSettings {
   // "dwaa" and "dwab" may carry a level, "dwaa:45" (the default, 45).
   std::string compression = "zip";
   bool multipart = false;  // one part per layer instead of one part for all
+  // OpenEXR's compression threads (--threads); 0: every hardware thread.
+  int threads = 0;
 };
 
 }  // namespace pt

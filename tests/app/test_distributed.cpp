@@ -115,6 +115,16 @@ TEST_F(Distributed, SampleSharesMergeToTheSingleRenderBitForBit) {
     EXPECT_EQ(merged.attr("pathtracer:seed"), single.attr("pathtracer:seed"));
     EXPECT_EQ(merged.attr("worldToCamera"), single.attr("worldToCamera"));
   }
+  // The band merge on one thread, and the merged film that --shard-out needs,
+  // give the same bits.
+  for (const std::string args : {"--threads 1", "--threads 3 --shard-out m3.ptshard"}) {
+    const RunResult m = run("merge n3_2.ptshard n3_0.ptshard n3_1.ptshard -o t.exr " + args);
+    ASSERT_EQ(m.status, 0) << m.err;
+    EXPECT_NE(m.out.find(args.find("shard-out") != std::string::npos ? "read and add" : "read, add and resolve"),
+              std::string::npos) << m.out;
+    EXPECT_EQ(differs(single, read_exr(path("t.exr"))), "") << args;
+  }
+  EXPECT_EQ(run("merge n3_0.ptshard -o t.exr --threads -1").status, 2);
 }
 
 TEST_F(Distributed, TilesOfACropKeepItsDataWindowTypesAndMetadata) {

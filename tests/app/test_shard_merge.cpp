@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <vector>
 
 #include "app/shard.h"
@@ -429,6 +430,87 @@ TEST(ShardMerger, StreamedStatesAreCheckedAsTheyAreRead) {
   EXPECT_EQ(error, "'t1': film state covers pixels [0,6)x[0,1), not [0,6)x[1,2) inside [0,6)x[0,5)");
   EXPECT_FALSE(tiles.add("t1", t1.info, std::string_view(state(t0.film)), error));
   EXPECT_EQ(error, "'t1': film state covers pixels [0,6)x[0,1), not [0,6)x[1,2) inside [0,6)x[0,5)");
+}
+
+// Merges `shards` band by band (ShardMerger::merge_layers, as `pathtracer
+// merge` writes images), their states given as `states` (their films' by default).
+bool band_merge(const std::vector<const Shard*>& shards, LayeredImage& out, std::string& error,
+                bool allow_partial = false, std::vector<std::string> states = {}) {
+  ShardMerger merger(allow_partial);
+  for (std::size_t i = 0; i < shards.size(); ++i) {
+    if (!merger.check("s" + std::to_string(i), shards[i]->info, error)) return false;
+    if (states.size() < shards.size()) states.push_back(state_of_film(shards[i]->film));
+  }
+  const std::vector<std::string_view> views(states.begin(), states.end());
+  return merger.merge_layers(views, out, error) && merger.finish(error);
+}
+
+// The same window, layers, channel names, types and value bits.
+void expect_same_layers(const LayeredImage& a, const LayeredImage& b, const std::string& what) {
+  EXPECT_EQ(std::tie(a.full_width, a.full_height, a.x, a.y, a.width, a.height),
+            std::tie(b.full_width, b.full_height, b.x, b.y, b.width, b.height)) << what;
+  ASSERT_EQ(a.layers.size(), b.layers.size()) << what;
+  for (std::size_t l = 0; l < a.layers.size(); ++l) {
+    const ImageLayer &x = a.layers[l], &y = b.layers[l];
+    EXPECT_EQ(x.name, y.name) << what;
+    EXPECT_EQ(x.channels, y.channels) << what;
+    EXPECT_EQ(x.type, y.type) << what;
+    ASSERT_EQ(x.values.size(), y.values.size()) << what << ", layer " << x.name;
+    EXPECT_EQ(std::memcmp(x.values.data(), y.values.data(), x.values.size() * sizeof(float)), 0)
+        << what << ", layer '" << x.name << "' differs";
+  }
+}
+
+TEST(ShardMerger, BandMergeGivesTheLayersOfTheWholeRender) {
+  Film whole(kW, kH, {0, 0, kW, kH}, all_aovs());
+  render(whole, whole.crop(), {0, kSpp});
+  const LayeredImage expected = whole.layers(ChannelType::Half);
+  std::string error;
+  for (int n : {1, 2, 3}) {
+    std::vector<Shard> shards;
+    for (int k = 0; k < n; ++k) shards.push_back(shard(share_of({k, n}, kSpp)));
+    std::vector<const Shard*> order;
+    for (const Shard& s : shards) order.push_back(&s);
+    std::reverse(order.begin(), order.end());
+    LayeredImage merged;
+    ASSERT_TRUE(band_merge(order, merged, error)) << error;
+    expect_same_layers(merged, expected, std::to_string(n) + " shards");
+  }
+  // Tiles of sample shares, and a partial merge (tile 1/2's last share
+  // missing) against the merged film's layers.
+  std::vector<Shard> parts;
+  for (int t = 0; t < 2; ++t)
+    for (int k = 0; k < 3; ++k) parts.push_back(shard(share_of({k, 3}, kSpp), Fraction{t, 2}));
+  std::vector<const Shard*> order;
+  for (const Shard& s : parts) order.push_back(&s);
+  LayeredImage merged;
+  ASSERT_TRUE(band_merge(order, merged, error)) << error;
+  expect_same_layers(merged, expected, "tiles of shares");
+  order.pop_back();
+  ShardMerger film_merge(true);
+  ASSERT_FALSE(merge(order, error, true, &film_merge).empty()) << error;
+  ASSERT_TRUE(band_merge(order, merged, error, true)) << error;
+  expect_same_layers(merged, film_merge.film().layers(ChannelType::Half), "a partial merge");
+}
+
+TEST(ShardMerger, BandMergeChecksEveryState) {
+  Shard a = shard({0, 15});
+  const Shard b = shard({15, kSpp});
+  a.info.pieces[0].done = {0, 14};  // its header claims fewer samples than its film holds
+  std::string error;
+  LayeredImage out;
+  EXPECT_FALSE(band_merge({&b, &a}, out, error));
+  EXPECT_EQ(error, "'s1': its film state holds 15 samples in pixel (0, 0), more than its pieces' 14 "
+                   "(the two do not belong together)");
+  a.info.pieces[0].done = {0, 15};
+  EXPECT_FALSE(band_merge({&a, &b}, out, error, false, {state(a.film), state(b.film).substr(0, 500)}));
+  EXPECT_EQ(error, "'s1': truncated film state");
+  EXPECT_FALSE(band_merge({&a, &b}, out, error, false, {state(a.film), state(b.film) + "x"}));
+  EXPECT_EQ(error, "'s1': film state has trailing data");
+  // The state of tile 0/5 under the header of tile 1/5 is refused.
+  const Shard t0 = shard({0, kSpp}, Fraction{0, 5}), t1 = shard({0, kSpp}, Fraction{1, 5});
+  EXPECT_FALSE(band_merge({&t1}, out, error, true, {state(t0.film)}));
+  EXPECT_EQ(error, "'s0': film state covers pixels [0,6)x[0,1), not [0,6)x[1,2) inside [0,6)x[0,5)");
 }
 
 TEST(ShardMerger, MergesOfMergesGiveTheSameBits) {

@@ -1,6 +1,15 @@
 #include "imagelib/oiio/exr_writer.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <vector>
+
+#include <Imath/half.h>
+#include <immintrin.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 namespace pt {
 
@@ -38,20 +47,102 @@ OIIO::ImageSpec part_spec(const LayeredImage& image, const std::vector<const Ima
   return spec;
 }
 
-// Every layer's channels interleaved into one float buffer, for a part
-// holding `layers`; OpenImageIO converts each channel to its format.
-std::vector<float> interleave(const LayeredImage& image, const std::vector<const ImageLayer*>& layers) {
-  std::size_t nchannels = 0;
-  for (const ImageLayer* layer : layers) nchannels += layer->channels.size();
-  std::vector<float> pixels(image.pixel_count() * nchannels);
-  std::size_t first = 0;
+// One channel of a part as packed for the file: where its float values are
+// (every `stride`-th, a layer's values being interleaved), where it goes in
+// a packed pixel, and whether it is stored as half.
+struct PackedChannel {
+  const float* values;
+  std::size_t stride, offset;
+  bool half;
+};
+
+// The channels of a part holding `layers`, in order, and the bytes of a
+// packed pixel: OpenImageIO's "native" layout, each channel in its file type.
+std::vector<PackedChannel> packed_channels(const std::vector<const ImageLayer*>& layers, std::size_t& pixel_bytes) {
+  std::vector<PackedChannel> channels;
+  pixel_bytes = 0;
   for (const ImageLayer* layer : layers) {
-    const std::size_t n = layer->channels.size();
-    for (std::size_t i = 0; i < image.pixel_count(); ++i)
-      for (std::size_t c = 0; c < n; ++c) pixels[i * nchannels + first + c] = layer->values[i * n + c];
-    first += n;
+    const bool half = layer->type == ChannelType::Half;
+    for (std::size_t c = 0; c < layer->channels.size(); ++c) {
+      channels.push_back({layer->values.data() + c, layer->channels.size(), pixel_bytes, half});
+      pixel_bytes += half ? sizeof(uint16_t) : sizeof(float);
+    }
   }
-  return pixels;
+  return channels;
+}
+
+// `n` floats (every `stride`-th of `v`) as half bits into `o`, `step` bytes
+// apart, rounded to nearest even: Imath's conversion (OpenImageIO's), in
+// software since the build targets plain x86-64, or the CPU's F16C one,
+// which rounds the same way (finite values, infinities, subnormals; NaNs,
+// whose payloads the two treat differently, go through Imath).
+void pack_halves_soft(const float* v, std::size_t stride, std::size_t n, unsigned char* o, std::size_t step) {
+  for (std::size_t x = 0; x < n; ++x) {
+    const uint16_t bits = Imath::half(v[x * stride]).bits();
+    std::memcpy(o + x * step, &bits, sizeof bits);
+  }
+}
+
+__attribute__((target("f16c"))) void pack_halves_f16c(const float* v, std::size_t stride, std::size_t n,
+                                                      unsigned char* o, std::size_t step) {
+  for (std::size_t x = 0; x < n; ++x) {
+    const float f = v[x * stride];
+    const uint16_t bits = std::isnan(f) ? Imath::half(f).bits() : _cvtss_sh(f, _MM_FROUND_TO_NEAREST_INT);
+    std::memcpy(o + x * step, &bits, sizeof bits);
+  }
+}
+
+void pack_halves(const float* v, std::size_t stride, std::size_t n, unsigned char* o, std::size_t step) {
+  static const bool f16c = __builtin_cpu_supports("f16c");
+  if (f16c) {
+    pack_halves_f16c(v, stride, n, o, step);
+  } else {
+    pack_halves_soft(v, stride, n, o, step);
+  }
+}
+
+// Rows [y0, y1) of the data window packed into `out`, channels interleaved
+// in their file types (halves rounded to nearest even, as OpenImageIO's
+// conversion does), rows in parallel. Writing this "native" data lets
+// OpenImageIO hand it to OpenEXR as it is: no float image of every channel
+// interleaved, and no conversion copy of it.
+void pack_rows(const LayeredImage& image, const std::vector<PackedChannel>& channels, std::size_t pixel_bytes, int y0,
+               int y1, unsigned char* out) {
+  const auto width = static_cast<std::size_t>(image.width);
+  tbb::parallel_for(tbb::blocked_range<int>(y0, y1), [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y < rows.end(); ++y) {
+      const std::size_t first = static_cast<std::size_t>(y) * width;
+      unsigned char* row = out + static_cast<std::size_t>(y - y0) * width * pixel_bytes;
+      for (const PackedChannel& c : channels) {
+        const float* v = c.values + first * c.stride;
+        unsigned char* o = row + c.offset;
+        if (c.half) {
+          pack_halves(v, c.stride, width, o, pixel_bytes);
+        } else {
+          for (std::size_t x = 0; x < width; ++x) std::memcpy(o + x * pixel_bytes, v + x * c.stride, sizeof(float));
+        }
+      }
+    }
+  });
+}
+
+// About this many bytes of packed rows are written at a time.
+constexpr std::size_t kBandBytes = std::size_t{32} << 20;
+
+// Writes the pixels of a part holding `layers` (opened), band by band.
+bool write_part(OIIO::ImageOutput& out, const LayeredImage& image, const std::vector<const ImageLayer*>& layers) {
+  std::size_t pixel_bytes = 0;
+  const std::vector<PackedChannel> channels = packed_channels(layers, pixel_bytes);
+  const std::size_t row_bytes = pixel_bytes * static_cast<std::size_t>(image.width);
+  // Whole blocks of 32 rows (zip's 16, piz's 32) keep OpenEXR's compression of a band's blocks parallel.
+  const int band = std::min(image.height, std::max(32, static_cast<int>(kBandBytes / row_bytes) / 32 * 32));
+  std::vector<unsigned char> buffer(static_cast<std::size_t>(band) * row_bytes);
+  for (int y0 = 0; y0 < image.height; y0 += band) {
+    const int y1 = std::min(image.height, y0 + band);
+    pack_rows(image, channels, pixel_bytes, y0, y1, buffer.data());
+    if (!out.write_scanlines(image.y + y0, image.y + y1, 0, OIIO::TypeUnknown, buffer.data())) return false;
+  }
+  return true;
 }
 
 bool check_layers(const LayeredImage& image, std::string& error) {
@@ -87,6 +178,8 @@ void add_image_metadata(OIIO::ImageSpec& spec, const ImageMetadata& metadata, bo
 bool write_exr_layers(const std::string& path, const LayeredImage& image, const ImageMetadata& metadata,
                       const ExrSettings& exr, std::string& error) {
   if (!check_layers(image, error)) return false;
+  // OpenEXR compresses blocks of rows on its own threads: as many as --threads (process-wide, set per write).
+  OIIO::attribute("exr_threads", exr.threads > 0 ? exr.threads : 0);
   // The parts: every layer in one, or one per layer.
   std::vector<std::vector<const ImageLayer*>> parts(exr.multipart ? image.layers.size() : 1);
   for (std::size_t l = 0; l < image.layers.size(); ++l) parts[exr.multipart ? l : 0].push_back(&image.layers[l]);
@@ -105,7 +198,7 @@ bool write_exr_layers(const std::string& path, const LayeredImage& image, const 
   bool ok = out->open(path, static_cast<int>(specs.size()), specs.data());
   for (std::size_t p = 0; ok && p < parts.size(); ++p) {
     if (p > 0) ok = out->open(path, specs[p], OIIO::ImageOutput::AppendSubimage);
-    ok = ok && out->write_image(OIIO::TypeDesc::FLOAT, interleave(image, parts[p]).data());
+    ok = ok && write_part(*out, image, parts[p]);
   }
   if (!ok) error = out->geterror();
   if (!out->close() && ok) {

@@ -41,7 +41,13 @@ class ExactSum {
   void add(double term) { set_raw(raw() + to_units(term)); }
   void add(const ExactSum& o) { set_raw(raw() + o.raw()); }
   // The sum as a double (rounded to nearest from the exact integer).
-  double value() const { return static_cast<double>(static_cast<Int128>(raw())) * kUnit; }
+  // A sum that fits in 64 bits (every pixel's but the brightest) converts
+  // from int64, which rounds as the 128-bit conversion does (a libgcc call).
+  double value() const {
+    const auto low = static_cast<int64_t>(lo_);
+    if (hi_ == static_cast<uint64_t>(low >> 63)) return static_cast<double>(low) * kUnit;
+    return static_cast<double>(static_cast<Int128>(raw())) * kUnit;
+  }
   bool is_zero() const { return lo_ == 0 && hi_ == 0; }
   bool operator==(const ExactSum&) const = default;
 

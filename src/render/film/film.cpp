@@ -77,28 +77,34 @@ void add_ranked(ExactSum* slots, int ranks, float id, float w) {
 
 // The ranked ids and coverages (weight / the pixel's total weight, clamped
 // to [0, 1]) into out[0 .. 2 * ranks), highest coverage first (ties: the
-// smaller id first); free slots give (0, 0).
+// smaller id first); free slots give (0, 0). The used slots come first (the
+// ids in increasing order: add_ranked), so only they are sorted; their ids
+// differ, so the order is total and any sort gives it.
 void ranked_values(const ExactSum* slots, int ranks, const ExactSum& weight, float* out) {
+  std::fill(out, out + 2 * ranks, 0.0f);
+  if (weight.is_zero()) return;
   std::array<int, kCryptomatteMaxRanks> order{};
   std::array<double, kCryptomatteMaxRanks> w{};
   std::array<float, kCryptomatteMaxRanks> id{};
-  for (int k = 0; k < ranks; ++k) {
-    const auto i = static_cast<std::size_t>(k);
-    order[i] = k;
-    w[i] = slots[2 * k + 1].value();
-    id[i] = std::bit_cast<float>(slot_id(slots[2 * k]));
+  int used = 0;
+  for (; used < ranks && !slots[2 * used].is_zero(); ++used) {
+    const auto i = static_cast<std::size_t>(used);
+    w[i] = slots[2 * used + 1].value();
+    id[i] = std::bit_cast<float>(slot_id(slots[2 * used]));
+    // Insertion: a few slots at most.
+    int k = used;
+    for (; k > 0; --k) {
+      const auto o = static_cast<std::size_t>(order[static_cast<std::size_t>(k - 1)]);
+      if (std::make_tuple(-w[o], id[o]) < std::make_tuple(-w[i], id[i])) break;
+      order[static_cast<std::size_t>(k)] = static_cast<int>(o);
+    }
+    order[static_cast<std::size_t>(k)] = used;
   }
-  const auto key = [&](int k) {
-    const auto i = static_cast<std::size_t>(k);
-    return std::make_tuple(slots[2 * k].is_zero(), -w[i], id[i]);
-  };
-  std::sort(order.begin(), order.begin() + ranks, [&](int a, int b) { return key(a) < key(b); });
   const double total = weight.value();
-  for (int k = 0; k < ranks; ++k) {
-    const int o = order[static_cast<std::size_t>(k)];
-    const bool used = !slots[2 * o].is_zero() && !weight.is_zero();
-    out[2 * k] = used ? id[static_cast<std::size_t>(o)] : 0.0f;
-    out[2 * k + 1] = used ? static_cast<float>(std::clamp(w[static_cast<std::size_t>(o)] / total, 0.0, 1.0)) : 0.0f;
+  for (int k = 0; k < used; ++k) {
+    const auto o = static_cast<std::size_t>(order[static_cast<std::size_t>(k)]);
+    out[2 * k] = id[o];
+    out[2 * k + 1] = static_cast<float>(std::clamp(w[o] / total, 0.0, 1.0));
   }
 }
 
@@ -163,6 +169,7 @@ Film::Film(int width, int height, PixelRect crop, std::vector<AovRequest> aovs)
                                                          : std::min(r.ranks, kCryptomatteMaxRanks);
     sum_offset_.push_back(sum_stride_);
     value_offset_.push_back(value_stride_);
+    channel_count_.push_back(aov_channel_count(r));
     const int ranks = info.accumulation == Accumulation::Ranked ? r.ranks : 0, count = aov_state_sums(r);
     if (ranks == 0 && !sum_runs_.empty() && sum_runs_.back().ranks == 0) {
       sum_runs_.back().count += count;
@@ -302,7 +309,7 @@ void Film::aov_values(std::size_t layer, std::size_t pixel, float* out) const {
   const ExactSum* s = aov_sums_.data() + pixel * static_cast<std::size_t>(sum_stride_) + sum_offset_[layer];
   const double* d = aov_values_.data() + pixel * static_cast<std::size_t>(value_stride_) + value_offset_[layer];
   const PixelSum& p = pixels_[pixel];
-  std::fill(out, out + aov_channel_count(aovs_[layer]), 0.0f);
+  std::fill(out, out + channel_count_[layer], 0.0f);
   switch (info.accumulation) {
     case Accumulation::FilteredAverage:
       if (!p.weight.is_zero()) {
@@ -347,56 +354,78 @@ std::vector<float> Film::aov_value(AovType type, int x, int y) const {
   return {};
 }
 
-LayeredImage Film::layers(ChannelType beauty_type) const {
+LayeredImage Film::layer_layout(ChannelType beauty_type, const PixelRect& window) const {
   LayeredImage out;
   out.full_width = width_;
   out.full_height = height_;
-  out.x = crop_.x0;
-  out.y = crop_.y0;
-  out.width = crop_.width();
-  out.height = crop_.height();
+  out.x = window.x0;
+  out.y = window.y0;
+  out.width = window.width();
+  out.height = window.height();
   const std::size_t n = out.pixel_count();
   out.layers.push_back({"", {"R", "G", "B", "A"}, beauty_type, std::vector<float>(n * 4)});
-  // Per AOV: its first layer and the channels per layer (a Ranked AOV is a
-  // layer per two ranks, "CryptoObject00": r, g, b, a; any other one layer).
-  struct Placed {
-    std::size_t layer, per_layer, channels;
-  };
-  std::vector<Placed> placed;
-  std::size_t most = 0;
+  // A Ranked AOV is a layer per two ranks ("CryptoObject00": r, g, b, a); any other one layer.
   for (const AovRequest& r : aovs_) {
     const std::vector<std::string> names = aov_channel_names(r);
     const std::size_t nc = names.size(), per_layer = aov_info(r.type).accumulation == Accumulation::Ranked ? 4 : nc;
-    placed.push_back({out.layers.size(), per_layer, nc});
-    most = std::max(most, nc);
     for (std::size_t first = 0; first < nc; first += per_layer) {
       const auto from = names.begin() + static_cast<std::ptrdiff_t>(first);
       out.layers.push_back({names[first].substr(0, names[first].find('.')), {from, from + static_cast<std::ptrdiff_t>(per_layer)},
                             r.channel_type, std::vector<float>(n * per_layer)});
     }
   }
+  return out;
+}
+
+void Film::resolve_pixels(LayeredImage& out, std::size_t first, std::size_t count, std::size_t at) const {
+  std::vector<float> values;
+  for (std::size_t i = first; i < first + count; ++i, ++at) {
+    const RGB v = pixels_[i].value();
+    float* p = &out.layers[0].values[at * 4];
+    p[0] = v.r;
+    p[1] = v.g;
+    p[2] = v.b;
+    p[3] = pixels_[i].alpha();
+    std::size_t layer = 1;  // each AOV's layers follow the beauty in request order (layer_layout)
+    for (std::size_t l = 0; l < aovs_.size(); ++l) {
+      const auto nc = static_cast<std::size_t>(channel_count_[l]);
+      values.resize(std::max(values.size(), nc));
+      aov_values(l, i, values.data());
+      for (std::size_t c = 0; c < nc; ++layer) {
+        ImageLayer& to = out.layers[layer];
+        const std::size_t per_layer = to.channels.size();
+        std::copy_n(&values[c], per_layer, &to.values[at * per_layer]);
+        c += per_layer;
+      }
+    }
+  }
+}
+
+void Film::resolve_into(LayeredImage& out) const {
+  const std::size_t at = static_cast<std::size_t>(crop_.y0 - out.y) * static_cast<std::size_t>(out.width) +
+                         static_cast<std::size_t>(crop_.x0 - out.x);
+  resolve_pixels(out, 0, pixels_.size(), at);
+}
+
+LayeredImage Film::layers(ChannelType beauty_type) const {
+  LayeredImage out = layer_layout(beauty_type, crop_);
   // Every pixel is resolved alone, so rows in parallel give the same bits; the
   // tasks run with the caller's floating-point settings (as a loop here would).
   tbb::task_group_context context;
   context.capture_fp_settings();
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& range) {
-    std::vector<float> values(most);
-    for (std::size_t i = range.begin(); i < range.end(); ++i) {
-      const RGB v = pixels_[i].value();
-      float* p = &out.layers[0].values[i * 4];
-      p[0] = v.r;
-      p[1] = v.g;
-      p[2] = v.b;
-      p[3] = pixels_[i].alpha();
-      for (std::size_t l = 0; l < aovs_.size(); ++l) {
-        const auto [layer, per_layer, nc] = placed[l];
-        aov_values(l, i, values.data());
-        for (std::size_t first = 0; first < nc; first += per_layer)
-          std::copy_n(&values[first], per_layer, &out.layers[layer + first / per_layer].values[i * per_layer]);
-      }
-    }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.pixel_count(), 4096), [&](const tbb::blocked_range<std::size_t>& range) {
+    resolve_pixels(out, range.begin(), range.size(), range.begin());
   }, tbb::auto_partitioner(), context);
   return out;
+}
+
+void Film::recrop(const PixelRect& crop) {
+  crop_ = clip(crop, width_, height_);
+  const std::size_t n = static_cast<std::size_t>(crop_.width()) * static_cast<std::size_t>(crop_.height());
+  pixels_.assign(n, PixelSum{});  // within the capacity of a film of that size or larger: no allocation
+  aov_sums_.assign(n * static_cast<std::size_t>(sum_stride_), ExactSum{});
+  aov_values_.assign(n * static_cast<std::size_t>(value_stride_), 0.0);
+  non_finite_ = {};
 }
 
 }  // namespace pt

@@ -125,6 +125,20 @@ struct StateRules {
   PixelRect crop;  // the state's crop, as its shard's header says
   std::vector<uint8_t> other_first;
   std::vector<uint64_t> max_samples;
+  // The vectors hold pixels [first, first + size) of the crop: the whole crop
+  // (first 0), or, for Film::add_state_rows, the rows being added.
+  std::size_t first = 0;
+};
+
+// A complete film state in memory (a mapped shard file after its header),
+// its header and size checked (Film::view_state): where its sections begin,
+// for Film::add_state_rows. The bytes need not be aligned.
+struct StateView {
+  PixelRect crop;
+  NonFiniteReport non_finite;
+  const char* pixels = nullptr;  // crop pixels' PixelSums
+  const char* sums = nullptr;    // their AOV sums
+  const char* values = nullptr;  // their AOV values
 };
 
 class Film {
@@ -177,6 +191,12 @@ class Film {
   // requested AOV over the crop window, for the image writers (a Ranked AOV
   // becomes one layer per two ranks).
   LayeredImage layers(ChannelType beauty = ChannelType::Float) const;
+  // The layers of layers() over `window` (this film's crop, or a window of
+  // band films' crops), allocated (zero) but not resolved.
+  LayeredImage layer_layout(ChannelType beauty, const PixelRect& window) const;
+  // Resolves this film's pixels into `out` (a layer_layout of a film of the
+  // same AOVs whose window holds this crop as whole rows): a band of it.
+  void resolve_into(LayeredImage& out) const;
 
   // The film's complete state (every pixel's sums and counts, the AOV sums,
   // the non-finite report), for checkpoints: written and read back bit for
@@ -199,6 +219,22 @@ class Film {
   // pixels are added in parallel (TBB, in the caller's arena), which gives the
   // same bits: each pixel is added once, exactly.
   bool add_state(std::string_view state, const StateRules& rules, std::string& error);
+  // The band merge's parts (docs/distributed.md, "The merge"): a film state
+  // in memory of a film of this frame and AOVs over `crop`, which lies in
+  // `inside` (not necessarily in this film's crop), checked as add_state
+  // checks it (layout, crop, size), viewed in place.
+  bool view_state(std::string_view state, const PixelRect& crop, const PixelRect& inside, StateView& view,
+                  std::string& error) const;
+  // Adds rows [y0, y1) of a viewed state, which lie inside this film's crop
+  // and the state's; `rules` cover those rows (rules.first is their first
+  // pixel). One thread. The first pixel (of the state's crop) that breaks the
+  // rules, or SIZE_MAX; the pixels before it are added.
+  std::size_t add_state_rows(const StateView& view, const StateRules& rules, int y0, int y1);
+  // The message for a pixel add_state_rows refused.
+  static std::string refusal(const StateView& view, std::size_t pixel, const StateRules& rules);
+  // Moves this film to `crop` and clears it: a band film reused for the
+  // next band (no allocation unless the crop is larger than any before).
+  void recrop(const PixelRect& crop);
 
  private:
   // Adds another film's (or a scratch's) AOV sums `s` to pixel number `pixel`:
@@ -219,6 +255,9 @@ class Film {
   std::size_t add_state_sums(const char* s, std::size_t first, std::size_t count, const StateRules& rules);
   void add_state_values(const char* v, std::size_t first, std::size_t count, const StateRules& rules);
   static std::string too_many_samples(std::size_t pixel, uint64_t samples, const StateRules& rules);
+  // Resolves pixels [first, first + count) of the crop into `out`'s pixels
+  // from `at` on (layers laid out by layer_layout).
+  void resolve_pixels(LayeredImage& out, std::size_t first, std::size_t count, std::size_t at) const;
   // The final values of AOV number `layer` of pixel number `pixel` (in the crop, row-major) into `out`.
   void aov_values(std::size_t layer, std::size_t pixel, float* out) const;
   std::size_t index(int x, int y) const {
@@ -237,6 +276,7 @@ class Film {
   std::vector<AovRequest> aovs_;
   // Per request: its first sum and first value in a pixel's AOV blocks.
   std::vector<int> sum_offset_, value_offset_;
+  std::vector<int> channel_count_;  // per request: aov_channel_count()
   int sum_stride_ = 0, value_stride_ = 0;  // per pixel, for all AOVs
   bool wants_geometry_ = false, wants_lighting_ = false;
   std::vector<SumRun> sum_runs_;    // the AOV sums, in order, adjacent plain sums in one run

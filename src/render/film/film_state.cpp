@@ -279,7 +279,7 @@ std::size_t Film::add_state_pixels(const char* p, std::size_t first, std::size_t
   for (std::size_t i = first; i < first + count; ++i) {
     PixelSum sum;
     std::memcpy(&sum, p + (i - first) * sizeof sum, sizeof sum);
-    if (sum.samples > rules.max_samples[i]) return i;
+    if (sum.samples > rules.max_samples[i - rules.first]) return i;
     pixels_[index(rules.crop.x0 + static_cast<int>(i % width), rules.crop.y0 + static_cast<int>(i / width))].add(sum);
   }
   return SIZE_MAX;
@@ -305,7 +305,7 @@ void Film::add_state_values(const char* v, std::size_t first, std::size_t count,
   for (std::size_t i = first; i < first + count; ++i) {
     std::memcpy(values.data(), v + (i - first) * bytes, bytes);
     add_values(index(rules.crop.x0 + static_cast<int>(i % width), rules.crop.y0 + static_cast<int>(i / width)),
-               values.data(), rules.other_first[i] != 0);
+               values.data(), rules.other_first[i - rules.first] != 0);
   }
 }
 
@@ -314,7 +314,7 @@ std::string Film::too_many_samples(std::size_t pixel, uint64_t samples, const St
   return "its film state holds " + std::to_string(samples) + " samples in pixel (" +
          std::to_string(rules.crop.x0 + static_cast<int>(pixel % width)) + ", " +
          std::to_string(rules.crop.y0 + static_cast<int>(pixel / width)) + "), more than its pieces' " +
-         std::to_string(rules.max_samples[pixel]) + " (the two do not belong together)";
+         std::to_string(rules.max_samples[pixel - rules.first]) + " (the two do not belong together)";
 }
 
 bool Film::add_state(std::istream& in, const StateRules& rules, std::string& error) {
@@ -356,44 +356,86 @@ bool Film::add_state(std::istream& in, const StateRules& rules, std::string& err
   return true;
 }
 
-bool Film::add_state(std::string_view state, const StateRules& rules, std::string& error) {
+bool Film::view_state(std::string_view state, const PixelRect& crop, const PixelRect& inside, StateView& view,
+                      std::string& error) const {
   MemoryBuffer buffer(state);
   std::istream in(&buffer);
-  NonFiniteReport nf;
-  if (!read_added_header(in, width_, height_, crop_, aovs_, rules, nf, error)) return false;
+  PixelRect c;
+  if (!read_layout(in, width_, height_, c, aovs_, error)) return false;
+  if (c != crop || !inside.contains(c)) {
+    error = "film state covers pixels " + c.text() + ", not " + crop.text() + " inside " + inside.text();
+    return false;
+  }
+  if (!read_non_finite(in, view.non_finite, error)) return false;
   // The whole body is checked for its size before any of it is added.
-  const std::size_t n = rules.max_samples.size(), header = buffer.consumed();
+  const std::size_t n = static_cast<std::size_t>(c.width()) * static_cast<std::size_t>(c.height());
+  const std::size_t header = buffer.consumed();
   const auto sums = static_cast<std::size_t>(sum_stride_), values = static_cast<std::size_t>(value_stride_);
   const std::size_t body = n * (sizeof(PixelSum) + sums * sizeof(ExactSum) + values * sizeof(double));
   if (state.size() - header != body) {
     error = state.size() - header < body ? "truncated film state" : "film state has trailing data";
     return false;
   }
+  view.crop = c;
+  view.pixels = state.data() + header;
+  view.sums = view.pixels + n * sizeof(PixelSum);
+  view.values = view.sums + n * sums * sizeof(ExactSum);
+  return true;
+}
+
+std::string Film::refusal(const StateView& view, std::size_t pixel, const StateRules& rules) {
+  PixelSum sum;
+  std::memcpy(&sum, view.pixels + pixel * sizeof sum, sizeof sum);
+  if (sum.samples > rules.max_samples[pixel - rules.first]) return too_many_samples(pixel, sum.samples, rules);
+  return "corrupt film state (Cryptomatte slots)";
+}
+
+std::size_t Film::add_state_rows(const StateView& view, const StateRules& rules, int y0, int y1) {
+  const auto width = static_cast<std::size_t>(view.crop.width());
+  const std::size_t first = static_cast<std::size_t>(y0 - view.crop.y0) * width;
+  const std::size_t count = static_cast<std::size_t>(y1 - y0) * width;
+  const std::size_t sum_bytes = static_cast<std::size_t>(sum_stride_) * sizeof(ExactSum);
+  const std::size_t value_bytes = static_cast<std::size_t>(value_stride_) * sizeof(double);
+  if (const std::size_t bad = add_state_pixels(view.pixels + first * sizeof(PixelSum), first, count, rules);
+      bad != SIZE_MAX)
+    return bad;
+  if (sum_stride_ > 0)
+    if (const std::size_t bad = add_state_sums(view.sums + first * sum_bytes, first, count, rules); bad != SIZE_MAX)
+      return bad;
+  if (value_stride_ > 0) add_state_values(view.values + first * value_bytes, first, count, rules);
+  return SIZE_MAX;
+}
+
+bool Film::add_state(std::string_view state, const StateRules& rules, std::string& error) {
+  StateView view;
+  if (!view_state(state, rules.crop, crop_, view, error)) return false;
+  const std::size_t n = rules.max_samples.size();
+  if (rules.first != 0 || rules.other_first.size() != n ||
+      n != static_cast<std::size_t>(view.crop.width()) * static_cast<std::size_t>(view.crop.height())) {
+    error = "film state rules of the wrong size";
+    return false;
+  }
+  const auto sums = static_cast<std::size_t>(sum_stride_), values = static_cast<std::size_t>(value_stride_);
   const std::size_t sum_bytes = sums * sizeof(ExactSum), value_bytes = values * sizeof(double);
-  const char* pixels = state.data() + header;
-  const char* sum_data = pixels + n * sizeof(PixelSum);
-  const char* value_data = sum_data + n * sum_bytes;
   const std::size_t bad = for_blocks(n, [&](std::size_t first, std::size_t count) {
-    return std::min(n, add_state_pixels(pixels + first * sizeof(PixelSum), first, count, rules));
+    return std::min(n, add_state_pixels(view.pixels + first * sizeof(PixelSum), first, count, rules));
   });
   if (bad < n) {
-    PixelSum sum;
-    std::memcpy(&sum, pixels + bad * sizeof sum, sizeof sum);
-    error = too_many_samples(bad, sum.samples, rules);
+    error = refusal(view, bad, rules);
     return false;
   }
   if (sums > 0 && for_blocks(n, [&](std::size_t first, std::size_t count) {
-        return std::min(n, add_state_sums(sum_data + first * sum_bytes, first, count, rules));
+        return std::min(n, add_state_sums(view.sums + first * sum_bytes, first, count, rules));
       }) < n) {
     error = "corrupt film state (Cryptomatte slots)";
     return false;
   }
   if (values > 0)
     for_blocks(n, [&](std::size_t first, std::size_t count) {
-      add_state_values(value_data + first * value_bytes, first, count, rules);
+      add_state_values(view.values + first * value_bytes, first, count, rules);
       return n;
     });
-  non_finite_.merge(nf);
+  non_finite_.merge(view.non_finite);
   return true;
 }
 

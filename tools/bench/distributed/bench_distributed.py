@@ -5,7 +5,7 @@
             [--scene scenes/cornell-box.json] [--width 640 --height 360] [--spp 64]
             [--shards 2,4] [--rounds 5] [--merge-width 1920 --merge-height 1080] [--merge-rounds 5]
             [--merge-shards 2,4] [--merge-baseline OTHER_PATHTRACER] [--skip-overhead] [--tmp DIR]
-            [--shard-dir DIR]
+            [--shard-dir DIR] [--merge-compressions zip,none] [--merge-threads N] [--render-write]
 
 1. Overhead at equal total samples: one render of --spp samples against N
    shards of --spp/N each, run one after another on this machine (as a farm
@@ -29,11 +29,16 @@
    With --merge-baseline EXE (e.g. main's build), its merges alternate with
    --exe's, and each pair's EXRs are checked to be the same bytes (but for the
    time they were written, capDate). --shard-dir DIR keeps the shard files in
-   DIR and reuses them on the next run.
+   DIR and reuses them on the next run. --merge-compressions zip,none measures
+   each --exr-compression; --merge-threads N gives --exe's merges --threads N.
 3. With --baseline EXE (a build before exact sums): the render phase and the
    CPU time of the same render with both executables, alternating, with and
    without every AOV (--ab-rounds rounds), so the cost of exact sums is
    measured at equal error (the images agree to float rounding).
+
+4. With --render-write and --merge-baseline: the single render's EXR write
+   (the writer the merge shares), a --merge-width x --merge-height render of
+   1 spp with every AOV by both executables, alternating, EXRs compared.
 
 Prints markdown for docs/distributed.md, with lscpu's model and core count and
 the load average before and after (progress goes to stderr).
@@ -84,7 +89,9 @@ def run_record(report):
 
 
 def merge_times(stdout):
-    m = re.search(r"read and add ([0-9.]+) s \(CPU ([0-9.]+) s\), write ([0-9.]+) s \(CPU ([0-9.]+) s\)", stdout)
+    # "read and add" (the merged film; its write resolves it), or "read, add and resolve" (the band merge).
+    m = re.search(r"read(?:,)? (?:and )?add(?: and resolve)? ([0-9.]+) s \(CPU ([0-9.]+) s\), write ([0-9.]+) s"
+                  r" \(CPU ([0-9.]+) s\)", stdout)
     if not m:
         raise SystemExit(f"the merge printed no times:\n{stdout}")
     return tuple(float(m.group(i)) for i in range(1, 5))
@@ -185,16 +192,20 @@ def big_shards(a, tmp, n):
     return files
 
 
-# The bytes of two EXR files are the same but for the capDate attribute's value (the time of writing).
-def same_exr_bytes(a, b):
+# The bytes of two EXR files are the same but for the capDate attribute's value (the time of writing) and,
+# for renders, `timed` attributes (pathtracer:renderTime).
+def same_exr_bytes(a, b, timed=()):
     with open(a, "rb") as f, open(b, "rb") as g:
         x, y = bytearray(f.read()), bytearray(g.read())
+    keys = [b"capDate\0string\0"] + [name.encode() + b"\0float\0" for name in timed]
     for data in (x, y):
-        at = data.find(b"capDate\0string\0")
-        if at >= 0:
-            start = at + len(b"capDate\0string\0") + 4  # the value's size (int32), then the value
-            size = int.from_bytes(data[start - 4:start], "little")
-            data[start:start + size] = b"\0" * size
+        for key in keys:
+            at = data.find(key)
+            while at >= 0:  # one per part of a multi-part file
+                start = at + len(key) + 4  # the value's size (int32), then the value
+                size = int.from_bytes(data[start - 4:start], "little")
+                data[start:start + size] = b"\0" * size
+                at = data.find(key, start)
     return x == y
 
 
@@ -202,53 +213,90 @@ def same_exr_bytes(a, b):
 # alternate (which goes first alternating too), and each pair's outputs are checked to be the same pixels.
 def big_merge(a, tmp):
     exes = [("this build", a.exe)] + ([("baseline", a.merge_baseline)] if a.merge_baseline else [])
-    sizes, times, files = {}, {}, {}
+    sizes, times, files, exr = {}, {}, {}, {}
+    cases = [(n, c) for n in a.merge_shards for c in a.merge_compressions]
+    extra = ["--threads", str(a.merge_threads)] if a.merge_threads else []
     for n in a.merge_shards:
         files[n] = big_shards(a, tmp, n)
         sizes[n] = os.path.getsize(os.path.join(tmp, files[n][0]))
-        for e, _ in exes:
-            times[(n, e)] = []
         timed([a.exe, "merge", *files[n], "-o", "warm.exr"], tmp)  # the shard files into the page cache
+    for case in cases:
+        for e, _ in exes:
+            times[(case, e)] = []
     loads = [load_average()]
     for r in range(a.merge_rounds):
-        for n in a.merge_shards:
+        for n, c in cases:
             outs = []
             for e, exe in (exes if r % 2 == 0 else exes[::-1]):
                 out = f"big_{len(outs)}.exr"
-                wall, stdout = timed([exe, "merge", *files[n], "-o", out], tmp)
-                times[(n, e)].append((wall, CPU[0], *merge_times(stdout)))
+                wall, stdout = timed([exe, "merge", *files[n], "-o", out, "--exr-compression", c]
+                                     + (extra if e == "this build" else []), tmp)
+                times[((n, c), e)].append((wall, CPU[0], *merge_times(stdout)))
                 outs.append(out)
+            exr[(n, c)] = os.path.getsize(os.path.join(tmp, outs[0]))
             if len(outs) == 2 and not same_exr_bytes(*[os.path.join(tmp, o) for o in outs]):
-                raise SystemExit(f"the merges of {n} shards by the two builds differ")
+                raise SystemExit(f"the merges of {n} shards ({c}) by the two builds differ")
         loads.append(load_average())
         print(f"merge round {r + 1}/{a.merge_rounds} done, load average {loads[-1]}", file=sys.stderr)
-    exr = os.path.getsize(os.path.join(tmp, "big_0.exr"))
     print(f"Merge of a {a.merge_width}x{a.merge_height} frame with every AOV of the path integrator"
           f" ({ALL_AOVS}), shard files in the page cache; {a.merge_rounds} rounds"
           + (", the two builds alternating (which goes first alternates), every pair's EXRs the same bytes but"
              " for their capDate"
              if len(exes) == 2 else "") + "; medians [smallest, largest]. Load average (1 min) after each round: "
           + ", ".join(x.split()[0] for x in loads[1:]) + ".\n")
-    print("| shards | build | read and add: wall | read and add: CPU | EXR write: wall | EXR write: CPU |"
-          " merge process: wall | merge process: CPU |")
-    print("|---|---|---|---|---|---|---|---|")
+    print("(\"Read and add\" is the merge's first phase: with the merged film, reading and adding (its write then"
+          " resolves the film); band by band, reading, adding and resolving.)\n")
+    print("| shards | compression | build | read and add: wall | read and add: CPU | EXR write: wall | EXR write: CPU |"
+          " merge process: wall | merge process: CPU | EXR |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     sec = lambda x: f"{x:.2f} s"  # noqa: E731
-    for n in a.merge_shards:
+    for n, c in cases:
         for e, _ in exes:
-            t = times[(n, e)]
+            t = times[((n, c), e)]
             cols = [spread([x[i] for x in t], sec) for i in (2, 3, 4, 5, 0, 1)]
-            print(f"| {n} | {e} | " + " | ".join(cols) + " |")
+            print(f"| {n} | {c} | {e} | " + " | ".join(cols) + f" | {exr[(n, c)] / 2**20:.0f} MiB |")
     if len(exes) == 2:
-        print("\nRatios, baseline / this build, of the medians:\n")
-        print("| shards | read and add: wall | read and add: CPU | EXR write: CPU | merge process: wall |"
-              " merge process: CPU |")
-        print("|---|---|---|---|---|---|")
-        for n in a.merge_shards:
-            med = {e: [statistics.median(x[i] for x in times[(n, e)]) for i in range(6)] for e, _ in exes}
-            b, t = med["baseline"], med["this build"]
-            print(f"| {n} | " + " | ".join(f"{b[i] / t[i]:.2f}x" for i in (2, 3, 5, 0, 1)) + " |")
-    print(f"\nOne shard file: " + ", ".join(f"{sizes[n]:,} bytes ({n} shards)" for n in a.merge_shards) +
-          f"; the merged EXR: {exr / 2**20:.0f} MiB.\n")
+        print("\nRatios, baseline / this build, of the medians [smallest, largest ratio of a round's pair]:\n")
+        print("| shards | compression | merge process: wall | merge process: CPU |")
+        print("|---|---|---|---|")
+        for case in cases:
+            b, t = times[(case, "baseline")], times[(case, "this build")]
+            cols = []
+            for i in (0, 1):
+                ratios = [x[i] / y[i] for x, y in zip(b, t)]
+                cols.append(f"{statistics.median(x[i] for x in b) / statistics.median(y[i] for y in t):.2f}x"
+                            f" [{min(ratios):.2f}, {max(ratios):.2f}]")
+            print(f"| {case[0]} | {case[1]} | " + " | ".join(cols) + " |")
+    print(f"\nOne shard file: " + ", ".join(f"{sizes[n]:,} bytes ({n} shards)" for n in a.merge_shards) + ".\n")
+
+
+# The single render's EXR write (the writer the merge shares): a --merge-width x --merge-height render of
+# 1 spp with every AOV by --exe and --merge-baseline, alternating; the run record's write phase (wall) and
+# the process's CPU time outside its render phase (start-up, scene, the write), and the EXRs' bytes.
+def render_write(a, tmp):
+    exes = [("this build", a.exe), ("baseline", a.merge_baseline)]
+    runs = {e: [] for e, _ in exes}
+    for r in range(a.merge_rounds):
+        outs = []
+        for e, exe in (exes if r % 2 == 0 else exes[::-1]):
+            out = f"single_{len(outs)}.exr"
+            timed([exe, a.scene, "--width", str(a.merge_width), "--height", str(a.merge_height), "--spp", "1",
+                   "--aov", ALL_AOVS, "-o", out, "--quiet", "--report", "single.json"], tmp)
+            rec = run_record(os.path.join(tmp, "single.json"))
+            runs[e].append((rec["write"], CPU[0] - rec["render_cpu"]))
+            outs.append(out)
+        if not same_exr_bytes(*[os.path.join(tmp, o) for o in outs], timed=["pathtracer:renderTime"]):
+            raise SystemExit("the single renders' EXRs by the two builds differ")
+    print(f"The single render's EXR write: {a.merge_width}x{a.merge_height}, 1 spp, every AOV, zip; {a.merge_rounds}"
+          " rounds, the builds alternating, every pair's EXRs the same bytes but for their capDate and"
+          " pathtracer:renderTime; medians"
+          " [smallest, largest]. Load average (1 min) at the end: " + load_average().split()[0] + ".\n")
+    print("| build | write phase (wall) | process CPU outside the render phase |")
+    print("|---|---|---|")
+    sec = lambda x: f"{x:.2f} s"  # noqa: E731
+    for e, _ in exes:
+        print(f"| {e} | {spread([x[0] for x in runs[e]], sec)} | {spread([x[1] for x in runs[e]], sec)} |")
+    print()
 
 
 def ab_exact(a, tmp):
@@ -299,6 +347,10 @@ def main():
     p.add_argument("--merge-rounds", type=int, default=5)
     p.add_argument("--merge-shards", default="2,4", help="the shard counts of the large merge")
     p.add_argument("--merge-baseline", help="another pathtracer (e.g. main's): its merges alternate with --exe's")
+    p.add_argument("--merge-compressions", default="zip", help="--exr-compression of the large merges, e.g. zip,none")
+    p.add_argument("--merge-threads", type=int, default=0, help="--threads of --exe's merges (default: all)")
+    p.add_argument("--render-write", action="store_true",
+                   help="also the single render's EXR write, --exe against --merge-baseline")
     p.add_argument("--skip-merge", action="store_true", help="only the overhead table")
     p.add_argument("--tmp", help="where the shard files go (the large merge's take 2 GiB each)")
     p.add_argument("--shard-dir", help="the large merge's shard files here, reused if they exist")
@@ -310,6 +362,7 @@ def main():
     a.exe, a.scene = os.path.abspath(a.exe), os.path.abspath(a.scene)
     a.shards = [int(n) for n in a.shards.split(",")]
     a.merge_shards = [int(n) for n in a.merge_shards.split(",")]
+    a.merge_compressions = a.merge_compressions.split(",")
     if a.merge_baseline:
         a.merge_baseline = os.path.abspath(a.merge_baseline)
     print(f"Machine: {machine()} (lscpu); load average (1, 5, 15 min) at the start {load_average()}.\n")
@@ -322,6 +375,8 @@ def main():
             overhead(a, tmp)
         if not a.skip_merge:
             big_merge(a, os.path.abspath(a.shard_dir) if a.shard_dir else tmp)
+        if a.render_write and a.merge_baseline:
+            render_write(a, tmp)
     print(f"Load average at the end: {load_average()}.")
 
 
