@@ -62,6 +62,7 @@ RenderStamp RenderSettings::stamp() const {
   stamp.integrator = integrator_name();
   stamp.sampler = sampler_name();
   stamp.filter = filter_name();
+  stamp.light_sampler = light_sampler_name();
   stamp.max_depth = integration.max_depth;
   stamp.clamp = integration.clamp;
   stamp.film_transparent = integration.film_transparent;
@@ -77,6 +78,7 @@ void RenderSettings::describe(RunRecord& record) const {
   record.max_depth = integration.max_depth;
   record.seed = integration.seed;
   record.filter = filter_name();
+  record.light_sampler = light_sampler_name();
   record.clamp = integration.clamp;
 }
 

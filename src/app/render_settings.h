@@ -56,11 +56,12 @@ struct RenderSettings {
   // the classic integrators' "pixel-grid" and "box").
   const char* sampler_name() const { return integrator->sampler_name(integration.sampler); }
   const char* filter_name() const { return integrator->filter_name(integration.filter); }
+  const char* light_sampler_name() const { return integrator->light_sampler_name(light_sampler); }
   bool equal_passes() const { return integrator->equal_passes(integration.sampler); }
 
   BuildOptions build_options(AccelKind accel) const;
-  // The stamp's settings (integrator, sampler, filter, seed, max depth, clamp,
-  // version); the caller adds what the render reached.
+  // The stamp's settings (integrator, sampler, filter, light sampler, seed,
+  // max depth, clamp, version); the caller adds what the render reached.
   RenderStamp stamp() const;
   // The run record's settings (the same, and the image size).
   void describe(RunRecord& record) const;

@@ -39,6 +39,7 @@ struct RenderStamp {
   std::string integrator;
   std::string sampler;  // the path integrator's; the classic integrators use the pixel grid (docs/rendering.md)
   std::string filter;   // pixel filter
+  std::string light_sampler;  // the path integrator's light choice ("bvh", "power"); "all" (whitted), "none" (views)
   int max_depth = 0;
   float clamp = 0.0f;   // firefly clamp on each sample's radiance; 0: off
   bool film_transparent = false;  // the background was left out of the image (alpha 0)
@@ -55,7 +56,7 @@ struct RenderStamp {
 // Adds `stamp` to `metadata`: pathtracer:renderTime, pathtracer:clamp
 // (float; clamp 0 means off), pathtracer:spp, pathtracer:maxDepth,
 // pathtracer:partial and pathtracer:filmTransparent (int 0/1), pathtracer:seed, pathtracer:backend,
-// pathtracer:integrator, pathtracer:sampler, pathtracer:filter,
+// pathtracer:integrator, pathtracer:sampler, pathtracer:filter, pathtracer:lightSampler,
 // pathtracer:version (strings), and worldToCamera / worldToNDC when has_camera
 // (worldToNDC only for a camera that has one: not the spherical camera).
 inline void add_render_stamp(ImageMetadata& metadata, const RenderStamp& stamp) {
@@ -67,6 +68,7 @@ inline void add_render_stamp(ImageMetadata& metadata, const RenderStamp& stamp) 
   metadata.set("pathtracer:integrator", stamp.integrator);
   metadata.set("pathtracer:sampler", stamp.sampler);
   metadata.set("pathtracer:filter", stamp.filter);
+  metadata.set("pathtracer:lightSampler", stamp.light_sampler);
   metadata.set("pathtracer:maxDepth", stamp.max_depth);
   metadata.set("pathtracer:clamp", stamp.clamp);
   metadata.set("pathtracer:filmTransparent", stamp.film_transparent ? 1 : 0);

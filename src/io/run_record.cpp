@@ -24,7 +24,7 @@ std::string run_record_json(const RunRecord& r) {
       {"overrides", r.overrides},
       {"image", {{"width", r.width}, {"height", r.height}, {"spp", r.spp}, {"integrator", r.integrator},
                  {"sampler", r.sampler}, {"max_depth", r.max_depth}, {"seed", r.seed}, {"filter", r.filter},
-                 {"clamp", r.clamp}}},
+                 {"light_sampler", r.light_sampler}, {"clamp", r.clamp}}},
       {"progress", {{"spp_reached", r.spp}, {"target_spp", r.target_spp}, {"time_budget", r.time_budget},
                     {"passes", r.passes},
                     {"pass_spp", r.pass_spp > 0 ? nlohmann::ordered_json(r.pass_spp) : nlohmann::ordered_json("adaptive")},

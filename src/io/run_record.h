@@ -57,6 +57,7 @@ struct RunRecord {
   int signal = 0;              // the signal that stopped it, 0 if none
   uint64_t seed = 0;
   std::string filter = "box";  // pixel filter (path integrator)
+  std::string light_sampler;   // RenderStamp::light_sampler
   float clamp = 0.0f;          // firefly clamp; 0 = off (recorded either way)
   int threads = 0;
   std::string accel_backend;   // AccelStats::backend

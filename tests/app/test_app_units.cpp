@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -105,9 +106,44 @@ TEST(RenderSettings, ClassicIntegratorsSampleThePixelGridWithABox) {
   EXPECT_STREQ(s.sampler_name(), "pixel-grid");
   EXPECT_STREQ(s.filter_name(), "box");
   EXPECT_TRUE(s.equal_passes());
+  EXPECT_EQ(s.stamp().light_sampler, "all");  // whitted visits every light
   // The checkpoint identity keeps the configured names (as every checkpoint so far).
   EXPECT_EQ(s.identity()["sampler"], "sobol");
   EXPECT_EQ(s.identity()["filter"], "mitchell");
+}
+
+TEST(RenderSettings, TheLightSamplerIsStampedAndRecorded) {
+  // The scene's render.light_sampler (default bvh) for the path integrator,
+  // which picks one light per vertex; "all" and "none" where no light is chosen.
+  SceneDescription desc = cornell_box();
+  const struct {
+    const char* integrator;
+    LightSamplerType type;
+    const char* expected;
+  } cases[] = {{"path", LightSamplerType::Bvh, "bvh"},
+               {"path", LightSamplerType::Power, "power"},
+               {"whitted", LightSamplerType::Power, "all"},
+               {"normal", LightSamplerType::Power, "none"}};
+  for (const auto& c : cases) {
+    SCOPED_TRACE(std::string(c.integrator) + " " + c.expected);
+    desc.render.light_sampler.value = c.type;
+    SettingsOverrides o;
+    o.integrator = c.integrator;
+    RenderSettings s;
+    Diagnostics diag;
+    ASSERT_TRUE(resolve_render_settings(desc, o, s, diag));
+    EXPECT_EQ(s.stamp().light_sampler, c.expected);
+    RunRecord record;
+    s.describe(record);
+    EXPECT_EQ(record.light_sampler, c.expected);
+    ImageMetadata metadata;
+    add_render_stamp(metadata, s.stamp());
+    const auto stamped = std::find_if(metadata.strings.begin(), metadata.strings.end(),
+                                      [](const auto& kv) { return kv.first == "pathtracer:lightSampler"; });
+    ASSERT_NE(stamped, metadata.strings.end());
+    EXPECT_EQ(stamped->second, c.expected);
+    EXPECT_EQ(nlohmann::json::parse(run_record_json(record))["image"]["light_sampler"], c.expected);
+  }
 }
 
 TEST(RenderSettings, AnUnknownIntegratorIsAnErrorListingTheNames) {

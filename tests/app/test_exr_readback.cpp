@@ -132,6 +132,8 @@ TEST_F(ExrReadBack, EveryAovChannelTypeTheCropWindowAndEveryMetadataKey) {
   EXPECT_EQ(spec.get_string_attribute("pathtracer:sampler"), "jittered");
   attribute("pathtracer:filter", OIIO::TypeString);
   EXPECT_EQ(spec.get_string_attribute("pathtracer:filter"), "box");  // P must project into its pixel
+  attribute("pathtracer:lightSampler", OIIO::TypeString);
+  EXPECT_EQ(spec.get_string_attribute("pathtracer:lightSampler"), "bvh");  // the default render.light_sampler
   attribute("pathtracer:maxDepth", OIIO::TypeInt);
   EXPECT_EQ(spec.get_int_attribute("pathtracer:maxDepth"), 7);
   attribute("pathtracer:clamp", OIIO::TypeFloat);

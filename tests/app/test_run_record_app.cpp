@@ -161,10 +161,13 @@ TEST_F(RunRecordApp, SamplerAndFilterAreWhatTookTheSamples) {
   // and the EXR's header say the same.
   write("s.json", path_scene(8, 6, 1));
   ASSERT_EQ(run("s.json -o p.exr --sampler jittered --filter gaussian --report path.json --quiet").status, 0);
+  ASSERT_EQ(run("s.json -o q.exr --set render.light_sampler=power --report power.json --quiet").status, 0);
   ASSERT_EQ(run("s.json -o w.exr --integrator whitted --sampler jittered --filter gaussian --report whitted.json --quiet").status, 0);
   const struct {
-    const char *exr, *record, *sampler, *filter;
-  } expected[] = {{"p.exr", "path.json", "jittered", "gaussian"}, {"w.exr", "whitted.json", "pixel-grid", "box"}};
+    const char *exr, *record, *sampler, *filter, *light_sampler;
+  } expected[] = {{"p.exr", "path.json", "jittered", "gaussian", "bvh"},
+                  {"q.exr", "power.json", "sobol", "box", "power"},
+                  {"w.exr", "whitted.json", "pixel-grid", "box", "all"}};
   for (const auto& e : expected) {
     SCOPED_TRACE(e.record);
     const nlohmann::json rec = read_json(e.record);
@@ -174,6 +177,8 @@ TEST_F(RunRecordApp, SamplerAndFilterAreWhatTookTheSamples) {
     ASSERT_TRUE(in);
     EXPECT_EQ(in->spec().get_string_attribute("pathtracer:sampler"), e.sampler);
     EXPECT_EQ(in->spec().get_string_attribute("pathtracer:filter"), e.filter);
+    EXPECT_EQ(rec["image"]["light_sampler"], e.light_sampler);
+    EXPECT_EQ(in->spec().get_string_attribute("pathtracer:lightSampler"), e.light_sampler);
   }
 }
 

@@ -23,6 +23,7 @@
 
 #include "accel/embree/compact.h"
 #include "accel/embree/embree_device.h"
+#include "accel/embree/queries.h"
 #include "accel/embree/triangle_geometry.h"
 #include "accel/embree/user_geometry.h"
 #include "core/parallel.h"
@@ -120,28 +121,12 @@ class EmbreeAccelerator final : public Accelerator {
 
   bool intersect(const Ray& ray, Hit& hit) const override {
     RTCRayHit rh;
-    if (!to_embree(ray, rh.ray)) return false;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    rtcIntersect1(scene_, &context, &rh);
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-    hit.t = rh.ray.tfar;
-    hit.shape = rh.hit.geomID;
-    hit.prim = rh.hit.primID;
-    hit.uv = {rh.hit.u, rh.hit.v};
-    hit.instance = rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID ? kNoInstance : rh.hit.instID[0] - instance_base_;
-    return true;
+    return to_embree(ray, rh.ray) && intersect1(scene_, rh, instance_base_, hit);
   }
 
   bool occluded(const Ray& ray) const override {
     RTCRay r;
-    if (!to_embree(ray, r)) return false;
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    rtcOccluded1(scene_, &context, &r);
-    return r.tfar == -kInfinity;
+    return to_embree(ray, r) && occluded1(scene_, r);
   }
 
   Bounds3f bounds() const override { return bounds_; }

@@ -122,6 +122,11 @@ struct IntegratorInfo {
   // record): the configured ones, or "pixel-grid" and "box".
   const char* sampler_name(SamplerType sampler) const;
   const char* filter_name(PixelFilterType filter) const;
+  // How it chooses among the lights (the EXR stamp, the run record): the
+  // scene's render.light_sampler for the path integrator, which samples one
+  // light per vertex; "all" for whitted, which visits every light; "none" for
+  // the views, which ignore lights.
+  const char* light_sampler_name(LightSamplerType light_sampler) const;
   // Whether every pass must have the same size (a divisor of the target): the
   // sampler stratifies over the pass's sample count (jittered, the pixel grid).
   bool equal_passes(SamplerType sampler) const;

@@ -38,6 +38,15 @@ const char* IntegratorInfo::filter_name(PixelFilterType filter) const {
   return configurable_sampling ? pixel_filter_name(filter) : "box";
 }
 
+const char* IntegratorInfo::light_sampler_name(LightSamplerType light_sampler) const {
+  switch (lights) {
+    case LightModel::Physical: return kLightSamplerNames[static_cast<int>(light_sampler)];
+    case LightModel::Classic: return "all";
+    case LightModel::None: break;
+  }
+  return "none";
+}
+
 bool IntegratorInfo::equal_passes(SamplerType sampler) const {
   return !configurable_sampling || sampler == SamplerType::Jittered;
 }

@@ -17,6 +17,7 @@
 
 #include "accel/accelerator.h"
 #include "accel/embree/embree_device.h"
+#include "accel/embree/queries.h"
 
 namespace pt::bench {
 
@@ -30,30 +31,17 @@ class BareEmbree final : public Accelerator {
   // False with `diag` on failure.
   bool build(const SceneGeometry& geometry, WorkerPool& pool, Diagnostics& diag);
 
+  // The backend's query and read-back (accel/embree/queries.h) on the ray as it is.
   bool intersect(const Ray& ray, Hit& hit) const override {
     RTCRayHit rh;
     set(ray, rh.ray);
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    rtcIntersect1(scene_, &context, &rh);
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-    hit.t = rh.ray.tfar;
-    hit.shape = rh.hit.geomID;
-    hit.prim = rh.hit.primID;
-    hit.uv = {rh.hit.u, rh.hit.v};
-    hit.instance = rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID ? kNoInstance : rh.hit.instID[0] - instance_base_;
-    return true;
+    return embree::intersect1(scene_, rh, instance_base_, hit);
   }
 
   bool occluded(const Ray& ray) const override {
     RTCRay r;
     set(ray, r);
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    rtcOccluded1(scene_, &context, &r);
-    return r.tfar < 0.0f;
+    return embree::occluded1(scene_, r);
   }
 
   Bounds3f bounds() const override { return bounds_; }

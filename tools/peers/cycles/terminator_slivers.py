@@ -36,27 +36,26 @@ def run(cmd, log):
 
 
 def render_all(args):
-    """(name, path) of the five images, rendering those missing (or all without --reuse)."""
+    """(name, path) of the five images, rendering those missing (or all without --reuse); Cycles'
+    first, the longest renders, so that a cut-short run keeps them for --reuse."""
     exe = os.path.join(REPO, "build", "pathtracer")
     os.makedirs(args.out_dir, exist_ok=True)
     ours = [("ours-off", ["--set", f"{KEY}=0"], 1), ("ours-on", [], 1), ("ours-on-seed2", [], 2)]
     cycles = [("cycles-0", 0.0), ("cycles-0.1", 0.1)]
-    images = []
-    for name, extra, seed in ours:
-        out = os.path.join(args.out_dir, name + ".exr")
-        if not (args.reuse and os.path.exists(out)):
-            run(["nice", "-n", "10", exe, args.scene, "-o", out, "--spp", str(args.spp), "--seed", str(seed),
-                 "--threads", str(args.threads)] + extra, out + ".log")
-        images.append((name, out))
+    path = {name: os.path.join(args.out_dir, name + ".exr") for name, *_ in ours + cycles}
+    todo = [name for name in path if not (args.reuse and os.path.exists(path[name]))]
     for name, offset in cycles:
-        out = os.path.join(args.out_dir, name + ".exr")
-        if not (args.reuse and os.path.exists(out)):
+        if name in todo:
             run(["nice", "-n", "10", "blender", "-b", "--factory-startup", "--python",
                  os.path.join(HERE, "scene_to_cycles.py"), "--", args.scene, "--spp", str(args.cycles_spp),
-                 "--seed", "1", "--threads", str(args.threads), "-o", out,
-                 "--terminator-geometry-offset", str(offset)], out + ".log")
-        images.append((name, out))
-    return images
+                 "--seed", "1", "--threads", str(args.threads), "-o", path[name],
+                 "--terminator-geometry-offset", str(offset)], path[name] + ".log")
+    for name, extra, seed in ours:
+        if name in todo:
+            run(["nice", "-n", "10", exe, args.scene, "-o", path[name], "--spp", str(args.spp),
+                 "--seed", str(seed), "--threads", str(args.threads), "--report", path[name] + ".json"]
+                + extra, path[name] + ".log")
+    return [(name, path[name]) for name, *_ in ours + cycles]
 
 
 def channel_means(path):
