@@ -14,6 +14,7 @@
 
 #include "core/sampling.h"
 #include "geometry/shapes.h"
+#include "render/guiding/light_guide.h"
 #include "render/integrators/builtin.h"
 #include "render/integrators/path_aov.h"
 #include "render/integrators/render_loop.h"
@@ -26,9 +27,10 @@ namespace {
 
 class PathTracer {
  public:
-  PathTracer(const RenderScene& scene, const IntegratorSettings& settings)
+  PathTracer(const RenderScene& scene, const IntegratorSettings& settings, const LightGuide& guide)
       : scene_(scene),
         lights_(scene.lights),
+        guide_(guide),
         max_depth_(std::max(0, settings.max_depth)),
         clamp_(settings.clamp),
         strategy_(settings.light_strategy),
@@ -120,8 +122,7 @@ class PathTracer {
     if (strategy_ == LightStrategy::LightOnly) return 0.0f;
     // An infinite light reads only the direction.
     const Vec3f none;
-    const float pdf =
-        lights_.pmf(prev_p, prev_n, env) * light_pdf(lights_[static_cast<std::size_t>(env)], none, dir, none, none);
+    const float pdf = guide_.pmf(prev_p, prev_n, env) * guide_.pdf(env, prev_p, dir, none, none);
     return power_heuristic(prev_pdf, pdf);
   }
 
@@ -132,7 +133,7 @@ class PathTracer {
     if (specular || index < 0 || strategy_ == LightStrategy::BsdfOnly) return 1.0f;
     if (strategy_ == LightStrategy::LightOnly) return 0.0f;
     const Light& light = lights_[static_cast<std::size_t>(index)];
-    const float pdf = lights_.pmf(prev_p, prev_n, index) * light_pdf(light, prev_p, dir, isect.geo.p, isect.geo.ng);
+    const float pdf = guide_.pmf(prev_p, prev_n, index) * light_pdf(light, prev_p, dir, isect.geo.p, isect.geo.ng);
     return power_heuristic(prev_pdf, pdf);
   }
 
@@ -145,10 +146,10 @@ class PathTracer {
     const float u_light = lights_.needs_choice() ? sampler.get_1d() : 0.0f;
     const Vec2f u = sampler.get_2d();
     float pmf = 0.0f;
-    const int index = lights_.choose(isect.geo.p, isect.geo.ng, u_light, pmf);
+    const int index = guide_.choose(isect.geo.p, isect.geo.ng, u_light, pmf);
     if (index < 0 || !(pmf > 0.0f)) return {};
     LightSample ls;
-    if (!sample_light(lights_[static_cast<std::size_t>(index)], isect.geo.p, u, ls)) return {};
+    if (!guide_.sample(index, isect.geo.p, u, ls)) return {};
     if (ls.L.is_black() || !(ls.pdf > 0.0f)) return {};
     if (!ls.delta && strategy_ == LightStrategy::BsdfOnly) return {};
     if (wi_out != nullptr) *wi_out = ls.wi;
@@ -173,6 +174,7 @@ class PathTracer {
 
   const RenderScene& scene_;
   const LightSet& lights_;
+  const LightGuide& guide_;  // the light choice and sampling (LightSet's own when guiding is off)
   int max_depth_;
   float clamp_;
   LightStrategy strategy_;
@@ -185,7 +187,11 @@ class PathIntegrator final : public Integrator {
   explicit PathIntegrator(const IntegratorSettings& settings) : settings_(settings), filter_(settings.filter) {}
 
   void render(const RenderScene& scene, Film& film, WorkerPool& pool) const override {
-    const PathTracer tracer(scene, settings_);
+    // Learned before the samples and frozen (render.light_guiding; light_guide.h).
+    const LightGuide guide = settings_.light_guiding > 0 ? LightGuide::learn(scene, pool, settings_.light_guiding,
+                                                                             settings_.max_depth, settings_.seed)
+                                                         : LightGuide(scene.lights);
+    const PathTracer tracer(scene, settings_, guide);
     render_samples(scene, film, pool, settings_, make_sampler(settings_.sampler, settings_.spp, settings_.seed),
                    filter_,
                    [&](const CameraRay& ray, Sampler& sampler, AovSample* aov) { return tracer.radiance(ray, sampler, aov); });
