@@ -18,6 +18,7 @@ namespace pt {
 namespace {
 
 constexpr int kMaxTreeDepth = 24;
+constexpr int kMaxPrepassDepth = 6;  // bounces of a pre-pass path: deeper vertices add little that is new
 constexpr int64_t kPathsPerTask = 64;
 constexpr uint64_t kPrepassKey = 0x6c69676874677569ULL;  // keeps the pre-pass apart from the render's numbers
 
@@ -41,11 +42,11 @@ void test_lights(const Prepass& pp, const Intersection& isect, const Bsdf& bsdf,
       LightSample ls;
       const Vec2f u(rng.next_float(), rng.next_float());
       if (sample_light(lights[i], isect.geo.p, u, ls) && ls.pdf > 0.0f && !ls.L.is_black()) {
+        if (env) r.bin = pp.bins.bin_at(pp.map->direction_to_uv(ls.wi));
         const RGB f = bsdf.f(wo, ls.wi);
         if (!f.is_black() && !pp.scene.occluded(spawn_ray(isect.geo, ls.wi))) {
           const float cos_i = std::fabs(dot(ls.wi, bsdf.shading_normal()));
           r.contribution = (f * ls.L).luminance() * cos_i / (ls.pdf * static_cast<float>(tests));
-          if (env) r.bin = pp.bins.bin_at(pp.map->direction_to_uv(ls.wi));
         }
       }
       if (!std::isfinite(r.contribution)) r.contribution = 0.0f;
@@ -131,7 +132,8 @@ LightGuide LightGuide::learn(const RenderScene& scene, WorkerPool& pool, int pat
       guide.plain_choice_.push_back(lights.pmf(Vec3f(), Vec3f(), static_cast<int>(i)));
   }
   const int64_t paths = std::min(kMaxPrepassPaths, int64_t{paths_per_pixel} * scene.width * scene.height);
-  const Prepass pp{scene, guide.bins_, guide.map_, guide.map_ != nullptr ? env : -1, max_depth};
+  const Prepass pp{scene, guide.bins_, guide.map_, guide.map_ != nullptr ? env : -1,
+                   std::min(max_depth, kMaxPrepassDepth)};
   std::vector<Record> records = run_prepass(pp, pool, paths, seed);
   if (records.empty()) return guide;
   Bounds3f bounds;
@@ -166,15 +168,26 @@ int LightGuide::build(std::vector<Record>& records, std::size_t begin, std::size
   return node;
 }
 
+// The choice: each light's share of the contributions. The environment: per
+// bin, the fraction of the map's samples that arrived unoccluded, with
+// kPriorTests pseudo-tests at the leaf's mean fraction (a bin without tests
+// keeps that mean), times the bin's share of the map's importance.
 void LightGuide::learn_leaf(Leaf& leaf, const Record* first, std::size_t count) const {
   if (count < static_cast<std::size_t>(kMinLeafRecords)) return;
   const std::size_t n = lights_->size();
   std::vector<double> per_light(n, 0.0);
-  std::vector<float> per_bin(map_ != nullptr ? static_cast<std::size_t>(bins_.size()) : 0, 0.0f);
+  const std::size_t bins = map_ != nullptr ? static_cast<std::size_t>(bins_.size()) : 0;
+  std::vector<float> tests(bins, 0.0f), seen(bins, 0.0f);
+  double all_tests = 0.0, all_seen = 0.0;
   for (std::size_t i = 0; i < count; ++i) {
     const Record& r = first[i];
     per_light[static_cast<std::size_t>(r.light)] += r.contribution;
-    if (r.bin >= 0 && r.contribution > 0.0f) per_bin[static_cast<std::size_t>(r.bin)] += r.contribution;
+    if (r.bin < 0) continue;
+    const float visible = r.contribution > 0.0f ? 1.0f : 0.0f;
+    tests[static_cast<std::size_t>(r.bin)] += 1.0f;
+    seen[static_cast<std::size_t>(r.bin)] += visible;
+    all_tests += 1.0;
+    all_seen += visible;
   }
   double total = 0.0;
   for (double c : per_light) total += c;
@@ -184,9 +197,12 @@ void LightGuide::learn_leaf(Leaf& leaf, const Record* first, std::size_t count) 
       leaf.choice[i] = kPlainChoice * plain_choice_[i] +
                        (1.0f - kPlainChoice) * static_cast<float>(per_light[i] / total);
   }
-  bool any = false;
-  for (float c : per_bin) any = any || c > 0.0f;
-  if (any) leaf.environment = Distribution1D(per_bin);
+  if (!(all_seen > 0.0)) return;
+  const float mean = static_cast<float>(all_seen / all_tests);
+  std::vector<float> weight(bins);
+  for (std::size_t b = 0; b < bins; ++b)
+    weight[b] = bins_.share(static_cast<int>(b)) * (seen[b] + kPriorTests * mean) / (tests[b] + kPriorTests);
+  leaf.environment = Distribution1D(weight);
 }
 
 const LightGuide::Leaf* LightGuide::leaf(Vec3f p) const {
@@ -196,9 +212,9 @@ const LightGuide::Leaf* LightGuide::leaf(Vec3f p) const {
   return &leaves_[static_cast<std::size_t>(node->a)];
 }
 
-int LightGuide::choose(Vec3f p, Vec3f n, float u, float& pmf) const {
-  const Leaf* l = guide_choice_ ? leaf(p) : nullptr;
-  if (l == nullptr || l->choice.empty()) return lights_->choose(p, n, u, pmf);
+int LightGuide::choose(const Site& at, Vec3f n, float u, float& pmf) const {
+  const Leaf* l = guide_choice_ ? at.leaf : nullptr;
+  if (l == nullptr || l->choice.empty()) return lights_->choose(at.p, n, u, pmf);
   const std::size_t count = l->choice.size();
   float sum = 0.0f;
   for (std::size_t i = 0; i < count; ++i) {
@@ -213,9 +229,9 @@ int LightGuide::choose(Vec3f p, Vec3f n, float u, float& pmf) const {
   return -1;
 }
 
-float LightGuide::pmf(Vec3f p, Vec3f n, int light) const {
-  const Leaf* l = guide_choice_ ? leaf(p) : nullptr;
-  if (l == nullptr || l->choice.empty()) return lights_->pmf(p, n, light);
+float LightGuide::pmf(const Site& at, Vec3f n, int light) const {
+  const Leaf* l = guide_choice_ ? at.leaf : nullptr;
+  if (l == nullptr || l->choice.empty()) return lights_->pmf(at.p, n, light);
   if (light < 0 || static_cast<std::size_t>(light) >= l->choice.size()) return 0.0f;
   return l->choice[static_cast<std::size_t>(light)];
 }
@@ -231,11 +247,11 @@ float LightGuide::environment_pdf(const Leaf* l, Vec2f uv) const {
   return plain * (kPlainEnvironment + (1.0f - kPlainEnvironment) * guided);
 }
 
-bool LightGuide::sample(int light, Vec3f p, Vec2f u, LightSample& s) const {
+bool LightGuide::sample(int light, const Site& at, Vec2f u, LightSample& s) const {
   const Light& l = (*lights_)[static_cast<std::size_t>(light)];
-  if (map_ == nullptr || light != lights_->environment()) return sample_light(l, p, u, s);
-  const Leaf* lf = leaf(p);
-  if (lf == nullptr || lf->environment.size() == 0) return sample_light(l, p, u, s);
+  if (map_ == nullptr || light != lights_->environment()) return sample_light(l, at.p, u, s);
+  const Leaf* lf = at.leaf;
+  if (lf == nullptr || lf->environment.size() == 0) return sample_light(l, at.p, u, s);
   s.delta = false;
   s.infinite = true;
   // One sample of the mixture: u.x chooses the component and is reused, rescaled.
@@ -260,10 +276,10 @@ bool LightGuide::sample(int light, Vec3f p, Vec2f u, LightSample& s) const {
   return s.pdf > 0.0f;
 }
 
-float LightGuide::pdf(int light, Vec3f p, Vec3f wi, Vec3f q, Vec3f n) const {
+float LightGuide::pdf(int light, const Site& at, Vec3f wi, Vec3f q, Vec3f n) const {
   const Light& l = (*lights_)[static_cast<std::size_t>(light)];
-  if (map_ == nullptr || light != lights_->environment()) return light_pdf(l, p, wi, q, n);
-  return environment_pdf(leaf(p), map_->direction_to_uv(wi));
+  if (map_ == nullptr || light != lights_->environment()) return light_pdf(l, at.p, wi, q, n);
+  return environment_pdf(at.leaf, map_->direction_to_uv(wi));
 }
 
 }  // namespace pt

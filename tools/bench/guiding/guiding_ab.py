@@ -5,9 +5,11 @@ docs/bench/guiding.md (and the runs as JSON beside it).
 
 For each case: a reference (the case's committed one, or one rendered once here with guiding off
 at many samples, its own seed), then ROUNDS rounds of one render per variant at the case's sample
-count, alternating which goes first, each timed by the renderer's own clock (`timings.render` of
-its --report: the pre-pass counts, it runs inside the render phase) and measured with pt-imgerr
-against the reference. Reported per variant: median render time and its spread, MSE at equal
+count, alternating which goes first, each timed by the renderer's own clocks (its --report: the pre-pass counts, it runs inside the
+render phase) and measured with pt-imgerr
+against the reference. Time is the render phase's CPU time (`performance.render_cpu_seconds` of the
+run record, both threads; the machine is shared, so wall time mostly measures the others' load).
+Reported per variant: median render CPU time and its spread, MSE at equal
 samples, and the time to equal error against the first variant, (MSE x t) / (MSE_0 x t_0) per
 round (MSE falling as 1 / samples; the pre-pass is a fixed cost, so this holds at the case's
 sample count, which is chosen near the error the peers comparison targets), median and min-max.
@@ -51,7 +53,8 @@ def render(exe, scene, width, height, spp, guiding, seed, out):
     r = subprocess.run(cmd, capture_output=True, text=True)
     if r.returncode != 0:
         raise RuntimeError("%s: %s" % (" ".join(cmd), r.stderr.strip()))
-    return json.load(open(report))["timings"]["render"]
+    r = json.load(open(report))
+    return r["timings"]["render"], r["performance"]["render_cpu_seconds"]
 
 
 def run_case(args, tmp, case, variants):
@@ -61,24 +64,26 @@ def run_case(args, tmp, case, variants):
         render(args.exe, scene, width, height, ref_spp, 0, 1000, ref)
     else:
         ref = os.path.join(ROOT, ref)
-    res = {v: {"time": [], "mse": [], "load": []} for v, _ in variants}
+    res = {v: {"time": [], "wall": [], "mse": [], "load": []} for v, _ in variants}
     for r in range(args.rounds):
         order = variants if r % 2 == 0 else variants[::-1]
         for v, guiding in order:
             out = os.path.join(tmp, "%s.exr" % v)
             load = loadavg()
-            t = render(args.exe, scene, width, height, spp, guiding, r + 1, out)
+            wall, t = render(args.exe, scene, width, height, spp, guiding, r + 1, out)
             mse = image_error(args.imgerr, out, ref)["mse"]
             res[v]["time"].append(t)
+            res[v]["wall"].append(wall)
             res[v]["mse"].append(mse)
             res[v]["load"].append(load)
-            print("%s %s round %d: %.3f s, MSE %.4g, load %.1f" % (name, v, r, t, mse, load), file=sys.stderr)
+            print("%s %s round %d: %.3f CPU s (%.3f s wall), MSE %.4g, load %.1f" % (name, v, r, t, wall, mse, load),
+                  file=sys.stderr)
     return {"name": name, "scene": scene, "spp": spp, "ref_spp": ref_spp, "res": res}
 
 
 def table(cases, variants):
     base = variants[0][0]
-    lines = ["| scene | variant | spp | render s, median (min-max) | MSE (mean) | RMSE | "
+    lines = ["| scene | variant | spp | render CPU s, median (min-max) | MSE (mean) | RMSE | "
              "time to equal error (%s = 1), median (min-max) over rounds |" % base, "|---|---|---|---|---|---|---|"]
     for c in cases:
         b = c["res"][base]
@@ -110,8 +115,8 @@ def main():
     all_loads = [l for c in cases for v in c["res"].values() for l in v["load"]]
     text = ["# Light guiding: A/B", "",
             "Written by `tools/bench/guiding/guiding_ab.py --variants %s --rounds %d` (how it measures: its "
-            "docstring). Same build, interleaved, 2 threads, the renderer's own `timings.render` (the pre-pass "
-            "included). 1-minute load average before each render: min %.1f, median %.1f, max %.1f." % (
+            "docstring). Same build, interleaved, 2 threads, the render phase's CPU time from the run record (the "
+            "pre-pass included). 1-minute load average before each render: min %.1f, median %.1f, max %.1f." % (
                 args.variants, args.rounds, min(all_loads), statistics.median(all_loads), max(all_loads)), "",
             table(cases, variants), "", "## Machine", "", "```", lscpu().strip(), "```", ""]
     with open(args.out, "w") as f:
