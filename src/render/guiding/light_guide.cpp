@@ -236,15 +236,16 @@ float LightGuide::pmf(const Site& at, Vec3f n, int light) const {
   return l->choice[static_cast<std::size_t>(light)];
 }
 
-// The mixture's density: within a bin both components follow the map's
-// importance, so the guided one is the map's density times P_leaf(bin) / share(bin).
+// The mixture's density: the map's own, and the leaf's bin probability times
+// the bin's uniform density in image coordinates, per solid angle.
 float LightGuide::environment_pdf(const Leaf* l, Vec2f uv) const {
   const float plain = map_->pdf_at(uv);
   if (l == nullptr || l->environment.size() == 0) return plain;
   const int b = bins_.bin_at(uv);
-  const float share = bins_.share(b);
-  const float guided = share > 0.0f ? l->environment.pmf(static_cast<std::size_t>(b)) / share : 0.0f;
-  return plain * (kPlainEnvironment + (1.0f - kPlainEnvironment) * guided);
+  const float sin_theta = std::sin(kPi * uv.y);
+  if (!(sin_theta > 0.0f)) return kPlainEnvironment * plain;
+  const float guided = l->environment.pmf(static_cast<std::size_t>(b)) * bins_.density(b) / (2.0f * kPi * kPi * sin_theta);
+  return kPlainEnvironment * plain + (1.0f - kPlainEnvironment) * guided;
 }
 
 bool LightGuide::sample(int light, const Site& at, Vec2f u, LightSample& s) const {
@@ -265,9 +266,7 @@ bool LightGuide::sample(int light, const Site& at, Vec2f u, LightSample& s) cons
     const float x = lf->environment.sample_continuous(v, &density, &b);
     const float w = std::clamp(x * static_cast<float>(lf->environment.size()) - static_cast<float>(b), 0.0f,
                                kOneMinusEpsilon);
-    Vec2f uv;
-    if (!bins_.sample(static_cast<int>(b), Vec2f(w, u.y), uv)) return false;
-    s.wi = map_->uv_to_direction(uv);
+    s.wi = map_->uv_to_direction(bins_.sample(static_cast<int>(b), Vec2f(w, u.y)));
   }
   // Radiance and density from the direction, as pdf() gives them to a BSDF-sampled ray.
   const Vec2f uv = map_->direction_to_uv(s.wi);
