@@ -39,6 +39,9 @@ CASES = [
 ]
 
 
+MARKER = "<!-- guiding_ab.py writes everything below this line -->"
+
+
 def loadavg():
     with open("/proc/loadavg") as f:
         return float(f.read().split()[0])
@@ -113,14 +116,20 @@ def main():
         cases = [run_case(args, tmp, c, variants) for c in CASES if c[0].startswith(args.case)]
     loads.append(loadavg())
     all_loads = [l for c in cases for v in c["res"].values() for l in v["load"]]
-    text = ["# Light guiding: A/B", "",
+    text = ["# Light guiding: A/B", "", MARKER, "",
             "Written by `tools/bench/guiding/guiding_ab.py --variants %s --rounds %d` (how it measures: its "
             "docstring). Same build, interleaved, 2 threads, the render phase's CPU time from the run record (the "
             "pre-pass included). 1-minute load average before each render: min %.1f, median %.1f, max %.1f." % (
                 args.variants, args.rounds, min(all_loads), statistics.median(all_loads), max(all_loads)), "",
             table(cases, variants), "", "## Machine", "", "```", lscpu().strip(), "```", ""]
+    # The hand-written part above MARKER (the steps and their verdicts) is kept.
+    kept = ""
+    if os.path.exists(args.out):
+        old = open(args.out).read()
+        if MARKER in old:
+            kept = old[:old.index(MARKER)]
     with open(args.out, "w") as f:
-        f.write("\n".join(text))
+        f.write(kept + "\n".join(text[2:]) if kept else "\n".join(text))
     with open(os.path.splitext(args.out)[0] + ".json", "w") as f:
         json.dump({"variants": variants, "rounds": args.rounds, "cases": cases}, f, indent=1)
     print("\n".join(text[:6]))
