@@ -36,6 +36,7 @@ bool resolve_render_settings(const SceneDescription& desc, const SettingsOverrid
   s.roulette_depth = o.roulette_depth;
   s.roulette_threshold = o.roulette_threshold;
   s.film_transparent = o.film_transparent || desc.render.film_transparent.value;
+  s.light_guiding = desc.render.light_guiding.value;
   out.light_sampler = desc.render.light_sampler.value;
   out.shadow_terminator_offset = desc.render.shadow_terminator_geometry_offset.value;
   BuildOptions size;
@@ -97,6 +98,7 @@ nlohmann::ordered_json RenderSettings::identity() const {
   if (integration.film_transparent) id["film_transparent"] = true;
   if (light_sampler != LightSamplerType::Bvh)
     id["light_sampler"] = kLightSamplerNames[static_cast<int>(light_sampler)];
+  if (integration.light_guiding != kDefaultLightGuiding) id["light_guiding"] = integration.light_guiding;
   if (shadow_terminator_offset != kDefaultShadowTerminatorOffset)
     id["shadow_terminator_geometry_offset"] = shadow_terminator_offset;
   return id;

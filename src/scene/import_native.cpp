@@ -146,6 +146,7 @@ void read_render(ImportContext& ctx, const JsonValue& v) {
   if (sampler >= 0) render.light_sampler = Sourced<LightSamplerType>(static_cast<LightSamplerType>(sampler), sampler_at);
   r.read("shadow_terminator_geometry_offset", render.shadow_terminator_geometry_offset);
   r.read("film_transparent", render.film_transparent);
+  r.read("light_guiding", render.light_guiding);
   Sourced<std::string> image;
   if (r.read("background_image", image) && image.where.valid()) {
     if (const std::optional<std::string> resolved = find_scene_file(ctx, image, "background image"))

@@ -152,6 +152,8 @@ inline constexpr const char* kLightSamplerNames[] = {"bvh", "power"};
 // smooth surface its vertex normals imply (docs/rendering.md, "Shadow terminator").
 inline constexpr float kDefaultShadowTerminatorOffset = 0.1f;
 
+inline constexpr int kDefaultLightGuiding = 0;
+
 struct RenderDesc {
   Sourced<std::string> integrator{std::string("whitted")};  // registry name, see render/integrators
   Sourced<int> max_depth{5};     // recursion limit (nbounces in the course files)
@@ -171,6 +173,9 @@ struct RenderDesc {
   // Cycles' Film > Transparent: what camera rays see when they hit nothing is
   // left out of the image (alpha 0); it still lights the scene.
   Sourced<bool> film_transparent{false};
+  // The path integrator's light guiding: pre-pass paths per pixel, 0 = off
+  // (render/guiding/light_guide.h; docs/path-tracing.md, "Light guiding").
+  Sourced<int> light_guiding{kDefaultLightGuiding};
 };
 
 

@@ -85,6 +85,10 @@ class Validator {
     if (!(terminator.value >= 0.0f && terminator.value <= 1.0f))
       diag_.error(terminator.where, "shadow_terminator_geometry_offset must be between 0 and 1 (0 turns it off), got " +
                                         str(terminator.value));
+    if (render.light_guiding.value < 0 || render.light_guiding.value > 1024)
+      diag_.error(render.light_guiding.where,
+                  "light_guiding must be between 0 and 1024 pre-pass paths per pixel (0 turns it off), got " +
+                      str(render.light_guiding.value));
   }
 
   void material(const MaterialDesc& m) {

@@ -20,6 +20,7 @@
 
 #include <gtest/gtest.h>
 
+#include "light_guide_scenes.h"
 #include "path_test_util.h"
 #include "scene/loader.h"
 
@@ -274,6 +275,40 @@ TEST(PathAgreement, LightSamplersRenderTheCornellBoxBitForBit) {
   ASSERT_EQ(a.pixels.size(), b.pixels.size());
   for (std::size_t i = 0; i < a.pixels.size(); ++i)
     for (int c = 0; c < 3; ++c) ASSERT_EQ(a.pixels[i][c], b.pixels[i][c]) << "pixel " << i;
+}
+
+// ---------------------------------------------------------------- light guiding
+// render.light_guiding (render/guiding/light_guide.h) changes how the sky and
+// the sun are sampled, never what the image converges to: a courtyard lit
+// through its roof's opening by an environment map and a sun, guided and
+// plain, on both backends.
+BlockEstimate estimate_guided(const SceneDescription& d, int guiding, AccelKind accel) {
+  return estimate([&](uint64_t seed) {
+    BuildOptions options;
+    options.accel = accel;
+    IntegratorSettings s = test::path_settings(16, 6, seed);
+    s.light_guiding = guiding;
+    return test::render_with(d, "path", s, 2, options);
+  });
+}
+
+TEST(PathAgreement, LightGuidingConvergesToThePlainImageWithSkyAndSun) {
+  const SceneDescription d = test::courtyard_scene(true);
+  const BlockEstimate plain = estimate_guided(d, 0, AccelKind::Embree);
+  EXPECT_TRUE(agree(plain, estimate_guided(d, 4, AccelKind::Embree))) << "Embree";
+  {
+    WorkerPool pool(1);
+    Diagnostics diag;
+    BuildOptions options;
+    options.accel = AccelKind::Bvh;
+    if (!build_render_scene(d, options, pool, diag)) GTEST_SKIP() << "no BVH backend in this build: " << diag.format();
+  }
+  EXPECT_TRUE(agree(plain, estimate_guided(d, 4, AccelKind::Bvh))) << "BVH";
+}
+
+TEST(PathAgreement, LightGuidingConvergesToThePlainImageWithSkyAlone) {
+  const SceneDescription d = test::courtyard_scene(false);
+  EXPECT_TRUE(agree(estimate_guided(d, 0, AccelKind::Embree), estimate_guided(d, 8, AccelKind::Embree)));
 }
 
 }  // namespace

@@ -64,6 +64,9 @@ struct IntegratorSettings {
   int roulette_depth = 3;
   float roulette_threshold = 1.0f / 3.0f;
   SamplerType sampler = SamplerType::Sobol;  // path: where its random numbers come from (docs/samplers.md)
+  // path: light guiding's pre-pass paths per pixel (render.light_guiding,
+  // render/guiding/light_guide.h); 0 = off.
+  int light_guiding = 0;
   // Cycles' Film > Transparent: what camera rays see when they hit nothing
   // (background, environment, background image) is left out of the image
   // (black, alpha 0); it still lights the scene and shows in reflections.

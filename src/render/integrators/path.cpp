@@ -14,6 +14,7 @@
 
 #include "core/sampling.h"
 #include "geometry/shapes.h"
+#include "render/guiding/light_guide.h"
 #include "render/integrators/builtin.h"
 #include "render/integrators/path_aov.h"
 #include "render/integrators/render_loop.h"
@@ -26,9 +27,10 @@ namespace {
 
 class PathTracer {
  public:
-  PathTracer(const RenderScene& scene, const IntegratorSettings& settings)
+  PathTracer(const RenderScene& scene, const IntegratorSettings& settings, const LightGuide& guide)
       : scene_(scene),
         lights_(scene.lights),
+        guide_(guide),
         max_depth_(std::max(0, settings.max_depth)),
         clamp_(settings.clamp),
         strategy_(settings.light_strategy),
@@ -43,14 +45,15 @@ class PathTracer {
     RGB L, beta(1.0f);
     bool specular = true;  // the camera ray, or a delta lobe: no light sampling could have found this
     float prev_pdf = 0.0f;
-    Vec3f prev_p, prev_n;  // the previous vertex: where the light choice a BSDF ray competes with was made
+    LightGuide::Site prev_site;  // the previous vertex: where the light choice a BSDF ray competes with was made
+    Vec3f prev_n;
     float eta2 = 1.0f;  // product of the refraction radiance scales along the path
     for (int depth = 0;; ++depth) {
       Intersection isect;
       if (!scene_.intersect(ray, isect, depth == 0 ? camera_ray.differential_or_null() : nullptr)) {
         const RGB le = depth == 0 ? scene_.camera_ray_escaped(ray) : scene_.escaped_radiance(ray.dir);
         if (!le.is_black()) {
-          const RGB term = beta * le * escape_weight(ray.dir, specular, prev_pdf, prev_p, prev_n);
+          const RGB term = beta * le * escape_weight(ray.dir, specular, prev_pdf, prev_site, prev_n);
           L += term;
           if (rec.active()) rec.found(depth, term);
         }
@@ -62,7 +65,7 @@ class PathTracer {
       if (m.emits()) {
         const RGB le = m.emitted(isect.geo.ng, wo, tex_coord(isect.geo));
         if (!le.is_black()) {
-          const RGB term = beta * le * emitter_weight(isect, ray.dir, specular, prev_pdf, prev_p, prev_n);
+          const RGB term = beta * le * emitter_weight(isect, ray.dir, specular, prev_pdf, prev_site, prev_n);
           L += term;
           if (rec.active()) rec.found(depth, term);
         }
@@ -72,9 +75,10 @@ class PathTracer {
       const Bsdf bsdf(m, isect.geo, wo);
       if (bsdf.black()) break;
       if (rec.active() && depth == 0) rec.first_vertex(bsdf);
+      const LightGuide::Site site = guide_.site(isect.geo.p);
       if (!bsdf.delta_only() && !lights_.empty()) {
         Vec3f wi_light;
-        const RGB term = beta * direct_light(isect, bsdf, wo, sampler, &wi_light);
+        const RGB term = beta * direct_light(isect, site, bsdf, wo, sampler, &wi_light);
         L += term;
         if (rec.active() && !term.is_black()) rec.light(depth, term, wo, wi_light);
       }
@@ -89,7 +93,7 @@ class PathTracer {
       if (beta.is_black()) break;
       specular = bs.delta;
       prev_pdf = bs.pdf;
-      prev_p = isect.geo.p;
+      prev_site = site;
       prev_n = isect.geo.ng;
       ray = spawn_ray(isect.geo, bs.wi);
 
@@ -114,41 +118,40 @@ class PathTracer {
  private:
   // MIS weight of an environment seen through a BSDF-sampled direction.
   // The light choice's probability is the one at the previous vertex (prev_p, prev_n).
-  float escape_weight(Vec3f dir, bool specular, float prev_pdf, Vec3f prev_p, Vec3f prev_n) const {
+  float escape_weight(Vec3f dir, bool specular, float prev_pdf, const LightGuide::Site& prev, Vec3f prev_n) const {
     const int env = lights_.environment();
     if (specular || env < 0 || strategy_ == LightStrategy::BsdfOnly) return 1.0f;
     if (strategy_ == LightStrategy::LightOnly) return 0.0f;
     // An infinite light reads only the direction.
     const Vec3f none;
-    const float pdf =
-        lights_.pmf(prev_p, prev_n, env) * light_pdf(lights_[static_cast<std::size_t>(env)], none, dir, none, none);
+    const float pdf = guide_.pmf(prev, prev_n, env) * guide_.pdf(env, prev, dir, none, none);
     return power_heuristic(prev_pdf, pdf);
   }
 
   // MIS weight of an emitter hit through a BSDF-sampled direction.
-  float emitter_weight(const Intersection& isect, Vec3f dir, bool specular, float prev_pdf, Vec3f prev_p,
-                       Vec3f prev_n) const {
+  float emitter_weight(const Intersection& isect, Vec3f dir, bool specular, float prev_pdf,
+                       const LightGuide::Site& prev, Vec3f prev_n) const {
     const int index = lights_.shape_light(isect.hit.shape, isect.hit.instance);
     if (specular || index < 0 || strategy_ == LightStrategy::BsdfOnly) return 1.0f;
     if (strategy_ == LightStrategy::LightOnly) return 0.0f;
     const Light& light = lights_[static_cast<std::size_t>(index)];
-    const float pdf = lights_.pmf(prev_p, prev_n, index) * light_pdf(light, prev_p, dir, isect.geo.p, isect.geo.ng);
+    const float pdf = guide_.pmf(prev, prev_n, index) * light_pdf(light, prev.p, dir, isect.geo.p, isect.geo.ng);
     return power_heuristic(prev_pdf, pdf);
   }
 
   // Next-event estimation: one light, chosen for this point and normal, sampled at one point.
   // `wi_out`, when not null, receives the sampled light direction (for the AOV split).
-  RGB direct_light(const Intersection& isect, const Bsdf& bsdf, Vec3f wo, Sampler& sampler,
-                   Vec3f* wi_out = nullptr) const {
+  RGB direct_light(const Intersection& isect, const LightGuide::Site& site, const Bsdf& bsdf, Vec3f wo,
+                   Sampler& sampler, Vec3f* wi_out = nullptr) const {
     // Where there is nothing to choose (one light that can be picked), no
     // sample dimension is spent on the choice.
     const float u_light = lights_.needs_choice() ? sampler.get_1d() : 0.0f;
     const Vec2f u = sampler.get_2d();
     float pmf = 0.0f;
-    const int index = lights_.choose(isect.geo.p, isect.geo.ng, u_light, pmf);
+    const int index = guide_.choose(site, isect.geo.ng, u_light, pmf);
     if (index < 0 || !(pmf > 0.0f)) return {};
     LightSample ls;
-    if (!sample_light(lights_[static_cast<std::size_t>(index)], isect.geo.p, u, ls)) return {};
+    if (!guide_.sample(index, site, u, ls)) return {};
     if (ls.L.is_black() || !(ls.pdf > 0.0f)) return {};
     if (!ls.delta && strategy_ == LightStrategy::BsdfOnly) return {};
     if (wi_out != nullptr) *wi_out = ls.wi;
@@ -173,6 +176,7 @@ class PathTracer {
 
   const RenderScene& scene_;
   const LightSet& lights_;
+  const LightGuide& guide_;  // the light choice and sampling (LightSet's own when guiding is off)
   int max_depth_;
   float clamp_;
   LightStrategy strategy_;
@@ -185,7 +189,11 @@ class PathIntegrator final : public Integrator {
   explicit PathIntegrator(const IntegratorSettings& settings) : settings_(settings), filter_(settings.filter) {}
 
   void render(const RenderScene& scene, Film& film, WorkerPool& pool) const override {
-    const PathTracer tracer(scene, settings_);
+    // Learned before the samples and frozen (render.light_guiding; light_guide.h).
+    const LightGuide guide = settings_.light_guiding > 0 ? LightGuide::learn(scene, pool, settings_.light_guiding,
+                                                                             settings_.max_depth, settings_.seed)
+                                                         : LightGuide(scene.lights);
+    const PathTracer tracer(scene, settings_, guide);
     render_samples(scene, film, pool, settings_, make_sampler(settings_.sampler, settings_.spp, settings_.seed),
                    filter_,
                    [&](const CameraRay& ray, Sampler& sampler, AovSample* aov) { return tracer.radiance(ray, sampler, aov); });

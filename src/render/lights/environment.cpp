@@ -135,8 +135,9 @@ bool EnvironmentMap::sample(Vec2f u, LightSample& s) const {
   return true;
 }
 
-float EnvironmentMap::pdf(Vec3f dir) const {
-  const Vec2f uv = direction_to_uv(dir);
+float EnvironmentMap::pdf(Vec3f dir) const { return pdf_at(direction_to_uv(dir)); }
+
+float EnvironmentMap::pdf_at(Vec2f uv) const {
   const float sin_theta = std::sin(kPi * uv.y);
   if (!(sin_theta > 0.0f)) return 0.0f;
   return distribution_.pdf(uv) / (2.0f * kPi * kPi * sin_theta);

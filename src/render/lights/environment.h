@@ -40,11 +40,20 @@ class EnvironmentMap {
   RGB radiance(Vec3f dir) const;
   bool sample(Vec2f u, LightSample& s) const;
   float pdf(Vec3f dir) const;
+  // The same from image coordinates (direction_to_uv), for a caller that has them:
+  // the radiance, and the solid-angle density of sample() there.
+  RGB radiance_at(Vec2f uv) const { return texel(uv) * intensity_; }
+  float pdf_at(Vec2f uv) const;
   float power(float scene_radius) const;
 
   // The direction <-> image coordinate mapping described above.
   Vec2f direction_to_uv(Vec3f dir) const;
   Vec3f uv_to_direction(Vec2f uv) const;
+  // The image's size in texels (the sampling distribution's grid).
+  int width() const { return image_.width(); }
+  int height() const { return image_.height(); }
+  // The radiance of texel (x, y) (x from the left, y from the top).
+  RGB texel_radiance(int x, int y) const { return image_.texel(x, y) * intensity_; }
 
  private:
   const RGB& texel(Vec2f uv) const;

@@ -1,0 +1,284 @@
+#include "render/guiding/light_guide.h"
+
+#include <algorithm>
+#include <cmath>
+#include <variant>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "core/parallel.h"
+#include "core/rng.h"
+#include "geometry/shapes.h"
+#include "render/materials/bsdf.h"
+#include "render/render_scene.h"
+
+namespace pt {
+
+namespace {
+
+constexpr int kMaxTreeDepth = 24;
+constexpr int kMaxPrepassDepth = 6;  // bounces of a pre-pass path: deeper vertices add little that is new
+constexpr int64_t kPathsPerTask = 64;
+constexpr uint64_t kPrepassKey = 0x6c69676874677569ULL;  // keeps the pre-pass apart from the render's numbers
+
+struct Prepass {
+  const RenderScene& scene;
+  const EnvironmentBins& bins;
+  const EnvironmentMap* map;
+  int environment;  // its light index, or -1
+  int max_depth;
+};
+
+// Every infinite light tested from one vertex (the file comment of light_guide.h).
+void test_lights(const Prepass& pp, const Intersection& isect, const Bsdf& bsdf, Vec3f wo, Rng& rng,
+                 std::vector<LightGuide::Record>& out) {
+  const LightSet& lights = pp.scene.lights;
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    const bool env = static_cast<int>(i) == pp.environment;
+    const int tests = env ? LightGuide::kEnvironmentTests : 1;
+    for (int t = 0; t < tests; ++t) {
+      LightGuide::Record r{isect.geo.p, static_cast<int>(i), -1, 0.0f};
+      LightSample ls;
+      const Vec2f u(rng.next_float(), rng.next_float());
+      if (sample_light(lights[i], isect.geo.p, u, ls) && ls.pdf > 0.0f && !ls.L.is_black()) {
+        if (env) r.bin = pp.bins.bin_at(pp.map->direction_to_uv(ls.wi));
+        const RGB f = bsdf.f(wo, ls.wi);
+        if (!f.is_black() && !pp.scene.occluded(spawn_ray(isect.geo, ls.wi))) {
+          const float cos_i = std::fabs(dot(ls.wi, bsdf.shading_normal()));
+          r.contribution = (f * ls.L).luminance() * cos_i / (ls.pdf * static_cast<float>(tests));
+        }
+      }
+      if (!std::isfinite(r.contribution)) r.contribution = 0.0f;
+      out.push_back(r);
+    }
+  }
+}
+
+// One pre-pass path through a random film position (BSDF sampling, Russian
+// roulette after 3 bounces).
+void trace_path(const Prepass& pp, Rng& rng, std::vector<LightGuide::Record>& out) {
+  const RenderScene& scene = pp.scene;
+  const Vec2f film(rng.next_float() * static_cast<float>(scene.width),
+                   rng.next_float() * static_cast<float>(scene.height));
+  Ray ray = scene.camera.has_lens() ? scene.camera.generate_ray(film, Vec2f(rng.next_float(), rng.next_float()))
+                                    : scene.camera.generate_ray(film);
+  RGB beta(1.0f);
+  for (int depth = 0; depth < pp.max_depth; ++depth) {
+    Intersection isect;
+    if (!scene.intersect(ray, isect)) return;
+    const Vec3f wo = -ray.dir;
+    const Bsdf bsdf(*isect.material, isect.geo, wo);
+    if (bsdf.black()) return;
+    if (!bsdf.delta_only()) test_lights(pp, isect, bsdf, wo, rng, out);
+    BsdfSample bs;
+    const float u_lobe = rng.next_float();
+    if (!bsdf.sample(wo, u_lobe, Vec2f(rng.next_float(), rng.next_float()), bs)) return;
+    beta *= bs.weight;
+    if (beta.is_black()) return;
+    if (depth >= 3) {
+      const float survive = std::min(1.0f, beta.max_component());
+      if (rng.next_float() >= survive) return;
+      beta *= 1.0f / survive;
+    }
+    ray = spawn_ray(isect.geo, bs.wi);
+  }
+}
+
+// The pre-pass's records in path order (so the result does not depend on the thread count).
+std::vector<LightGuide::Record> run_prepass(const Prepass& pp, WorkerPool& pool, int64_t paths, uint64_t seed) {
+  const int64_t tasks = (paths + kPathsPerTask - 1) / kPathsPerTask;
+  std::vector<std::vector<LightGuide::Record>> parts(static_cast<std::size_t>(tasks));
+  pool.run([&] {
+    tbb::parallel_for(tbb::blocked_range<int64_t>(0, tasks), [&](const tbb::blocked_range<int64_t>& r) {
+      for (int64_t task = r.begin(); task != r.end(); ++task) {
+        auto& out = parts[static_cast<std::size_t>(task)];
+        const int64_t end = std::min(paths, (task + 1) * kPathsPerTask);
+        for (int64_t path = task * kPathsPerTask; path < end; ++path) {
+          Rng rng(hash_keys(seed, kPrepassKey, static_cast<uint64_t>(path)));
+          trace_path(pp, rng, out);
+        }
+      }
+    });
+  });
+  std::size_t total = 0;
+  for (const auto& part : parts) total += part.size();
+  std::vector<LightGuide::Record> records;
+  records.reserve(total);
+  for (const auto& part : parts) records.insert(records.end(), part.begin(), part.end());
+  return records;
+}
+
+float axis_of(Vec3f v, int axis) { return axis == 0 ? v.x : axis == 1 ? v.y : v.z; }
+
+}  // namespace
+
+LightGuide LightGuide::learn(const RenderScene& scene, WorkerPool& pool, int paths_per_pixel, int max_depth,
+                             uint64_t seed) {
+  LightGuide guide(scene.lights);
+  const LightSet& lights = scene.lights;
+  if (paths_per_pixel <= 0 || max_depth <= 0 || lights.empty()) return guide;
+  bool all_infinite = true;
+  for (const Light& l : lights) all_infinite = all_infinite && std::visit([](const auto& k) { return k.infinite; }, l);
+  const int env = lights.environment();
+  if (env >= 0) {
+    if (const auto* e = std::get_if<EnvironmentLight>(&lights[static_cast<std::size_t>(env)])) guide.map_ = e->map;
+  }
+  guide.guide_choice_ = all_infinite && lights.needs_choice();
+  if (guide.map_ == nullptr && !guide.guide_choice_) return guide;
+  if (guide.map_ != nullptr) guide.bins_ = EnvironmentBins(*guide.map_);
+  if (guide.guide_choice_) {
+    for (std::size_t i = 0; i < lights.size(); ++i)
+      guide.plain_choice_.push_back(lights.pmf(Vec3f(), Vec3f(), static_cast<int>(i)));
+  }
+  const int64_t paths = std::min(kMaxPrepassPaths, int64_t{paths_per_pixel} * scene.width * scene.height);
+  const Prepass pp{scene, guide.bins_, guide.map_, guide.map_ != nullptr ? env : -1,
+                   std::min(max_depth, kMaxPrepassDepth)};
+  std::vector<Record> records = run_prepass(pp, pool, paths, seed);
+  if (records.empty()) return guide;
+  Bounds3f bounds;
+  for (const Record& r : records) bounds.extend(r.p);
+  guide.build(records, 0, records.size(), bounds, 0);
+  return guide;
+}
+
+int LightGuide::build(std::vector<Record>& records, std::size_t begin, std::size_t end, const Bounds3f& bounds,
+                      int depth) {
+  const int node = static_cast<int>(nodes_.size());
+  nodes_.push_back({});
+  const Vec3f e = bounds.extent();
+  const int axis = e.x >= e.y && e.x >= e.z ? 0 : e.y >= e.z ? 1 : 2;
+  if (end - begin <= static_cast<std::size_t>(kLeafRecords) || depth >= kMaxTreeDepth || !(axis_of(e, axis) > 0.0f)) {
+    nodes_[static_cast<std::size_t>(node)].a = static_cast<int>(leaves_.size());
+    leaves_.emplace_back();
+    learn_leaf(leaves_.back(), records.data() + begin, end - begin);
+    return node;
+  }
+  const float split = axis_of(bounds.centre(), axis);
+  const auto mid = std::stable_partition(records.begin() + static_cast<std::ptrdiff_t>(begin),
+                                         records.begin() + static_cast<std::ptrdiff_t>(end),
+                                         [&](const Record& r) { return axis_of(r.p, axis) < split; });
+  const std::size_t m = static_cast<std::size_t>(mid - records.begin());
+  Bounds3f left = bounds, right = bounds;
+  (axis == 0 ? left.hi.x : axis == 1 ? left.hi.y : left.hi.z) = split;
+  (axis == 0 ? right.lo.x : axis == 1 ? right.lo.y : right.lo.z) = split;
+  const int a = build(records, begin, m, left, depth + 1);
+  const int b = build(records, m, end, right, depth + 1);
+  nodes_[static_cast<std::size_t>(node)] = {axis, split, a, b};
+  return node;
+}
+
+// The choice: each light's share of the contributions. The environment: per
+// bin, the fraction of the map's samples that arrived unoccluded, with
+// kPriorTests pseudo-tests at the leaf's mean fraction (a bin without tests
+// keeps that mean), times the bin's share of the map's importance.
+void LightGuide::learn_leaf(Leaf& leaf, const Record* first, std::size_t count) const {
+  if (count < static_cast<std::size_t>(kMinLeafRecords)) return;
+  const std::size_t n = lights_->size();
+  std::vector<double> per_light(n, 0.0);
+  const std::size_t bins = map_ != nullptr ? static_cast<std::size_t>(bins_.size()) : 0;
+  std::vector<float> tests(bins, 0.0f), seen(bins, 0.0f);
+  double all_tests = 0.0, all_seen = 0.0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const Record& r = first[i];
+    per_light[static_cast<std::size_t>(r.light)] += r.contribution;
+    if (r.bin < 0) continue;
+    const float visible = r.contribution > 0.0f ? 1.0f : 0.0f;
+    tests[static_cast<std::size_t>(r.bin)] += 1.0f;
+    seen[static_cast<std::size_t>(r.bin)] += visible;
+    all_tests += 1.0;
+    all_seen += visible;
+  }
+  double total = 0.0;
+  for (double c : per_light) total += c;
+  if (guide_choice_ && total > 0.0) {
+    leaf.choice.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+      leaf.choice[i] = kPlainChoice * plain_choice_[i] +
+                       (1.0f - kPlainChoice) * static_cast<float>(per_light[i] / total);
+  }
+  if (!(all_seen > 0.0)) return;
+  const float mean = static_cast<float>(all_seen / all_tests);
+  std::vector<float> weight(bins);
+  for (std::size_t b = 0; b < bins; ++b)
+    weight[b] = bins_.share(static_cast<int>(b)) * (seen[b] + kPriorTests * mean) / (tests[b] + kPriorTests);
+  leaf.environment = Distribution1D(weight);
+}
+
+const LightGuide::Leaf* LightGuide::leaf(Vec3f p) const {
+  if (nodes_.empty()) return nullptr;
+  const Node* node = &nodes_[0];
+  while (node->axis >= 0) node = &nodes_[static_cast<std::size_t>(axis_of(p, node->axis) < node->split ? node->a : node->b)];
+  return &leaves_[static_cast<std::size_t>(node->a)];
+}
+
+int LightGuide::choose(const Site& at, Vec3f n, float u, float& pmf) const {
+  const Leaf* l = guide_choice_ ? at.leaf : nullptr;
+  if (l == nullptr || l->choice.empty()) return lights_->choose(at.p, n, u, pmf);
+  const std::size_t count = l->choice.size();
+  float sum = 0.0f;
+  for (std::size_t i = 0; i < count; ++i) {
+    const float q = l->choice[i];
+    if (q > 0.0f && (u < sum + q || i + 1 == count)) {
+      pmf = q;
+      return static_cast<int>(i);
+    }
+    sum += q;
+  }
+  pmf = 0.0f;  // not reached: the last light with a positive probability takes what rounding leaves
+  return -1;
+}
+
+float LightGuide::pmf(const Site& at, Vec3f n, int light) const {
+  const Leaf* l = guide_choice_ ? at.leaf : nullptr;
+  if (l == nullptr || l->choice.empty()) return lights_->pmf(at.p, n, light);
+  if (light < 0 || static_cast<std::size_t>(light) >= l->choice.size()) return 0.0f;
+  return l->choice[static_cast<std::size_t>(light)];
+}
+
+// The mixture's density: the map's own, and the leaf's bin probability times
+// the bin's uniform density in image coordinates, per solid angle.
+float LightGuide::environment_pdf(const Leaf* l, Vec2f uv) const {
+  const float plain = map_->pdf_at(uv);
+  if (l == nullptr || l->environment.size() == 0) return plain;
+  const int b = bins_.bin_at(uv);
+  const float sin_theta = std::sin(kPi * uv.y);
+  if (!(sin_theta > 0.0f)) return kPlainEnvironment * plain;
+  const float guided = l->environment.pmf(static_cast<std::size_t>(b)) * bins_.density(b) / (2.0f * kPi * kPi * sin_theta);
+  return kPlainEnvironment * plain + (1.0f - kPlainEnvironment) * guided;
+}
+
+bool LightGuide::sample(int light, const Site& at, Vec2f u, LightSample& s) const {
+  const Light& l = (*lights_)[static_cast<std::size_t>(light)];
+  if (map_ == nullptr || light != lights_->environment()) return sample_light(l, at.p, u, s);
+  const Leaf* lf = at.leaf;
+  if (lf == nullptr || lf->environment.size() == 0) return sample_light(l, at.p, u, s);
+  s.delta = false;
+  s.infinite = true;
+  // One sample of the mixture: u.x chooses the component and is reused, rescaled.
+  if (u.x < kPlainEnvironment) {
+    if (!map_->sample(Vec2f(std::min(u.x / kPlainEnvironment, kOneMinusEpsilon), u.y), s)) return false;
+  } else {
+    const float v = std::min((u.x - kPlainEnvironment) / (1.0f - kPlainEnvironment), kOneMinusEpsilon);
+    // The bin, and v's place inside the bin's step of the cdf as the first image coordinate's number.
+    float density = 0.0f;
+    std::size_t b = 0;
+    const float x = lf->environment.sample_continuous(v, &density, &b);
+    const float w = std::clamp(x * static_cast<float>(lf->environment.size()) - static_cast<float>(b), 0.0f,
+                               kOneMinusEpsilon);
+    s.wi = map_->uv_to_direction(bins_.sample(static_cast<int>(b), Vec2f(w, u.y)));
+  }
+  // Radiance and density from the direction, as pdf() gives them to a BSDF-sampled ray.
+  const Vec2f uv = map_->direction_to_uv(s.wi);
+  s.L = map_->radiance_at(uv);
+  s.pdf = environment_pdf(lf, uv);
+  return s.pdf > 0.0f;
+}
+
+float LightGuide::pdf(int light, const Site& at, Vec3f wi, Vec3f q, Vec3f n) const {
+  const Light& l = (*lights_)[static_cast<std::size_t>(light)];
+  if (map_ == nullptr || light != lights_->environment()) return light_pdf(l, at.p, wi, q, n);
+  return environment_pdf(at.leaf, map_->direction_to_uv(wi));
+}
+
+}  // namespace pt

@@ -1,0 +1,114 @@
+// Light guiding for the path integrator (docs/path-tracing.md, "Light
+// guiding"): next-event estimation that has learned, per region of space,
+// which lights reach it and from which directions the environment does.
+//
+// Before the render (render.light_guiding pre-pass paths per pixel; 0 = off)
+// a fixed pre-pass traces camera paths (BSDF-sampled, independent of the
+// render's sampler: a function of the seed alone) and at each vertex tests
+// every infinite light: a shadow ray to each directional light, and
+// kEnvironmentTests shadow rays to environment-map samples (paths of at most
+// 6 bounces). Each test records
+// its vertex, the light, the environment bin (environment_bins.h) and its
+// contribution (luminance of f L cos / pdf, 0 if occluded). A binary tree
+// over space splits the records' bounds at the middle of the longest axis
+// until a leaf holds at most kLeafRecords; then, per leaf:
+//  - the environment is sampled from the mixture kPlainEnvironment x the map's
+//    own distribution + (1 - kPlainEnvironment) x a distribution over bins in
+//    proportion to the bin's share of the map's importance times the fraction
+//    of the leaf's tests that arrived unoccluded there (within a bin,
+//    uniformly): directions the leaf's points see through an opening;
+//  - when every light is infinite (sun and sky), the light is chosen with
+//    probability kPlainChoice x LightSet's + (1 - kPlainChoice) x the leaf's
+//    share of the learned contributions: shadowed regions sample the sky.
+// The learned data is frozen before the render, so a sample still depends
+// only on (seed, pixel, index) (bit-identical for any thread count), and the
+// mixtures keep every density positive wherever the plain one is, so the
+// estimator stays unbiased. An inactive guide (no environment map and fewer
+// than two infinite lights, or guiding off) is LightSet's choice and the
+// lights' own sampling, bit for bit.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/sampling.h"
+#include "render/guiding/environment_bins.h"
+#include "render/lights/light_set.h"
+
+namespace pt {
+
+class WorkerPool;
+struct RenderScene;
+
+class LightGuide {
+ public:
+  static constexpr int kEnvironmentTests = 1;   // environment shadow rays per pre-pass vertex
+  static constexpr int kLeafRecords = 2048;     // a leaf's most records
+  static constexpr int kMinLeafRecords = 64;    // fewer: the leaf guides nothing
+  static constexpr float kPlainEnvironment = 0.25f;
+  static constexpr float kPlainChoice = 0.1f;
+  static constexpr float kPriorTests = 2.0f;  // pseudo-tests per bin at the leaf's mean visibility
+  static constexpr int64_t kMaxPrepassPaths = int64_t{1} << 18;
+
+  // The inactive guide.
+  explicit LightGuide(const LightSet& lights) : lights_(&lights) {}
+  // Learns from a pre-pass of `paths_per_pixel` x width x height camera paths
+  // (at most kMaxPrepassPaths) of at most `max_depth` bounces, run in `pool`.
+  static LightGuide learn(const RenderScene& scene, WorkerPool& pool, int paths_per_pixel, int max_depth,
+                          uint64_t seed);
+
+  bool active() const { return !nodes_.empty(); }
+  int leaves() const { return static_cast<int>(leaves_.size()); }
+
+  struct Leaf {
+    std::vector<float> choice;  // per light: its probability (empty: LightSet's)
+    Distribution1D environment;  // over bins (empty: the map's own)
+  };
+  // A shading point and its leaf, looked up once for the calls below.
+  struct Site {
+    Vec3f p;
+    const Leaf* leaf = nullptr;
+  };
+  Site site(Vec3f p) const { return {p, leaf(p)}; }
+
+  // LightSet::choose and pmf, guided.
+  int choose(const Site& at, Vec3f n, float u, float& pmf) const;
+  float pmf(const Site& at, Vec3f n, int light) const;
+  // sample_light and light_pdf for the light with index `light`, guided.
+  bool sample(int light, const Site& at, Vec2f u, LightSample& s) const;
+  float pdf(int light, const Site& at, Vec3f wi, Vec3f q, Vec3f n) const;
+  // The same, looking the point up.
+  int choose(Vec3f p, Vec3f n, float u, float& pmf) const { return choose(site(p), n, u, pmf); }
+  float pmf(Vec3f p, Vec3f n, int light) const { return pmf(site(p), n, light); }
+  bool sample(int light, Vec3f p, Vec2f u, LightSample& s) const { return sample(light, site(p), u, s); }
+  float pdf(int light, Vec3f p, Vec3f wi, Vec3f q, Vec3f n) const { return pdf(light, site(p), wi, q, n); }
+
+  struct Record {
+    Vec3f p;
+    int light;
+    int bin;  // the environment's bin, or -1
+    float contribution;
+  };
+
+ private:
+  struct Node {
+    int axis = -1;  // -1: a leaf
+    float split = 0.0f;
+    int a = 0;  // a leaf: its entry in leaves_; else the child below the split
+    int b = 0;  // the child at or above it
+  };
+  int build(std::vector<Record>& records, std::size_t begin, std::size_t end, const Bounds3f& bounds, int depth);
+  void learn_leaf(Leaf& leaf, const Record* first, std::size_t count) const;
+  const Leaf* leaf(Vec3f p) const;
+  float environment_pdf(const Leaf* l, Vec2f uv) const;
+
+  const LightSet* lights_;
+  const EnvironmentMap* map_ = nullptr;
+  EnvironmentBins bins_;
+  bool guide_choice_ = false;
+  std::vector<float> plain_choice_;  // per light: LightSet's probability (all lights infinite)
+  std::vector<Node> nodes_;
+  std::vector<Leaf> leaves_;
+};
+
+}  // namespace pt

@@ -1,0 +1,167 @@
+// The light guide (render/guiding/light_guide.h): its densities integrate to
+// one, it samples what its pdf says, its choice probabilities sum to one, it
+// is a function of the seed alone (the same for any thread count), and a
+// furnace renders exactly its albedo with it. That guided and plain renders
+// converge to the same image: PathAgreement.LightGuiding* (test_path_agreement.cpp).
+#include <cmath>
+#include <memory>
+
+#include <gtest/gtest.h>
+
+#include "core/parallel.h"
+#include "core/rng.h"
+#include "light_guide_scenes.h"
+#include "path_test_util.h"
+#include "render/guiding/light_guide.h"
+#include "render/render_scene.h"
+
+namespace pt {
+namespace {
+
+struct Learned {
+  std::unique_ptr<RenderScene> scene;
+  std::unique_ptr<LightGuide> guide;
+};
+
+Learned learn(const SceneDescription& d, int threads, int paths_per_pixel = 4, uint64_t seed = 1) {
+  WorkerPool pool(threads);
+  Learned l;
+  l.scene = test::build(d, pool);
+  EXPECT_TRUE(l.scene);
+  if (l.scene) l.guide = std::make_unique<LightGuide>(LightGuide::learn(*l.scene, pool, paths_per_pixel, 6, seed));
+  return l;
+}
+
+// Points inside the courtyard (floor, walls, mid-air).
+Vec3f courtyard_point(Rng& rng) {
+  return Vec3f(rng.next_float() * 3.8f - 1.9f, rng.next_float() * 2.9f + 0.05f, rng.next_float() * 3.8f - 1.9f);
+}
+
+TEST(LightGuide, LearnsLeavesAndItsEnvironmentDensityIntegratesToOne) {
+  const Learned l = learn(test::courtyard_scene(true), 2);
+  ASSERT_TRUE(l.guide && l.guide->active());
+  EXPECT_GT(l.guide->leaves(), 4);
+  const int env = l.scene->lights.environment();
+  ASSERT_GE(env, 0);
+  Rng rng(3);
+  constexpr int kN = 200000;
+  for (int point = 0; point < 6; ++point) {
+    const Vec3f p = courtyard_point(rng);
+    double sum = 0.0;  // uniform directions: E[pdf * 4 pi] = 1
+    for (int k = 0; k < kN; ++k) {
+      const Vec3f w = sample_uniform_sphere({rng.next_float(), rng.next_float()});
+      sum += static_cast<double>(l.guide->pdf(env, p, w, Vec3f(), Vec3f())) * 4.0 * kPi;
+    }
+    EXPECT_NEAR(sum / kN, 1.0, 0.03) << "point " << point;
+  }
+}
+
+// E[f(w) / pdf(w)] over the guide's own samples equals the integral of f: with
+// f = the map's radiance luminance, the map's power per steradian summed.
+TEST(LightGuide, SamplesFollowItsDensity) {
+  const Learned l = learn(test::courtyard_scene(false), 2);
+  ASSERT_TRUE(l.guide && l.guide->active());
+  const int env = l.scene->lights.environment();
+  Rng rng(9);
+  constexpr int kN = 400000;
+  double reference = 0.0;  // the integral by uniform directions
+  for (int k = 0; k < kN; ++k) {
+    const Vec3f w = sample_uniform_sphere({rng.next_float(), rng.next_float()});
+    reference += l.scene->lights.escaped_radiance(w, RGB()).luminance() * 4.0 * kPi;
+  }
+  reference /= kN;
+  for (int point = 0; point < 4; ++point) {
+    const Vec3f p = courtyard_point(rng);
+    double sum = 0.0;
+    for (int k = 0; k < kN; ++k) {
+      LightSample s;
+      if (!l.guide->sample(env, p, {rng.next_float(), rng.next_float()}, s)) continue;
+      ASSERT_NEAR(s.pdf, l.guide->pdf(env, p, s.wi, Vec3f(), Vec3f()), 1e-4f * s.pdf);
+      sum += s.L.luminance() / s.pdf;
+    }
+    EXPECT_NEAR(sum / kN, reference, 0.02 * reference) << "point " << point;
+  }
+}
+
+TEST(LightGuide, ChoiceProbabilitiesSumToOneAndMatchChoose) {
+  const Learned l = learn(test::courtyard_scene(true), 2);
+  ASSERT_TRUE(l.guide && l.guide->active());
+  Rng rng(4);
+  for (int point = 0; point < 50; ++point) {
+    const Vec3f p = courtyard_point(rng), n(0, 1, 0);
+    double sum = 0.0;
+    for (std::size_t i = 0; i < l.scene->lights.size(); ++i) sum += l.guide->pmf(p, n, static_cast<int>(i));
+    EXPECT_NEAR(sum, 1.0, 1e-5) << "point " << point;
+    for (int k = 0; k < 16; ++k) {
+      float pmf = 0.0f;
+      const int i = l.guide->choose(p, n, (k + 0.5f) / 16.0f, pmf);
+      ASSERT_GE(i, 0);
+      EXPECT_EQ(pmf, l.guide->pmf(p, n, i));
+      EXPECT_GE(pmf, LightGuide::kPlainChoice * l.scene->lights.pmf(p, n, i));  // never below the plain share
+    }
+  }
+}
+
+TEST(LightGuide, TheSameForAnyThreadCount) {
+  const SceneDescription d = test::courtyard_scene(true);
+  const Learned one = learn(d, 1), two = learn(d, 2);
+  ASSERT_EQ(one.guide->leaves(), two.guide->leaves());
+  const int env = one.scene->lights.environment();
+  Rng rng(5);
+  for (int k = 0; k < 2000; ++k) {
+    const Vec3f p = courtyard_point(rng), w = sample_uniform_sphere({rng.next_float(), rng.next_float()});
+    ASSERT_EQ(one.guide->pdf(env, p, w, Vec3f(), Vec3f()), two.guide->pdf(env, p, w, Vec3f(), Vec3f()));
+    ASSERT_EQ(one.guide->pmf(p, Vec3f(), env), two.guide->pmf(p, Vec3f(), env));
+  }
+  IntegratorSettings s = test::path_settings(4, 6, 2);
+  s.light_guiding = 4;
+  const Image a = test::render_path(d, s, 1), b = test::render_path(d, s, 2);
+  ASSERT_EQ(a.pixels.size(), b.pixels.size());
+  for (std::size_t i = 0; i < a.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(a.pixels[i][c], b.pixels[i][c]) << "pixel " << i;
+}
+
+// With nothing to guide (a sun alone: no map, no choice) the guide stays
+// inactive and a render with light_guiding on is the plain one bit for bit;
+// with a sky it does change the samples.
+TEST(LightGuide, InactiveWithNothingToGuideAndThenThePlainRenderBitForBit) {
+  SceneDescription d = test::courtyard_scene(true);
+  d.environment.reset();
+  IntegratorSettings s = test::path_settings(2, 6, 3);
+  const Image plain = test::render_path(d, s);
+  s.light_guiding = 4;
+  const Learned l = learn(d, 2);
+  EXPECT_FALSE(l.guide->active());
+  const Image guided = test::render_path(d, s);
+  ASSERT_EQ(plain.pixels.size(), guided.pixels.size());
+  for (std::size_t i = 0; i < plain.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(plain.pixels[i][c], guided.pixels[i][c]) << "pixel " << i;
+  const SceneDescription sky = test::courtyard_scene(true);
+  s.light_guiding = 0;
+  const Image sky_plain = test::render_path(sky, s);
+  s.light_guiding = 4;
+  EXPECT_GT(test::rmse(sky_plain, test::render_path(sky, s)), 0.0);
+}
+
+// A white-ish convex sphere under a uniform sky of 1 is its albedo in every
+// pixel it covers, guided or not (the guide learns the sphere's visible
+// hemispheres; a wrong normalisation would scale the answer). Tolerance: 4
+// standard errors of the mean over the sphere's pixels.
+TEST(LightGuide, FurnaceSphereIsItsAlbedo) {
+  const SceneDescription d = test::furnace_scene(0.8f);
+  IntegratorSettings s = test::path_settings(64, 8, 1);
+  s.light_guiding = 8;
+  const Image img = test::render_path(d, s);
+  // The pixels well inside the sphere's disc (radius about 7.5 px at this fov).
+  const auto inside = [&](int x, int y) {
+    const float dx = x + 0.5f - 8.0f, dy = y + 0.5f - 8.0f;
+    return dx * dx + dy * dy < 5.5f * 5.5f;
+  };
+  const test::Stats st = test::channel_stats(img, -1, inside);
+  ASSERT_GT(st.count, 200u);
+  EXPECT_NEAR(st.mean, 0.8, 4.0 * st.stddev / std::sqrt(static_cast<double>(st.count)) + 1e-4)
+      << "stddev " << st.stddev;
+}
+
+}  // namespace
+}  // namespace pt
