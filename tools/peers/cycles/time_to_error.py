@@ -29,6 +29,12 @@
 5. Each scene's runs are kept in docs/bench/peers/NAME.json (NAME: the scene file's stem); the
    Markdown file gets one section per JSON file there, so that scenes measured in separate
    invocations share one page.
+6. With --cpu-time, CPU seconds too, the measure to read when the machine is loaded (wall time then
+   depends on what else runs; CPU time much less): ours, `performance.render_cpu_seconds` of the
+   run record (the render phase); Cycles, which reports no CPU time, the user + system seconds of
+   its process (os.wait4) less its fixed part, the median of three 1-spp renders of the same
+   scene made first (Blender's start, the converter, scene sync, BVH, writing). Both processes'
+   whole CPU seconds are kept as well.
 
 Both renderers get the same scene at the same size (a copy written with --width/--height), the same
 threads and the bounce cap of the scene (scene_to_cycles.py maps it); Cycles gets seed s + 1 where
@@ -66,24 +72,45 @@ def sized_scene(scene_path, width, height):
     return path
 
 
+def run_timed(cmd):
+    """Runs cmd; returns (exit status, stderr, CPU seconds (user + system) of the process and its children)."""
+    with tempfile.TemporaryFile() as err:
+        p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=err)
+        _, status, usage = os.wait4(p.pid, 0)
+        p.returncode = os.waitstatus_to_exitcode(status)
+        err.seek(0)
+        return p.returncode, err.read().decode(errors="replace"), usage.ru_utime + usage.ru_stime
+
+
 def run_ours(exe, scene, spp, seed, threads, out):
     report = out + ".report.json"
     cmd = ["nice", "-n", "10", exe, scene, "-o", out, "--spp", str(spp), "--seed", str(seed), "--threads",
            str(threads), "--quiet", "--report", report]
-    subprocess.run(cmd, check=True, capture_output=True, text=True)
+    code, err, cpu = run_timed(cmd)
+    if code != 0:
+        raise RuntimeError(f"ours failed ({code}):\n{err[-3000:]}")
     r = json.load(open(report))
-    return {"render": r["timings"]["render"], "total": r["timings"]["total"]}
+    return {"render": r["timings"]["render"], "total": r["timings"]["total"],
+            "cpu": r["performance"]["render_cpu_seconds"], "cpu_total": cpu}
 
 
 def run_cycles(blender, scene, spp, seed, threads, out):
     stats = out + ".stats.json"
     cmd = ["nice", "-n", "10", blender, "-b", "--factory-startup", "--python", CONVERTER, "--", scene,
            "--spp", str(spp), "--seed", str(seed), "--threads", str(threads), "-o", out, "--stats", stats]
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    if p.returncode != 0:
-        raise RuntimeError(f"Cycles failed ({p.returncode}):\n{p.stderr[-3000:]}")
+    code, err, cpu = run_timed(cmd)
+    if code != 0:
+        raise RuntimeError(f"Cycles failed ({code}):\n{err[-3000:]}")
     s = json.load(open(stats))
-    return {"render": s["path_tracing_seconds"], "total": s["render_seconds"]}
+    return {"render": s["path_tracing_seconds"], "total": s["render_seconds"], "cpu_total": cpu}
+
+
+def cycles_overhead(a, scene, work):
+    """Cycles' CPU seconds for everything but path tracing (Blender's start, our converter, sync, BVH,
+    writing): the median of three 1-spp renders of the scene (their 64x64 samples cost next to nothing)."""
+    cpus = [run_cycles(a.blender, scene, 1, 1000 + i, a.threads, os.path.join(work, f"overhead-{i}.exr"))["cpu_total"]
+            for i in range(3)]
+    return statistics.median(cpus)
 
 
 def image_mean(path):
@@ -194,6 +221,8 @@ def main():
                    help="render nothing: write the record from the progress lines of a run cut short (its "
                         "stderr), extrapolating where the target was not reached")
     p.add_argument("--references-only", action="store_true", help="make the reference (1.) and stop")
+    p.add_argument("--cpu-time", action="store_true",
+                   help="also record CPU seconds (see 6.): the measure to read on a loaded machine")
     p.add_argument("--name", help="the scene's record: docs/bench/peers/NAME.json (default: the scene's stem)")
     p.add_argument("--exe", default=os.path.join(REPO, "build", "pathtracer"))
     p.add_argument("--imgerr", default=os.path.join(REPO, "build", "tools", "imgerr", "pt-imgerr"))
@@ -223,6 +252,9 @@ def main():
         if a.references_only:
             return 0
         runs = {"ours": [], "cycles": []}
+        overhead = cycles_overhead(a, scene, work) if a.cpu_time else None
+        if overhead is not None:
+            print(f"Cycles' CPU overhead (1 spp, median of 3): {overhead:.3f} s", file=sys.stderr)
         done = {"ours": False, "cycles": False}
         spp = a.min_spp
         while spp <= a.max_spp and not all(done.values()):
@@ -236,10 +268,13 @@ def main():
                         t = run_ours(a.exe, scene, spp, seed, a.threads, out)
                     else:
                         t = run_cycles(a.blender, scene, spp, seed + 1, a.threads, out)
+                        if overhead is not None:
+                            t["cpu"] = max(0.0, t["cpu_total"] - overhead)
                     err = pt_tools.image_error(a.imgerr, out, a.reference)
                     runs[name].append({"spp": spp, "seed": seed, "rmse": err["rmse"], **t})
+                    cpu = f", cpu {t['cpu']:.3f} s, cpu_total {t['cpu_total']:.3f} s" if "cpu" in t else ""
                     print(f"{name:6} spp {spp:5d} seed {seed}: RMSE {err['rmse']:.5f}, render {t['render']:.3f} s, "
-                          f"total {t['total']:.3f} s, load {loads[-1]:.2f}", file=sys.stderr)
+                          f"total {t['total']:.3f} s, load {loads[-1]:.2f}{cpu}", file=sys.stderr)
             for name in done:
                 last = [r for r in runs[name] if r["spp"] == spp]
                 if last and all(r["rmse"] <= a.target for r in last):
@@ -247,7 +282,7 @@ def main():
             spp *= 2
     finally:
         os.unlink(scene)
-    write_record(a, runs, loads, reference)
+    write_record(a, runs, loads, reference, overhead)
     write_markdown(a.md, os.path.dirname(a.json))
     return 0
 
@@ -256,7 +291,7 @@ def summarise(target, seeds, runs, extrapolate=False):
     out = {}
     for name, rs in runs.items():
         per_seed = {}
-        for key in ("render", "total"):
+        for key in ("render", "total") + (("cpu", "cpu_total") if all("cpu" in r for r in rs) else ()):
             per_seed[key] = [time_at_target([r for r in rs if r["seed"] == s], target, key, extrapolate)
                              for s in range(seeds)]
         out[name] = {key: median_spread(v) for key, v in per_seed.items()}
@@ -269,14 +304,15 @@ def summarise(target, seeds, runs, extrapolate=False):
     return out
 
 
-def write_record(a, runs, loads, reference):
+def write_record(a, runs, loads, reference, overhead=None):
     film = json.load(open(a.scene)).get("film", {})
     size = f"{a.width or film.get('width')}×{a.height or film.get('height')}"
     os.makedirs(os.path.dirname(a.json), exist_ok=True)
     with open(a.json, "w") as f:
         json.dump({"scene": os.path.relpath(a.scene, REPO), "reference": os.path.relpath(a.reference, REPO),
                    "reference_info": reference, "target": a.target, "threads": a.threads, "size": size,
-                   "seeds": a.seeds, "min_spp": a.min_spp, "extrapolate": a.extrapolate, "cpus": os.cpu_count(), "loads": loads, "runs": runs},
+                   "seeds": a.seeds, "min_spp": a.min_spp, "extrapolate": a.extrapolate, "cpus": os.cpu_count(), "loads": loads, "runs": runs,
+                   **({"cycles_overhead_cpu": overhead} if overhead is not None else {})},
                   f, indent=1)
 
 
@@ -316,17 +352,38 @@ def section(r):
         f"| render time (ours: `timings.render`; Cycles: path tracing, its progress timer) | {fmt('ours', 'render')} | "
         f"{fmt('cycles', 'render')} | {ratio('render')} |",
         f"| total (ours: `timings.total`; Cycles: around `bpy.ops.render.render`, incl. sync and BVH) | "
-        f"{fmt('ours', 'total')} | {fmt('cycles', 'total')} | {ratio('total')} |",
+        f"{fmt('ours', 'total')} | {fmt('cycles', 'total')} | {ratio('total')} |"]
+    if "cpu" in s["ours"] and "cpu" in s["cycles"]:
+        lines += [
+            f"| CPU seconds (ours: `performance.render_cpu_seconds`; Cycles: its process's, less its 1-spp run's "
+            f"{r['cycles_overhead_cpu']:.2f} s) | {fmt('ours', 'cpu')} | {fmt('cycles', 'cpu')} | {ratio('cpu')} |",
+            f"| CPU seconds of the whole process (both: user + system, from `wait4`) | {fmt('ours', 'cpu_total')} | "
+            f"{fmt('cycles', 'cpu_total')} | {ratio('cpu_total')} |"]
+    def per_seed(key):
+        o, c = s["ours"]["per_seed"].get(key), s["cycles"]["per_seed"].get(key)
+        if not o or not c or None in o or None in c:
+            return None
+        return [x / y for x, y in zip(o, c)]
+    pairs = [(k, per_seed(k)) for k in ("render", "cpu") if per_seed(k)]
+    if pairs:
+        what = " and ".join("render time" if k == "render" else "CPU seconds" for k, _ in pairs)
+        ratios = "; ".join(", ".join(f"{x:.2f}×" for x in v) for _, v in pairs)
+        lines.append(f"| ours / Cycles seed by seed (seed s of each, rendered one after the other so that they "
+                     f"share the load), {what} | | | {ratios} |")
+    lines += [
         f"| samples per pixel per second of render time (median over runs) | {s['ours']['spp_per_s']:.1f} | "
         f"{s['cycles']['spp_per_s']:.1f} | {s['ours']['spp_per_s'] / s['cycles']['spp_per_s']:.2f}× |",
         f"| RMSE at the largest spp rendered (error floor against the reference) | {s['ours']['floor'][0]:.5f} at "
         f"{s['ours']['floor'][1]} spp | {s['cycles']['floor'][0]:.5f} at {s['cycles']['floor'][1]} spp | |", "",
-        "<details><summary>Every run (spp, seed, RMSE, render and total seconds)</summary>", "",
-        "| renderer | spp | seed | RMSE | render s | total s |", "|---|---|---|---|---|---|"]
+        "<details><summary>Every run (spp, seed, RMSE, render and total seconds)</summary>", ""]
+    cpu = "cpu" in s["ours"] and "cpu" in s["cycles"]
+    lines += (["| renderer | spp | seed | RMSE | render s | total s | CPU s | process CPU s |",
+               "|---|---|---|---|---|---|---|---|"] if cpu else
+              ["| renderer | spp | seed | RMSE | render s | total s |", "|---|---|---|---|---|---|"])
     for name in ("ours", "cycles"):
         for run in r["runs"][name]:
             lines.append(f"| {name} | {run['spp']} | {run['seed']} | {run['rmse']:.5f} | {run['render']:.3f} | "
-                         f"{run['total']:.3f} |")
+                         f"{run['total']:.3f} |" + (f" {run['cpu']:.3f} | {run['cpu_total']:.3f} |" if cpu else ""))
     return lines + ["", "</details>", ""]
 
 
