@@ -64,6 +64,8 @@ RenderStamp RenderSettings::stamp() const {
   stamp.sampler = sampler_name();
   stamp.filter = filter_name();
   stamp.light_sampler = light_sampler_name();
+  stamp.light_guiding = light_guiding();
+  stamp.shadow_terminator_offset = shadow_terminator_offset;
   stamp.max_depth = integration.max_depth;
   stamp.clamp = integration.clamp;
   stamp.film_transparent = integration.film_transparent;
@@ -80,6 +82,8 @@ void RenderSettings::describe(RunRecord& record) const {
   record.seed = integration.seed;
   record.filter = filter_name();
   record.light_sampler = light_sampler_name();
+  record.light_guiding = light_guiding();
+  record.shadow_terminator_offset = shadow_terminator_offset;
   record.clamp = integration.clamp;
 }
 

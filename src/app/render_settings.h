@@ -57,11 +57,15 @@ struct RenderSettings {
   const char* sampler_name() const { return integrator->sampler_name(integration.sampler); }
   const char* filter_name() const { return integrator->filter_name(integration.filter); }
   const char* light_sampler_name() const { return integrator->light_sampler_name(light_sampler); }
+  // render.light_guiding where it is used (the integrators that choose one
+  // light per vertex); 0 for the others.
+  int light_guiding() const { return integrator->lights == LightModel::Physical ? integration.light_guiding : 0; }
   bool equal_passes() const { return integrator->equal_passes(integration.sampler); }
 
   BuildOptions build_options(AccelKind accel) const;
-  // The stamp's settings (integrator, sampler, filter, light sampler, seed,
-  // max depth, clamp, version); the caller adds what the render reached.
+  // The stamp's settings (integrator, sampler, filter, light sampler, light
+  // guiding, shadow terminator offset, seed, max depth, clamp, version); the
+  // caller adds what the render reached.
   RenderStamp stamp() const;
   // The run record's settings (the same, and the image size).
   void describe(RunRecord& record) const;

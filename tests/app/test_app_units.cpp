@@ -146,6 +146,41 @@ TEST(RenderSettings, TheLightSamplerIsStampedAndRecorded) {
   }
 }
 
+TEST(RenderSettings, LightGuidingAndTheTerminatorOffsetAreStampedAndRecorded) {
+  // render.light_guiding where a light is chosen per vertex (the path
+  // integrator), 0 where it is not used; the terminator offset as resolved.
+  SceneDescription desc = cornell_box();
+  desc.render.light_guiding.value = 16;
+  desc.render.shadow_terminator_geometry_offset.value = 0.25f;
+  const struct {
+    const char* integrator;
+    int guiding;
+  } cases[] = {{"path", 16}, {"whitted", 0}, {"normal", 0}};
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.integrator);
+    SettingsOverrides o;
+    o.integrator = c.integrator;
+    RenderSettings s;
+    Diagnostics diag;
+    ASSERT_TRUE(resolve_render_settings(desc, o, s, diag));
+    ImageMetadata metadata;
+    add_render_stamp(metadata, s.stamp());
+    const auto guiding = std::find_if(metadata.ints.begin(), metadata.ints.end(),
+                                      [](const auto& kv) { return kv.first == "pathtracer:lightGuiding"; });
+    ASSERT_NE(guiding, metadata.ints.end());
+    EXPECT_EQ(guiding->second, c.guiding);
+    const auto offset = std::find_if(metadata.floats.begin(), metadata.floats.end(),
+                                     [](const auto& kv) { return kv.first == "pathtracer:shadowTerminatorOffset"; });
+    ASSERT_NE(offset, metadata.floats.end());
+    EXPECT_EQ(offset->second, 0.25f);
+    RunRecord record;
+    s.describe(record);
+    const auto image = nlohmann::json::parse(run_record_json(record))["image"];
+    EXPECT_EQ(image["light_guiding"], c.guiding);
+    EXPECT_EQ(image["shadow_terminator_geometry_offset"], 0.25f);
+  }
+}
+
 TEST(RenderSettings, AnUnknownIntegratorIsAnErrorListingTheNames) {
   const SceneDescription desc = cornell_box();
   SettingsOverrides o;
