@@ -112,6 +112,14 @@ TEST(RenderSettings, ClassicIntegratorsSampleThePixelGridWithABox) {
   EXPECT_EQ(s.identity()["filter"], "mitchell");
 }
 
+// The value of the attribute `name` among `attributes` (one of ImageMetadata's
+// lists of name/value pairs), or null when it is not there.
+template <class Pairs>
+const auto* stamped_value(const Pairs& attributes, const std::string& name) {
+  const auto it = std::find_if(attributes.begin(), attributes.end(), [&](const auto& kv) { return kv.first == name; });
+  return it == attributes.end() ? nullptr : &it->second;
+}
+
 TEST(RenderSettings, TheLightSamplerIsStampedAndRecorded) {
   // The scene's render.light_sampler (default bvh) for the path integrator,
   // which picks one light per vertex; "all" and "none" where no light is chosen.
@@ -138,10 +146,9 @@ TEST(RenderSettings, TheLightSamplerIsStampedAndRecorded) {
     EXPECT_EQ(record.light_sampler, c.expected);
     ImageMetadata metadata;
     add_render_stamp(metadata, s.stamp());
-    const auto stamped = std::find_if(metadata.strings.begin(), metadata.strings.end(),
-                                      [](const auto& kv) { return kv.first == "pathtracer:lightSampler"; });
-    ASSERT_NE(stamped, metadata.strings.end());
-    EXPECT_EQ(stamped->second, c.expected);
+    const auto* stamped = stamped_value(metadata.strings, "pathtracer:lightSampler");
+    ASSERT_NE(stamped, nullptr);
+    EXPECT_EQ(*stamped, c.expected);
     EXPECT_EQ(nlohmann::json::parse(run_record_json(record))["image"]["light_sampler"], c.expected);
   }
 }
@@ -165,14 +172,12 @@ TEST(RenderSettings, LightGuidingAndTheTerminatorOffsetAreStampedAndRecorded) {
     ASSERT_TRUE(resolve_render_settings(desc, o, s, diag));
     ImageMetadata metadata;
     add_render_stamp(metadata, s.stamp());
-    const auto guiding = std::find_if(metadata.ints.begin(), metadata.ints.end(),
-                                      [](const auto& kv) { return kv.first == "pathtracer:lightGuiding"; });
-    ASSERT_NE(guiding, metadata.ints.end());
-    EXPECT_EQ(guiding->second, c.guiding);
-    const auto offset = std::find_if(metadata.floats.begin(), metadata.floats.end(),
-                                     [](const auto& kv) { return kv.first == "pathtracer:shadowTerminatorOffset"; });
-    ASSERT_NE(offset, metadata.floats.end());
-    EXPECT_EQ(offset->second, 0.25f);
+    const auto* guiding = stamped_value(metadata.ints, "pathtracer:lightGuiding");
+    ASSERT_NE(guiding, nullptr);
+    EXPECT_EQ(*guiding, c.guiding);
+    const auto* offset = stamped_value(metadata.floats, "pathtracer:shadowTerminatorOffset");
+    ASSERT_NE(offset, nullptr);
+    EXPECT_EQ(*offset, 0.25f);
     RunRecord record;
     s.describe(record);
     const auto image = nlohmann::json::parse(run_record_json(record))["image"];
