@@ -75,7 +75,7 @@ bool ShardMerger::merge_layers(const std::vector<std::string_view>& states, Laye
   for (std::size_t i = 0; i < views.size(); ++i) {
     if (bad[i] == SIZE_MAX) continue;
     const auto y = views[i].crop.y0 + static_cast<int>(bad[i] / static_cast<std::size_t>(views[i].crop.width()));
-    error = "'" + names_[i] + "': " + Film::refusal(views[i], bad[i], rules(infos_[i], orders[i], y, y + 1));
+    error = "'" + names_[i] + "': " + shape.refusal(views[i], bad[i], rules(infos_[i], orders[i], y, y + 1));
     return false;
   }
   return true;

@@ -3,10 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstring>
 #include <functional>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
@@ -91,6 +93,8 @@ void render(Film& film, const PixelRect& crop, Range samples) {
         std::uniform_real_distribution<float> u(0.0f, 3.0f);
         RGB c(u(rng), u(rng), u(rng) * 1e-3f);
         if ((x + y + s) % 97 == 0) c.r = std::nanf("");
+        // Fireflies: sums beyond the 64 bits of a state's record (exceptions).
+        if ((x * 3 + y * 5 + s) % 53 == 7) c.g = 4e6f + c.g;
         const float w = u(rng) - 0.5f;
         AovSample a;
         a.albedo = RGB(u(rng), u(rng), u(rng));
@@ -121,6 +125,15 @@ std::string state(const Film& film) {
   return out.str();
 }
 std::string state_of_film(const Film& film) { return state(film); }
+
+// Where a film state's pixel records begin: after its header (89 bytes and 3
+// per AOV), the count of its exceptions and the exceptions (28 bytes each).
+std::size_t records_at(std::string_view state, std::size_t aovs) {
+  const std::size_t at = 89 + 3 * aovs;
+  uint64_t count = 0;
+  std::memcpy(&count, state.data() + at, sizeof count);
+  return at + sizeof count + static_cast<std::size_t>(count) * 28;
+}
 
 constexpr int kW = 6, kH = 5, kSpp = 30;
 
@@ -165,6 +178,79 @@ TEST(FilmMerge, TilesLandInTheirPixelsAndBadRegionsAreRefused) {
   EXPECT_EQ(state(merged), state(whole));  // unchanged by the refusals
 }
 
+// The film state's compact records (version 5): what a record cannot hold
+// (a firefly's sums beyond 64 bits, a count beyond 32, a value that is not a
+// float) is listed with its full value, read back exactly and written back
+// byte for byte; anything written otherwise, or another version, is refused.
+TEST(FilmState, CompactRecordsKeepEveryValueAndRefuseOtherEncodings) {
+  constexpr int w = 4, h = 3;
+  Film film(w, h, {0, 0, w, h}, all_aovs());
+  render(film, film.crop(), {0, 5});  // pixel (1, 0) sample 4 is a firefly
+  PixelSum many;
+  many.samples = (uint64_t{1} << 32) + 5;
+  many.r = ExactSum(-3e6);
+  film.add(1, 1, many);
+  const std::string written = state(film);
+  const std::size_t aovs = all_aovs().size(), list = 89 + 3 * aovs;
+  uint64_t count = 0;
+  std::memcpy(&count, &written[list], sizeof count);
+  EXPECT_GE(count, 4u);  // the firefly's g and its variance's; the count and r of (1, 1)
+  const auto read = [&](const std::string& bytes, std::string& error) {
+    Film back(w, h, {0, 0, w, h}, all_aovs());
+    std::istringstream in(bytes);
+    return back.read_state(in, error) ? std::optional<Film>(std::move(back)) : std::nullopt;
+  };
+  std::string error;
+  std::optional<Film> back = read(written, error);
+  ASSERT_TRUE(back) << error;
+  EXPECT_EQ(state(*back), written);
+  EXPECT_EQ(back->sum(1, 1).samples, many.samples + 5);
+  EXPECT_EQ(back->sum(1, 1).r, film.sum(1, 1).r);
+  // A value that is no float (0.1 in double), in the last pixel's last slot:
+  // listed last, its record's slot 0.
+  std::size_t slots = 6, values = 0;  // a pixel's: the beauty's 5 sums and count, the AOVs' sums and values
+  for (const AovRequest& r : film.aovs()) {  // Cryptomatte's ranks set (6)
+    slots += static_cast<std::size_t>(aov_state_sums(r) + aov_state_values(r));
+    values += static_cast<std::size_t>(aov_state_values(r));
+  }
+  ASSERT_GT(values, 0u);
+  std::string crafted = written;
+  std::memset(&crafted[crafted.size() - 4], 0, 4);
+  const auto exception = [](uint64_t pixel, uint32_t slot, uint64_t lo) {
+    std::string e(28, '\0');
+    std::memcpy(&e[0], &pixel, 8);
+    std::memcpy(&e[8], &slot, 4);
+    std::memcpy(&e[12], &lo, 8);
+    return e;
+  };
+  const std::size_t records = list + 8 + count * 28;
+  const uint64_t more = count + 1;
+  std::memcpy(&crafted[list], &more, 8);
+  crafted.insert(records, exception(w * h - 1, slots - 1, std::bit_cast<uint64_t>(0.1)));
+  back = read(crafted, error);
+  ASSERT_TRUE(back) << error;
+  EXPECT_EQ(state(*back), crafted);
+  // Refused: a listed value its record could hold; a record's slot not 0
+  // where the list holds the value; the list out of order; version 4.
+  std::string bad = crafted;
+  bad.replace(records, 28, exception(w * h - 1, slots - 1, std::bit_cast<uint64_t>(0.5)));
+  EXPECT_FALSE(read(bad, error));
+  EXPECT_EQ(error, "corrupt film state (wide value " + std::to_string(count) + " of " + std::to_string(more) + ")");
+  bad = crafted;
+  bad[bad.size() - 1] = 1;
+  EXPECT_FALSE(read(bad, error));
+  EXPECT_EQ(error, "corrupt film state (pixel 11 of the crop)");
+  bad = crafted;
+  bad.replace(records, 28, exception(0, slots - 1, std::bit_cast<uint64_t>(0.1)));
+  EXPECT_FALSE(read(bad, error));
+  EXPECT_EQ(error, "corrupt film state (wide value " + std::to_string(count) + " of " + std::to_string(more) + ")");
+  bad = written;
+  bad[8] = 4;
+  EXPECT_FALSE(read(bad, error));
+  EXPECT_EQ(error, "film state version 4 is not read by this pathtracer, which reads version 5 (written by an older "
+                   "one: render it again with this one)");
+}
+
 // A film state in memory (a mapped shard file) is added in parallel blocks
 // of pixels, from bytes at any alignment: the same bits as the stream's adds,
 // and a state that breaks the rules is refused naming its first bad pixel.
@@ -207,29 +293,34 @@ TEST(FilmMerge, StatesInMemoryAddInParallelToTheSameBits) {
   EXPECT_EQ(error, "truncated film state header");
   EXPECT_EQ(state(merged), before);
   // Too many samples in pixels 9000 and 5000 (the third and second blocks): the first is named.
-  const std::size_t header = 89 + 3 * all_aovs().size(), samples_at = 5 * sizeof(ExactSum);
+  const std::size_t header = records_at(view_b, all_aovs().size()), samples_at = 5 * sizeof(int64_t);
+  const std::size_t record = whole.state_record_bytes();
+  EXPECT_EQ(record, 472u);  // every AOV of the catalogue (Cryptomatte at 6 levels): docs/distributed.md
+  EXPECT_GT(header, 89 + 3 * all_aovs().size() + 8) << "the fireflies make exceptions";
   std::string bad(view_b);
   for (std::size_t pixel : {9000u, 5000u}) {
-    const uint64_t many = 1000;
-    std::memcpy(&bad[header + pixel * sizeof(PixelSum) + samples_at], &many, sizeof many);
+    const uint32_t many = 1000;
+    std::memcpy(&bad[header + pixel * record + samples_at], &many, sizeof many);
   }
   EXPECT_FALSE(merged.add_state(bad, rules(false, 3), error));
   EXPECT_EQ(error, "its film state holds 1000 samples in pixel (8, 39), more than its pieces' 3 "
                    "(the two do not belong together)");
-  // A Cryptomatte slot's id with bits above its 32, in the last pixel.
-  std::size_t sum_stride = 0, crypto = 0;  // a pixel's AOV sums; where CryptoObject's slots begin
+  // A Cryptomatte slot's id that is no id (a float's bits with exponent 0),
+  // in the last pixel. CryptoObject's slots follow the plain sums (int64 each).
+  std::size_t crypto = 0;  // where CryptoObject's slots begin among a pixel's AOV sums
   for (const AovRequest& r : a.aovs()) {
-    if (r.type == AovType::CryptoObject) crypto = sum_stride;
-    sum_stride += static_cast<std::size_t>(aov_state_sums(r));
+    if (r.type == AovType::CryptoObject) break;
+    crypto += static_cast<std::size_t>(aov_state_sums(r));
   }
   bad = std::string(view_b);
-  const std::size_t id_at = header + n * sizeof(PixelSum) + ((n - 1) * sum_stride + crypto) * sizeof(ExactSum);
-  bad[id_at + 5] = 1;
+  const std::size_t id_at = header + (n - 1) * record + 5 * sizeof(int64_t) + sizeof(uint32_t) + crypto * sizeof(int64_t);
+  const uint32_t not_an_id = 1;
+  std::memcpy(&bad[id_at], &not_an_id, sizeof not_an_id);
   EXPECT_FALSE(merged.add_state(bad, rules(false, 3), error));
-  EXPECT_EQ(error, "corrupt film state (Cryptomatte slots)");
+  EXPECT_EQ(error, "corrupt film state (Cryptomatte slots of pixel (127, 79))");
   std::stringstream in(bad);
   EXPECT_FALSE(Film(w, h, {0, 0, w, h}, all_aovs()).add_state(in, rules(false, 3), error));
-  EXPECT_EQ(error, "corrupt film state (Cryptomatte slots)");  // the stream says the same
+  EXPECT_EQ(error, "corrupt film state (Cryptomatte slots of pixel (127, 79))");  // the stream says the same
 }
 
 // ---------------------------------------------------------------- shares and tiles

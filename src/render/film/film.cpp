@@ -183,6 +183,7 @@ Film::Film(int width, int height, PixelRect crop, std::vector<AovRequest> aovs)
   }
   aov_sums_.assign(pixels_.size() * static_cast<std::size_t>(sum_stride_), ExactSum{});
   aov_values_.assign(pixels_.size() * static_cast<std::size_t>(value_stride_), 0.0);
+  init_state_layout();
 }
 
 Image Film::image() const {

@@ -130,15 +130,24 @@ struct StateRules {
   std::size_t first = 0;
 };
 
+// A slot of a film state that its compact record cannot hold (film_state.cpp):
+// a sum beyond 64 bits, a count beyond 32, a value that is not a float. The
+// state lists these with their full value, ordered by pixel and slot.
+struct StateException {
+  uint64_t pixel = 0;  // in the state's crop, row-major
+  uint32_t slot = 0;   // 0-4 the beauty's sums, 5 its count, then the AOV sums, then the AOV values
+  UInt128 value = 0;   // the sum's integer, the count, or the value's double bits
+};
+
 // A complete film state in memory (a mapped shard file after its header),
-// its header and size checked (Film::view_state): where its sections begin,
-// for Film::add_state_rows. The bytes need not be aligned.
+// its header and size checked (Film::view_state): its exceptions and where
+// its pixel records begin, for Film::add_state_rows. The records need not be
+// aligned.
 struct StateView {
   PixelRect crop;
   NonFiniteReport non_finite;
-  const char* pixels = nullptr;  // crop pixels' PixelSums
-  const char* sums = nullptr;    // their AOV sums
-  const char* values = nullptr;  // their AOV values
+  std::vector<StateException> exceptions;
+  const char* records = nullptr;  // the crop's pixels' records, row-major
 };
 
 class Film {
@@ -231,7 +240,10 @@ class Film {
   // rules, or SIZE_MAX; the pixels before it are added.
   std::size_t add_state_rows(const StateView& view, const StateRules& rules, int y0, int y1);
   // The message for a pixel add_state_rows refused.
-  static std::string refusal(const StateView& view, std::size_t pixel, const StateRules& rules);
+  std::string refusal(const StateView& view, std::size_t pixel, const StateRules& rules) const;
+  // The bytes of one pixel's record in a film state of this film's AOVs
+  // (the exceptions and header aside): 448 with every AOV, 44 for the beauty.
+  std::size_t state_record_bytes() const { return record_bytes_; }
   // Moves this film to `crop` and clears it: a band film reused for the
   // next band (no allocation unless the crop is larger than any before).
   void recrop(const PixelRect& crop);
@@ -246,15 +258,36 @@ class Film {
   bool valid_ranked(const ExactSum* s) const;
   // Adds another film's plain AOV values `s` (first-sample layers, maxima) to pixel number `pixel`.
   void add_values(std::size_t pixel, const double* s, bool other_first);
+  // The film state's compact records (film_state_codec.cpp). Slots of a
+  // pixel: state_slots(), numbered as StateException::slot.
+  void init_state_layout();
+  std::size_t state_slots() const { return 6 + static_cast<std::size_t>(sum_stride_ + value_stride_); }
+  // Whether `e` is a slot of a state of `pixels` pixels whose value its
+  // record could not hold (anything else is not how write_state writes it).
+  bool valid_exception(const StateException& e, std::size_t pixels) const;
+  // The record of this film's pixel number `pixel` into `out`
+  // (record_bytes_); the slots it cannot hold are 0 there and appended to
+  // `exceptions` (when not null) as pixel `number`.
+  void encode_record(std::size_t pixel, uint64_t number, char* out, std::vector<StateException>* exceptions) const;
+  // A record and its pixel's exceptions [ex, ex_end) into a pixel's sums,
+  // AOV sums and values; false when they are not as encode_record writes them.
+  bool decode_record(const char* in, const StateException* ex, const StateException* ex_end, PixelSum& sum,
+                     ExactSum* sums, double* values) const;
+  // Reads a state's exception list (the count, then the entries) of a state
+  // of `pixels` pixels; false with `error`.
+  bool read_exceptions(std::istream& in, std::size_t pixels, std::vector<StateException>& out,
+                       std::string& error) const;
+  static void write_exceptions(std::ostream& out, const std::vector<StateException>& exceptions);
   // add_state's work on pixels [first, first + count) of a state over
-  // `rules.crop` (row-major), from the bytes of those pixels' sums (`p`), AOV
-  // sums (`s`) or AOV values (`v`), which need not be aligned: the first pixel
-  // that breaks the rules (too many samples; corrupt Cryptomatte slots), or
-  // SIZE_MAX. The pixels before it are added.
-  std::size_t add_state_pixels(const char* p, std::size_t first, std::size_t count, const StateRules& rules);
-  std::size_t add_state_sums(const char* s, std::size_t first, std::size_t count, const StateRules& rules);
-  void add_state_values(const char* v, std::size_t first, std::size_t count, const StateRules& rules);
+  // `rules.crop` (row-major), from their records (which need not be
+  // aligned) and the state's exceptions: the first pixel that breaks the
+  // rules (too many samples; corrupt Cryptomatte slots; a record not as
+  // written), or SIZE_MAX. The pixels before it are added.
+  std::size_t add_records(const char* records, std::size_t first, std::size_t count,
+                          const std::vector<StateException>& exceptions, const StateRules& rules);
   static std::string too_many_samples(std::size_t pixel, uint64_t samples, const StateRules& rules);
+  // refusal() of the pixel whose record is at `record`.
+  std::string refusal(const char* record, const StateView& view, std::size_t pixel, const StateRules& rules) const;
   // Resolves pixels [first, first + count) of the crop into `out`'s pixels
   // from `at` on (layers laid out by layer_layout).
   void resolve_pixels(LayeredImage& out, std::size_t first, std::size_t count, std::size_t at) const;
@@ -283,6 +316,8 @@ class Film {
   std::vector<ExactSum> aov_sums_;  // pixels * sum_stride_
   std::vector<double> aov_values_;  // pixels * value_stride_
   NonFiniteReport non_finite_;
+  std::vector<uint8_t> sum_kinds_;  // per AOV sum: how a state's record holds it (film_state_codec.cpp)
+  std::size_t record_bytes_ = 0;    // a state's record of one pixel
 };
 
 }  // namespace pt

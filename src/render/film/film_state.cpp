@@ -20,22 +20,29 @@ namespace pt {
 
 namespace {
 
-// State layout (version 4), all little-endian:
+// State layout (version 5), all little-endian:
 //   the 8-byte magic; uint32 version, width, height; int32 crop x0, y0, x1, y1;
 //   uint32 AOV count, then per AOV uint8 type, uint8 channel type and uint8
 //   ranks (Cryptomatte; 0 for the others);
 //   the non-finite report: uint64 nan, pos_inf, neg_inf; uint8 has_first;
 //   int32 x, y, sample; float r, g, b;
-//   per pixel of the crop (row-major, top row first): r, g, b, weight,
-//   coverage as exact sums (render/film/exact_sum.h: 128-bit two's-complement
-//   integers, the low 64 bits first, in units of 2^-44) and samples as uint64;
-//   then the AOVs' exact sums: per pixel, their sums in request order (a
-//   Cryptomatte layer: per rank, its id's 32 bits as the integer and its weight);
-//   then the AOVs' plain values: per pixel, their values as IEEE doubles.
-// Versions 1 (beauty only, no crop), 2 (sums in double) and 3 (either sums in
-// double with coverage, or exact sums without it) are no longer read.
+//   uint64 the number of exceptions, then each: uint64 pixel (of the crop,
+//   row-major), uint32 slot, its value as 128 bits (the low 64 first), in
+//   increasing (pixel, slot) order;
+//   per pixel of the crop (row-major, top row first), its record
+//   (film_state_codec.cpp): r, g, b, weight and coverage as int64 (exact sums,
+//   render/film/exact_sum.h: integers in units of 2^-44), samples as uint32,
+//   the AOVs' exact sums in request order as int64 (a Cryptomatte layer: per
+//   rank, its id's 32 bits as uint32 and its weight as int64), then the AOVs'
+//   plain values as floats. A slot whose value its type cannot hold is 0 in
+//   the record and listed among the exceptions with its full value (a sum's
+//   128-bit integer, the count, a value's double bits).
+// Versions 1 (beauty only, no crop), 2 (sums in double), 3 (either sums in
+// double with coverage, or exact sums without it) and 4 (every sum in 128
+// bits, values in double: 992 bytes a pixel with every AOV, 448 now) are no
+// longer read.
 constexpr char kMagic[8] = {'P', 'T', 'F', 'I', 'L', 'M', '\r', '\n'};
-constexpr uint32_t kStateVersion = 4;
+constexpr uint32_t kStateVersion = 5;
 static_assert(std::endian::native == std::endian::little, "film states are written in the host's byte order");
 
 template <typename T>
@@ -110,9 +117,14 @@ bool read_layout(std::istream& in, int width, int height, PixelRect& crop, const
     error = "not a film state (bad magic)";
     return false;
   }
-  if (!get(in, version) || version != kStateVersion) {
-    error = "unsupported film state version " + std::to_string(version) + " (expected " +
-            std::to_string(kStateVersion) + ")";
+  if (!get(in, version)) {
+    error = "truncated film state header";
+    return false;
+  }
+  if (version != kStateVersion) {
+    error = "film state version " + std::to_string(version) + " is not read by this pathtracer, which reads version " +
+            std::to_string(kStateVersion) +
+            (version < kStateVersion ? " (written by an older one: render it again with this one)" : "");
     return false;
   }
   int32_t c[4];
@@ -169,6 +181,54 @@ bool read_blocks(std::istream& in, std::size_t items, std::size_t per_item, F&& 
 
 }  // namespace
 
+
+namespace {
+
+// Pixels per block of the parallel encode and add (under 2 MiB of records
+// with every AOV).
+constexpr std::size_t kAddGrain = 4096;
+
+// Runs `add(first, count)` over [0, items) in blocks, in parallel (in the
+// caller's TBB arena); the smallest of the blocks' answers (a pixel number,
+// or `items` for none).
+template <typename F>
+std::size_t for_blocks(std::size_t items, F&& add) {
+  std::atomic<std::size_t> lowest{items};
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, items, kAddGrain), [&](const tbb::blocked_range<std::size_t>& r) {
+    const std::size_t found = add(r.begin(), r.size());
+    std::size_t seen = lowest.load();
+    while (found < seen && !lowest.compare_exchange_weak(seen, found)) {
+    }
+  });
+  return lowest.load();
+}
+
+// Runs `f(block, first, count)` for blocks [block * kAddGrain, ...) of
+// [0, items), in parallel.
+template <typename F>
+void for_each_block(std::size_t items, F&& f) {
+  const std::size_t blocks = (items + kAddGrain - 1) / kAddGrain;
+  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+    f(b, b * kAddGrain, std::min(kAddGrain, items - b * kAddGrain));
+  });
+}
+
+// The exceptions of pixel `pixel` onwards: the first of them.
+const StateException* exceptions_from(const std::vector<StateException>& ex, std::size_t pixel) {
+  return ex.data() + (std::lower_bound(ex.begin(), ex.end(), pixel,
+                                       [](const StateException& e, std::size_t p) { return e.pixel < p; }) -
+                      ex.begin());
+}
+// The end of pixel `pixel`'s exceptions, which begin at `from`.
+const StateException* exceptions_end(const std::vector<StateException>& ex, const StateException* from,
+                                     std::size_t pixel) {
+  const StateException* end = ex.data() + ex.size();
+  while (from != end && from->pixel == pixel) ++from;
+  return from;
+}
+
+}  // namespace
+
 bool Film::write_state(std::ostream& out) const {
   out.write(kMagic, sizeof kMagic);
   put(out, kStateVersion);
@@ -188,9 +248,26 @@ bool Film::write_state(std::ostream& out) const {
   put(out, static_cast<uint8_t>(nf.has_first));
   for (int v : {nf.x, nf.y, nf.sample}) put(out, static_cast<int32_t>(v));
   for (float v : {nf.value.r, nf.value.g, nf.value.b}) put(out, v);
-  put_all(out, pixels_);
-  put_all(out, aov_sums_);
-  put_all(out, aov_values_);
+  // The records twice: once for the exceptions, which come first, then
+  // block by block into the stream; each pass in parallel blocks.
+  const std::size_t n = pixels_.size();
+  std::vector<std::vector<StateException>> found((n + kAddGrain - 1) / kAddGrain);
+  for_each_block(n, [&](std::size_t block, std::size_t first, std::size_t count) {
+    std::vector<char> record(record_bytes_);
+    for (std::size_t i = first; i < first + count; ++i) encode_record(i, i, record.data(), &found[block]);
+  });
+  std::vector<StateException> exceptions;
+  for (const auto& f : found) exceptions.insert(exceptions.end(), f.begin(), f.end());
+  write_exceptions(out, exceptions);
+  const std::size_t per_write = std::max<std::size_t>(kAddGrain, (std::size_t{8} << 20) / record_bytes_ / kAddGrain * kAddGrain);
+  std::vector<char> buffer(std::min(n, per_write) * record_bytes_);
+  for (std::size_t first = 0; first < n && out; first += per_write) {
+    const std::size_t count = std::min(per_write, n - first);
+    for_each_block(count, [&](std::size_t, std::size_t b, std::size_t c) {
+      for (std::size_t i = b; i < b + c; ++i) encode_record(first + i, first + i, &buffer[i * record_bytes_], nullptr);
+    });
+    out.write(buffer.data(), static_cast<std::streamsize>(count * record_bytes_));
+  }
   return static_cast<bool>(out);
 }
 
@@ -202,13 +279,31 @@ bool Film::read_state(std::istream& in, std::string& error) {
     return false;
   }
   NonFiniteReport nf;
-  if (!read_non_finite(in, nf, error)) return false;
+  std::vector<StateException> exceptions;
+  if (!read_non_finite(in, nf, error) || !read_exceptions(in, pixels_.size(), exceptions, error)) return false;
   // Integer sums cannot be corrupt in value (any bits are some sum); the
   // samples are checked against the header by the checkpoint and shard readers.
   std::vector<PixelSum> pixels(pixels_.size());
+  const auto stride = static_cast<std::size_t>(sum_stride_), vstride = static_cast<std::size_t>(value_stride_);
   std::vector<ExactSum> sums(aov_sums_.size());
   std::vector<double> values(aov_values_.size());
-  if (!get_all(in, pixels) || !get_all(in, sums) || !get_all(in, values)) {
+  const StateException* ex = exceptions.data();
+  std::size_t bad = SIZE_MAX;
+  const bool read = read_blocks<char>(in, pixels.size(), record_bytes_, [&](const char* r, std::size_t first, std::size_t count) {
+    for (std::size_t i = first; i < first + count && bad == SIZE_MAX; ++i, r += record_bytes_) {
+      const StateException* end = exceptions_end(exceptions, ex, i);
+      if (!decode_record(r, ex, end, pixels[i], sums.data() + i * stride, values.data() + i * vstride) ||
+          !valid_ranked(sums.data() + i * stride))
+        bad = i;
+      ex = end;
+    }
+    return bad == SIZE_MAX;
+  });
+  if (bad != SIZE_MAX) {
+    error = "corrupt film state (pixel " + std::to_string(bad) + " of the crop)";
+    return false;
+  }
+  if (!read) {
     error = "truncated film state";
     return false;
   }
@@ -216,12 +311,6 @@ bool Film::read_state(std::istream& in, std::string& error) {
     error = "film state has trailing data";
     return false;
   }
-  const auto stride = static_cast<std::size_t>(sum_stride_);
-  for (std::size_t i = 0; i < pixels.size(); ++i)
-    if (!valid_ranked(sums.data() + i * stride)) {
-      error = "corrupt film state (Cryptomatte slots of pixel " + std::to_string(i) + " of the crop)";
-      return false;
-    }
   pixels_ = std::move(pixels);
   aov_sums_ = std::move(sums);
   aov_values_ = std::move(values);
@@ -229,84 +318,25 @@ bool Film::read_state(std::istream& in, std::string& error) {
   return true;
 }
 
-namespace {
-
-// The header of a film state to add (add_state): its layout and crop checked
-// against `rules`, its non-finite report into `nf`. False with `error`.
-bool read_added_header(std::istream& in, int width, int height, const PixelRect& film_crop,
-                       const std::vector<AovRequest>& aovs, const StateRules& rules, NonFiniteReport& nf,
-                       std::string& error) {
-  PixelRect c;
-  if (!read_layout(in, width, height, c, aovs, error)) return false;
-  if (c != rules.crop || !film_crop.contains(c)) {
-    error = "film state covers pixels " + c.text() + ", not " + rules.crop.text() + " inside " + film_crop.text();
-    return false;
-  }
-  if (!read_non_finite(in, nf, error)) return false;
-  const std::size_t n = static_cast<std::size_t>(c.width()) * static_cast<std::size_t>(c.height());
-  if (rules.other_first.size() != n || rules.max_samples.size() != n) {
-    error = "film state rules of the wrong size";
-    return false;
-  }
-  return true;
-}
-
-// Pixels per block of the parallel add (about 4 MiB of state with every AOV).
-constexpr std::size_t kAddGrain = 4096;
-
-// Runs `add(first, count)` over [0, items) in blocks, in parallel (in the
-// caller's TBB arena); the smallest of the blocks' answers (a pixel number,
-// or `items` for none).
-template <typename F>
-std::size_t for_blocks(std::size_t items, F&& add) {
-  std::atomic<std::size_t> lowest{items};
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, items, kAddGrain), [&](const tbb::blocked_range<std::size_t>& r) {
-    const std::size_t found = add(r.begin(), r.size());
-    std::size_t seen = lowest.load();
-    while (found < seen && !lowest.compare_exchange_weak(seen, found)) {
-    }
-  });
-  return lowest.load();
-}
-
-}  // namespace
-
-// The state's bytes need not be aligned (a mapped shard file: its header's
-// length varies), so each pixel's values are copied out (memcpy: unaligned
-// loads) before they are added.
-std::size_t Film::add_state_pixels(const char* p, std::size_t first, std::size_t count, const StateRules& rules) {
-  const auto width = static_cast<std::size_t>(rules.crop.width());
-  for (std::size_t i = first; i < first + count; ++i) {
-    PixelSum sum;
-    std::memcpy(&sum, p + (i - first) * sizeof sum, sizeof sum);
-    if (sum.samples > rules.max_samples[i - rules.first]) return i;
-    pixels_[index(rules.crop.x0 + static_cast<int>(i % width), rules.crop.y0 + static_cast<int>(i / width))].add(sum);
-  }
-  return SIZE_MAX;
-}
-
-std::size_t Film::add_state_sums(const char* s, std::size_t first, std::size_t count, const StateRules& rules) {
+std::size_t Film::add_records(const char* records, std::size_t first, std::size_t count,
+                              const std::vector<StateException>& exceptions, const StateRules& rules) {
   const auto width = static_cast<std::size_t>(rules.crop.width());
   std::vector<ExactSum> sums(static_cast<std::size_t>(sum_stride_));
-  const std::size_t bytes = sums.size() * sizeof(ExactSum);
-  for (std::size_t i = first; i < first + count; ++i) {
-    std::memcpy(static_cast<void*>(sums.data()), s + (i - first) * bytes, bytes);
-    if (!valid_ranked(sums.data())) return i;
-    add_sums(index(rules.crop.x0 + static_cast<int>(i % width), rules.crop.y0 + static_cast<int>(i / width)),
-             sums.data());
+  std::vector<double> values(static_cast<std::size_t>(value_stride_));
+  const StateException* ex = exceptions_from(exceptions, first);
+  for (std::size_t i = first; i < first + count; ++i, records += record_bytes_) {
+    const StateException* end = exceptions_end(exceptions, ex, i);
+    PixelSum sum;
+    if (!decode_record(records, ex, end, sum, sums.data(), values.data()) ||
+        sum.samples > rules.max_samples[i - rules.first] || !valid_ranked(sums.data()))
+      return i;
+    ex = end;
+    const std::size_t to = index(rules.crop.x0 + static_cast<int>(i % width), rules.crop.y0 + static_cast<int>(i / width));
+    pixels_[to].add(sum);
+    add_sums(to, sums.data());
+    add_values(to, values.data(), rules.other_first[i - rules.first] != 0);
   }
   return SIZE_MAX;
-}
-
-void Film::add_state_values(const char* v, std::size_t first, std::size_t count, const StateRules& rules) {
-  const auto width = static_cast<std::size_t>(rules.crop.width());
-  std::vector<double> values(static_cast<std::size_t>(value_stride_));
-  const std::size_t bytes = values.size() * sizeof(double);
-  for (std::size_t i = first; i < first + count; ++i) {
-    std::memcpy(values.data(), v + (i - first) * bytes, bytes);
-    add_values(index(rules.crop.x0 + static_cast<int>(i % width), rules.crop.y0 + static_cast<int>(i / width)),
-               values.data(), rules.other_first[i - rules.first] != 0);
-  }
 }
 
 std::string Film::too_many_samples(std::size_t pixel, uint64_t samples, const StateRules& rules) {
@@ -317,42 +347,56 @@ std::string Film::too_many_samples(std::size_t pixel, uint64_t samples, const St
          std::to_string(rules.max_samples[pixel - rules.first]) + " (the two do not belong together)";
 }
 
+std::string Film::refusal(const StateView& view, std::size_t pixel, const StateRules& rules) const {
+  return refusal(view.records + pixel * record_bytes_, view, pixel, rules);
+}
+
+std::string Film::refusal(const char* record, const StateView& view, std::size_t pixel, const StateRules& rules) const {
+  const StateException* ex = exceptions_from(view.exceptions, pixel);
+  const StateException* end = exceptions_end(view.exceptions, ex, pixel);
+  PixelSum sum;
+  std::vector<ExactSum> sums(static_cast<std::size_t>(sum_stride_));
+  std::vector<double> values(static_cast<std::size_t>(value_stride_));
+  const auto width = static_cast<std::size_t>(view.crop.width());
+  const std::string where = "pixel (" + std::to_string(view.crop.x0 + static_cast<int>(pixel % width)) + ", " +
+                            std::to_string(view.crop.y0 + static_cast<int>(pixel / width)) + ")";
+  if (!decode_record(record, ex, end, sum, sums.data(), values.data()))
+    return "corrupt film state (" + where + ": a value not stored as this pathtracer stores it)";
+  if (sum.samples > rules.max_samples[pixel - rules.first]) return too_many_samples(pixel, sum.samples, rules);
+  return "corrupt film state (Cryptomatte slots of " + where + ")";
+}
+
 bool Film::add_state(std::istream& in, const StateRules& rules, std::string& error) {
-  NonFiniteReport nf;
-  if (!read_added_header(in, width_, height_, crop_, aovs_, rules, nf, error)) return false;
-  const std::size_t n = rules.max_samples.size();
-  std::size_t bad = SIZE_MAX;  // the first pixel with too many samples, and its count
-  uint64_t bad_samples = 0;
-  const bool pixels_ok = read_blocks<PixelSum>(in, n, 1, [&](const PixelSum* p, std::size_t first, std::size_t count) {
-    bad = add_state_pixels(reinterpret_cast<const char*>(p), first, count, rules);
-    if (bad != SIZE_MAX) bad_samples = p[bad - first].samples;
-    return bad == SIZE_MAX;
-  });
-  if (bad != SIZE_MAX) {
-    error = too_many_samples(bad, bad_samples, rules);
+  PixelRect c;
+  if (!read_layout(in, width_, height_, c, aovs_, error)) return false;
+  if (c != rules.crop || !crop_.contains(c)) {
+    error = "film state covers pixels " + c.text() + ", not " + rules.crop.text() + " inside " + crop_.text();
     return false;
   }
-  const auto sums = static_cast<std::size_t>(sum_stride_), values = static_cast<std::size_t>(value_stride_);
-  bool corrupt = false;
-  const bool ok =
-      pixels_ok &&
-      read_blocks<ExactSum>(in, n, sums, [&](const ExactSum* s, std::size_t first, std::size_t count) {
-        corrupt = add_state_sums(reinterpret_cast<const char*>(s), first, count, rules) != SIZE_MAX;
-        return !corrupt;
-      }) &&
-      read_blocks<double>(in, n, values, [&](const double* v, std::size_t first, std::size_t count) {
-        add_state_values(reinterpret_cast<const char*>(v), first, count, rules);
-        return true;
-      });
-  if (!ok) {
-    error = corrupt ? "corrupt film state (Cryptomatte slots)" : "truncated film state";
+  StateView view;
+  view.crop = c;
+  const std::size_t n = static_cast<std::size_t>(c.width()) * static_cast<std::size_t>(c.height());
+  if (!read_non_finite(in, view.non_finite, error) || !read_exceptions(in, n, view.exceptions, error)) return false;
+  if (rules.first != 0 || rules.other_first.size() != n || rules.max_samples.size() != n) {
+    error = "film state rules of the wrong size";
+    return false;
+  }
+  std::size_t bad = SIZE_MAX;
+  std::string refused;
+  const bool read = read_blocks<char>(in, n, record_bytes_, [&](const char* r, std::size_t first, std::size_t count) {
+    bad = add_records(r, first, count, view.exceptions, rules);
+    if (bad != SIZE_MAX) refused = refusal(r + (bad - first) * record_bytes_, view, bad, rules);
+    return bad == SIZE_MAX;
+  });
+  if (bad != SIZE_MAX || !read) {
+    error = bad != SIZE_MAX ? refused : "truncated film state";
     return false;
   }
   if (in.peek() != std::char_traits<char>::eof()) {
     error = "film state has trailing data";
     return false;
   }
-  non_finite_.merge(nf);
+  non_finite_.merge(view.non_finite);
   return true;
 }
 
@@ -366,44 +410,24 @@ bool Film::view_state(std::string_view state, const PixelRect& crop, const Pixel
     error = "film state covers pixels " + c.text() + ", not " + crop.text() + " inside " + inside.text();
     return false;
   }
-  if (!read_non_finite(in, view.non_finite, error)) return false;
-  // The whole body is checked for its size before any of it is added.
   const std::size_t n = static_cast<std::size_t>(c.width()) * static_cast<std::size_t>(c.height());
-  const std::size_t header = buffer.consumed();
-  const auto sums = static_cast<std::size_t>(sum_stride_), values = static_cast<std::size_t>(value_stride_);
-  const std::size_t body = n * (sizeof(PixelSum) + sums * sizeof(ExactSum) + values * sizeof(double));
+  if (!read_non_finite(in, view.non_finite, error) || !read_exceptions(in, n, view.exceptions, error)) return false;
+  // The whole body is checked for its size before any of it is added.
+  const std::size_t header = buffer.consumed(), body = n * record_bytes_;
   if (state.size() - header != body) {
     error = state.size() - header < body ? "truncated film state" : "film state has trailing data";
     return false;
   }
   view.crop = c;
-  view.pixels = state.data() + header;
-  view.sums = view.pixels + n * sizeof(PixelSum);
-  view.values = view.sums + n * sums * sizeof(ExactSum);
+  view.records = state.data() + header;
   return true;
-}
-
-std::string Film::refusal(const StateView& view, std::size_t pixel, const StateRules& rules) {
-  PixelSum sum;
-  std::memcpy(&sum, view.pixels + pixel * sizeof sum, sizeof sum);
-  if (sum.samples > rules.max_samples[pixel - rules.first]) return too_many_samples(pixel, sum.samples, rules);
-  return "corrupt film state (Cryptomatte slots)";
 }
 
 std::size_t Film::add_state_rows(const StateView& view, const StateRules& rules, int y0, int y1) {
   const auto width = static_cast<std::size_t>(view.crop.width());
   const std::size_t first = static_cast<std::size_t>(y0 - view.crop.y0) * width;
   const std::size_t count = static_cast<std::size_t>(y1 - y0) * width;
-  const std::size_t sum_bytes = static_cast<std::size_t>(sum_stride_) * sizeof(ExactSum);
-  const std::size_t value_bytes = static_cast<std::size_t>(value_stride_) * sizeof(double);
-  if (const std::size_t bad = add_state_pixels(view.pixels + first * sizeof(PixelSum), first, count, rules);
-      bad != SIZE_MAX)
-    return bad;
-  if (sum_stride_ > 0)
-    if (const std::size_t bad = add_state_sums(view.sums + first * sum_bytes, first, count, rules); bad != SIZE_MAX)
-      return bad;
-  if (value_stride_ > 0) add_state_values(view.values + first * value_bytes, first, count, rules);
-  return SIZE_MAX;
+  return add_records(view.records + first * record_bytes_, first, count, view.exceptions, rules);
 }
 
 bool Film::add_state(std::string_view state, const StateRules& rules, std::string& error) {
@@ -415,26 +439,13 @@ bool Film::add_state(std::string_view state, const StateRules& rules, std::strin
     error = "film state rules of the wrong size";
     return false;
   }
-  const auto sums = static_cast<std::size_t>(sum_stride_), values = static_cast<std::size_t>(value_stride_);
-  const std::size_t sum_bytes = sums * sizeof(ExactSum), value_bytes = values * sizeof(double);
   const std::size_t bad = for_blocks(n, [&](std::size_t first, std::size_t count) {
-    return std::min(n, add_state_pixels(view.pixels + first * sizeof(PixelSum), first, count, rules));
+    return std::min(n, add_records(view.records + first * record_bytes_, first, count, view.exceptions, rules));
   });
   if (bad < n) {
     error = refusal(view, bad, rules);
     return false;
   }
-  if (sums > 0 && for_blocks(n, [&](std::size_t first, std::size_t count) {
-        return std::min(n, add_state_sums(view.sums + first * sum_bytes, first, count, rules));
-      }) < n) {
-    error = "corrupt film state (Cryptomatte slots)";
-    return false;
-  }
-  if (values > 0)
-    for_blocks(n, [&](std::size_t first, std::size_t count) {
-      add_state_values(view.values + first * value_bytes, first, count, rules);
-      return n;
-    });
   non_finite_.merge(view.non_finite);
   return true;
 }
