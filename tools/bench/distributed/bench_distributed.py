@@ -6,6 +6,7 @@
             [--shards 2,4] [--rounds 5] [--merge-width 1920 --merge-height 1080] [--merge-rounds 5]
             [--merge-shards 2,4] [--merge-baseline OTHER_PATHTRACER] [--skip-overhead] [--tmp DIR]
             [--shard-dir DIR] [--merge-compressions zip,none] [--merge-threads N] [--render-write]
+            [--baseline-shards]
 
 1. Overhead at equal total samples: one render of --spp samples against N
    shards of --spp/N each, run one after another on this machine (as a farm
@@ -28,7 +29,9 @@
    --merge-shards (after one merge that brings the files into the page cache).
    With --merge-baseline EXE (e.g. main's build), its merges alternate with
    --exe's, and each pair's EXRs are checked to be the same bytes (but for the
-   time they were written, capDate). --shard-dir DIR keeps the shard files in
+   time they were written, capDate); with --baseline-shards the baseline
+   renders shards of its own (a film-state version of its own), so the check
+   also proves the two formats merge to the same image. --shard-dir DIR keeps the shard files in
    DIR and reuses them on the next run. --merge-compressions zip,none measures
    each --exr-compression; --merge-threads N gives --exe's merges --threads N.
 3. With --baseline EXE (a build before exact sums): the render phase and the
@@ -179,14 +182,16 @@ def overhead(a, tmp):
           f" shard file; the single render's: {spread([x['proc_cpu'] - x['render_cpu'] for x in base], sec)}).\n")
 
 
-def big_shards(a, tmp, n):
+# The shards of the large merge, rendered by `exe`; `tag` names the executable's files (a baseline with
+# another film-state version needs shards of its own).
+def big_shards(a, tmp, n, exe, tag=""):
     files = []
     for k in range(n):
-        f = f"big{n}_{k}.ptshard"
+        f = f"big{n}_{k}{tag}.ptshard"
         files.append(f)
         if a.shard_dir and os.path.exists(os.path.join(tmp, f)):
             continue  # kept from an earlier run (--shard-dir)
-        timed([a.exe, a.scene, "--width", str(a.merge_width), "--height", str(a.merge_height), "--spp", str(n),
+        timed([exe, a.scene, "--width", str(a.merge_width), "--height", str(a.merge_height), "--spp", str(n),
                "--aov", ALL_AOVS, "--shard", f"{k}/{n}", "--shard-out", f, "--quiet"] +
               (["--threads", str(a.threads)] if a.threads else []), tmp)
     return files
@@ -217,9 +222,13 @@ def big_merge(a, tmp):
     cases = [(n, c) for n in a.merge_shards for c in a.merge_compressions]
     extra = ["--threads", str(a.merge_threads)] if a.merge_threads else []
     for n in a.merge_shards:
-        files[n] = big_shards(a, tmp, n)
-        sizes[n] = os.path.getsize(os.path.join(tmp, files[n][0]))
-        timed([a.exe, "merge", *files[n], "-o", "warm.exr"], tmp)  # the shard files into the page cache
+        for e, exe in exes:
+            # --baseline-shards: the baseline renders its own shards (another film-state version).
+            files[(n, e)] = big_shards(a, tmp, n, exe, ".base" if e == "baseline" and a.baseline_shards else "")
+            sizes[(n, e)] = os.path.getsize(os.path.join(tmp, files[(n, e)][0]))
+    for n in a.merge_shards:
+        for e, exe in exes:
+            timed([exe, "merge", *files[(n, e)], "-o", "warm.exr"], tmp)  # the shard files into the page cache
     for case in cases:
         for e, _ in exes:
             times[(case, e)] = []
@@ -229,7 +238,7 @@ def big_merge(a, tmp):
             outs = []
             for e, exe in (exes if r % 2 == 0 else exes[::-1]):
                 out = f"big_{len(outs)}.exr"
-                wall, stdout = timed([exe, "merge", *files[n], "-o", out, "--exr-compression", c]
+                wall, stdout = timed([exe, "merge", *files[(n, e)], "-o", out, "--exr-compression", c]
                                      + (extra if e == "this build" else []), tmp)
                 times[((n, c), e)].append((wall, CPU[0], *merge_times(stdout)))
                 outs.append(out)
@@ -267,7 +276,8 @@ def big_merge(a, tmp):
                 cols.append(f"{statistics.median(x[i] for x in b) / statistics.median(y[i] for y in t):.2f}x"
                             f" [{min(ratios):.2f}, {max(ratios):.2f}]")
             print(f"| {case[0]} | {case[1]} | " + " | ".join(cols) + " |")
-    print(f"\nOne shard file: " + ", ".join(f"{sizes[n]:,} bytes ({n} shards)" for n in a.merge_shards) + ".\n")
+    print(f"\nOne shard file: " + ", ".join(f"{sizes[(n, e)]:,} bytes ({n} shards, {e})" for n in a.merge_shards
+                                           for e, _ in exes) + ".\n")
 
 
 # The single render's EXR write (the writer the merge shares): a --merge-width x --merge-height render of
@@ -347,6 +357,8 @@ def main():
     p.add_argument("--merge-rounds", type=int, default=5)
     p.add_argument("--merge-shards", default="2,4", help="the shard counts of the large merge")
     p.add_argument("--merge-baseline", help="another pathtracer (e.g. main's): its merges alternate with --exe's")
+    p.add_argument("--baseline-shards", action="store_true",
+                   help="--merge-baseline renders its own shards (its film-state version differs from --exe's)")
     p.add_argument("--merge-compressions", default="zip", help="--exr-compression of the large merges, e.g. zip,none")
     p.add_argument("--merge-threads", type=int, default=0, help="--threads of --exe's merges (default: all)")
     p.add_argument("--render-write", action="store_true",
