@@ -4,6 +4,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <thread>
 #include <tuple>
 
 #include <CLI/CLI.hpp>
@@ -17,6 +18,7 @@
 #include "core/memory_stream.h"
 #include "core/parallel.h"
 #include "core/stopwatch.h"
+#include "imagelib/image_library.h"
 
 namespace pt {
 namespace {
@@ -162,11 +164,19 @@ bool merge_and_write(const MergeOptions& m, const std::vector<Input>& inputs, Sh
                      OutputStamps& stamps, std::string& phase, double times[4], std::string& error) {
   const auto t0 = Clock::now();
   const double cpu0 = process_cpu_seconds();
+  // The image module (OpenImageIO: ~260 libraries to bind, ~0.2 s) loads
+  // while the shards are added, instead of at the first write. A failure is
+  // reported by the write, which asks again (image_library: the same answer).
+  std::thread preload([&m] {
+    std::string ignored;
+    if (!m.outputs.empty()) image_library(ignored);
+  });
   LayeredImage layers;
   const bool bands = m.shard_out.empty();
   phase = bands ? "read, add and resolve" : "read and add";
   bool ok = (bands ? merge_bands(inputs, merger, layers, error) : add_films(inputs, merger, error)) &&
             merger.finish(error);
+  preload.join();
   times[0] = seconds_since(t0);
   times[1] = process_cpu_seconds() - cpu0;
   const auto t1 = Clock::now();

@@ -114,10 +114,15 @@ TEST_F(ResumeHostile, DamagedFilmStatesAreRefused) {
   // A sample count in the first pixel beyond the header's spp_done (the
   // sums are exact integers: any bits are some sum, none is non-finite).
   std::string body = good_.body;
-  const std::size_t first_count = body.size() - 8 * 6 * 88 + 80;  // 8x6 pixels of 88 bytes, no AOVs
-  const uint64_t many = 1000;
+  const std::size_t first_count = body.size() - 8 * 6 * 44 + 40;  // 8x6 records of 44 bytes, no AOVs
+  const uint32_t many = 1000;
   body.replace(first_count, sizeof many, reinterpret_cast<const char*>(&many), sizeof many);
   expect_refused(good_.magic + good_.header + body, "holds 1000 samples in pixel (0, 0)");
+  // A checkpoint of an older pathtracer (film state version 4), refused naming the version.
+  body = good_.body;
+  ASSERT_EQ(body.substr(0, 8), "PTFILM\r\n");
+  body[8] = 4;
+  expect_refused(good_.magic + good_.header + body, "film state version 4 is not read by this pathtracer");
 }
 
 TEST_F(ResumeHostile, CheckpointsOfAnotherSceneOrResolutionAreRefused) {

@@ -243,14 +243,17 @@ def big_merge(a, tmp):
                 times[((n, c), e)].append((wall, CPU[0], *merge_times(stdout)))
                 outs.append(out)
             exr[(n, c)] = os.path.getsize(os.path.join(tmp, outs[0]))
-            if len(outs) == 2 and not same_exr_bytes(*[os.path.join(tmp, o) for o in outs]):
+            # Shards of their own: the merged render times (summed over the shards) differ too.
+            timed_keys = ["pathtracer:renderTime"] if a.baseline_shards else []
+            if len(outs) == 2 and not same_exr_bytes(*[os.path.join(tmp, o) for o in outs], timed=timed_keys):
                 raise SystemExit(f"the merges of {n} shards ({c}) by the two builds differ")
         loads.append(load_average())
         print(f"merge round {r + 1}/{a.merge_rounds} done, load average {loads[-1]}", file=sys.stderr)
     print(f"Merge of a {a.merge_width}x{a.merge_height} frame with every AOV of the path integrator"
           f" ({ALL_AOVS}), shard files in the page cache; {a.merge_rounds} rounds"
           + (", the two builds alternating (which goes first alternates), every pair's EXRs the same bytes but"
-             " for their capDate"
+             " for their capDate" + (" and pathtracer:renderTime (each build merged shards it rendered)"
+                                      if a.baseline_shards else "")
              if len(exes) == 2 else "") + "; medians [smallest, largest]. Load average (1 min) after each round: "
           + ", ".join(x.split()[0] for x in loads[1:]) + ".\n")
     print("(\"Read and add\" is the merge's first phase: with the merged film, reading and adding (its write then"
