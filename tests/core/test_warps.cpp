@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "../render/chi2.h"
+#include "core/alias_table.h"
 #include "core/sampling.h"
 
 namespace pt {
@@ -152,6 +153,94 @@ TEST(Warps, Distribution1DDiscreteAndContinuous) {
     ASSERT_GT(f[cell], 0.0f);
     ASSERT_FLOAT_EQ(pdf, d.pdf(x));
   }
+}
+
+// Distribution1D inverts its CDF. Swept over a fine grid of u in order, the
+// sample never moves backwards, never lands in a zero cell, and each cell
+// receives a share of the grid equal to its probability (to the grid's step and
+// the CDF's float rounding): a search that picked a neighbouring cell would
+// break all three. The function has long runs of zeros, a spike holding most of
+// the mass (a sun in a sky) and many tiny cells.
+TEST(Warps, Distribution1DInversionIsMonotoneAndExact) {
+  for (const std::size_t n : {std::size_t{1}, std::size_t{3}, std::size_t{7}, std::size_t{64}, std::size_t{1000},
+                              std::size_t{1024}}) {
+    std::vector<float> f(n);
+    Rng rng(static_cast<uint64_t>(n));
+    for (std::size_t i = 0; i < n; ++i) f[i] = (i % 7 == 3) ? 0.0f : 1e-4f * rng.next_float();
+    for (std::size_t i = n / 3; i < n / 2; ++i) f[i] = 0.0f;
+    f[(2 * n) / 3] = static_cast<float>(n);  // the spike
+    const Distribution1D d(f);
+    const int grid = 1 << 20;
+    std::vector<int> hits(n, 0);
+    float last = 0.0f;
+    for (int g = 0; g < grid; ++g) {
+      const float u = (static_cast<float>(g) + 0.5f) / static_cast<float>(grid);
+      float pdf = 0.0f;
+      std::size_t cell = 0;
+      const float x = d.sample_continuous(u, &pdf, &cell);
+      ASSERT_GE(x, last) << "n " << n << ", u " << u;
+      ASSERT_GT(f[cell], 0.0f) << "n " << n << ", u " << u;
+      // x lies in its cell (at its far end when u rounds onto the next cell's CDF).
+      ASSERT_LE(static_cast<float>(cell), x * static_cast<float>(n));
+      ASSERT_GE(static_cast<float>(cell + 1), x * static_cast<float>(n));
+      ASSERT_EQ(cell, d.sample_discrete(u));
+      last = x;
+      ++hits[cell];
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      EXPECT_NEAR(hits[i] / static_cast<double>(grid), d.pmf(i), 2.0 / grid + 1e-6) << "n " << n << ", cell " << i;
+    // The ends of u's range, and what lies outside it, still find a cell.
+    EXPECT_LT(d.sample_discrete(0.0f), n);
+    EXPECT_LT(d.sample_discrete(kOneMinusEpsilon), n);
+    EXPECT_GT(f[d.sample_discrete(kOneMinusEpsilon)], 0.0f);
+    EXPECT_LT(d.sample_discrete(1.0f), n);
+    EXPECT_LT(d.sample_discrete(std::nanf("")), n);
+  }
+}
+
+// The alias table (core/alias_table.h): cells drawn in proportion to their
+// values (chi-square), never a zero cell, and what is left of u uniform on
+// [0, 1)^2 whichever cell was drawn (chi-square of each half of the remainder
+// over the draws of the spike and of the rest).
+TEST(Warps, AliasTableFollowsItsValuesAndLeavesAUniformRemainder) {
+  std::vector<float> f = {1, 0, 3, 0.5f, 0, 7, 0.01f, 2, 0, 0, 4, 0.3f};
+  const AliasTable t(f);
+  ASSERT_EQ(t.size(), f.size());
+  double sum = 0.0;
+  for (float v : f) sum += v;
+  for (std::size_t i = 0; i < f.size(); ++i) EXPECT_NEAR(t.pmf(i), f[i] / sum, 1e-7) << i;
+  constexpr int kBins = 16;
+  std::vector<double> cells(f.size(), 0.0), rest_spike(2 * kBins, 0.0), rest_other(2 * kBins, 0.0);
+  Rng rng(11);
+  const int n = 400000;
+  int spike = 0;
+  for (int k = 0; k < n; ++k) {
+    Vec2f rest;
+    const std::size_t c = t.sample({rng.next_float(), rng.next_float()}, rest);
+    ASSERT_LT(c, f.size());
+    ASSERT_GT(f[c], 0.0f) << "a zero cell was drawn";
+    ASSERT_TRUE(rest.x >= 0.0f && rest.x < 1.0f && rest.y >= 0.0f && rest.y < 1.0f);
+    cells[c] += 1.0;
+    std::vector<double>& r = c == 5 ? rest_spike : rest_other;
+    spike += c == 5;
+    r[static_cast<std::size_t>(rest.x * kBins)] += 1.0;
+    r[kBins + static_cast<std::size_t>(rest.y * kBins)] += 1.0;
+  }
+  std::vector<double> expected(f.size());
+  for (std::size_t i = 0; i < f.size(); ++i) expected[i] = n * t.pmf(i);
+  auto r = test::chi2_gof(cells, expected);
+  EXPECT_TRUE(r.passed) << r.message;
+  for (const auto* h : {&rest_spike, &rest_other}) {
+    const double draws = h == &rest_spike ? spike : n - spike;
+    for (int half = 0; half < 2; ++half) {
+      const std::vector<double> obs(h->begin() + half * kBins, h->begin() + (half + 1) * kBins);
+      r = test::chi2_gof(obs, std::vector<double>(kBins, draws / kBins));
+      EXPECT_TRUE(r.passed) << (h == &rest_spike ? "spike" : "others") << ", remainder " << half << ": " << r.message;
+    }
+  }
+  // All zero: uniform.
+  const AliasTable z(std::vector<float>{0, 0, 0, 0});
+  EXPECT_FLOAT_EQ(z.pmf(3), 0.25f);
 }
 
 TEST(Warps, AllZeroDistributionIsUniform) {
