@@ -41,11 +41,10 @@ constexpr uint64_t kRuntimeBytes = uint64_t{7} << 20;
 // and its place in the structure.
 constexpr uint64_t kBytesPerShape = 512;
 // A decoded texel (render/textures/texture.h: float RGB), and what the
-// environment map's sampling distribution adds per texel while it is built (its
-// alias table's entry, 12 bytes; the luminance table it is built from, 4; the
-// construction's probabilities in double and its work list, 12).
+// environment map's sampling distribution adds per texel (a Distribution1D per
+// row: the function and its CDF, 8 bytes; the luminance table it is built from, 4).
 constexpr uint64_t kTextureBytesPerTexel = 3 * sizeof(float);
-constexpr uint64_t kDistributionBytesPerTexel = 7 * sizeof(float);
+constexpr uint64_t kDistributionBytesPerTexel = 3 * sizeof(float);
 
 // A file header may claim any size: the sums stop at the largest value.
 uint64_t saturating_mul(uint64_t a, uint64_t b) {

@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include "../render/chi2.h"
-#include "core/alias_table.h"
 #include "core/sampling.h"
 
 namespace pt {
@@ -196,51 +195,6 @@ TEST(Warps, Distribution1DInversionIsMonotoneAndExact) {
     EXPECT_LT(d.sample_discrete(1.0f), n);
     EXPECT_LT(d.sample_discrete(std::nanf("")), n);
   }
-}
-
-// The alias table (core/alias_table.h): cells drawn in proportion to their
-// values (chi-square), never a zero cell, and what is left of u uniform on
-// [0, 1)^2 whichever cell was drawn (chi-square of each half of the remainder
-// over the draws of the spike and of the rest).
-TEST(Warps, AliasTableFollowsItsValuesAndLeavesAUniformRemainder) {
-  std::vector<float> f = {1, 0, 3, 0.5f, 0, 7, 0.01f, 2, 0, 0, 4, 0.3f};
-  const AliasTable t(f);
-  ASSERT_EQ(t.size(), f.size());
-  double sum = 0.0;
-  for (float v : f) sum += v;
-  for (std::size_t i = 0; i < f.size(); ++i) EXPECT_NEAR(t.pmf(i), f[i] / sum, 1e-7) << i;
-  constexpr int kBins = 16;
-  std::vector<double> cells(f.size(), 0.0), rest_spike(2 * kBins, 0.0), rest_other(2 * kBins, 0.0);
-  Rng rng(11);
-  const int n = 400000;
-  int spike = 0;
-  for (int k = 0; k < n; ++k) {
-    Vec2f rest;
-    const std::size_t c = t.sample({rng.next_float(), rng.next_float()}, rest);
-    ASSERT_LT(c, f.size());
-    ASSERT_GT(f[c], 0.0f) << "a zero cell was drawn";
-    ASSERT_TRUE(rest.x >= 0.0f && rest.x < 1.0f && rest.y >= 0.0f && rest.y < 1.0f);
-    cells[c] += 1.0;
-    std::vector<double>& r = c == 5 ? rest_spike : rest_other;
-    spike += c == 5;
-    r[static_cast<std::size_t>(rest.x * kBins)] += 1.0;
-    r[kBins + static_cast<std::size_t>(rest.y * kBins)] += 1.0;
-  }
-  std::vector<double> expected(f.size());
-  for (std::size_t i = 0; i < f.size(); ++i) expected[i] = n * t.pmf(i);
-  auto r = test::chi2_gof(cells, expected);
-  EXPECT_TRUE(r.passed) << r.message;
-  for (const auto* h : {&rest_spike, &rest_other}) {
-    const double draws = h == &rest_spike ? spike : n - spike;
-    for (int half = 0; half < 2; ++half) {
-      const std::vector<double> obs(h->begin() + half * kBins, h->begin() + (half + 1) * kBins);
-      r = test::chi2_gof(obs, std::vector<double>(kBins, draws / kBins));
-      EXPECT_TRUE(r.passed) << (h == &rest_spike ? "spike" : "others") << ", remainder " << half << ": " << r.message;
-    }
-  }
-  // All zero: uniform.
-  const AliasTable z(std::vector<float>{0, 0, 0, 0});
-  EXPECT_FLOAT_EQ(z.pmf(3), 0.25f);
 }
 
 TEST(Warps, AllZeroDistributionIsUniform) {

@@ -35,7 +35,7 @@ EnvironmentMap::EnvironmentMap(Texture image, Vec3f up, float rotation_deg, floa
     }
     solid_angle += static_cast<double>(sin_theta) * w;
   }
-  texels_ = AliasTable(f);
+  distribution_ = Distribution2D(f, w, h);
   mean_luminance_ = solid_angle > 0.0 ? static_cast<float>(weighted / solid_angle) * intensity_ : 0.0f;
 }
 
@@ -115,31 +115,18 @@ Vec3f EnvironmentMap::uv_to_direction(Vec2f uv) const {
   return frame_.from_local({sin_theta * std::sin(psi), sin_theta * std::cos(psi), std::cos(theta)});
 }
 
-std::size_t EnvironmentMap::texel_index(Vec2f uv) const {
-  const int w = image_.width(), h = image_.height();
-  const int x = std::max(std::min(static_cast<int>(uv.x * static_cast<float>(w)), w - 1), 0);
-  const int y = std::max(std::min(static_cast<int>(uv.y * static_cast<float>(h)), h - 1), 0);
-  return static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
-}
-
 const RGB& EnvironmentMap::texel(Vec2f uv) const {
-  const std::size_t i = texel_index(uv);
-  const std::size_t w = static_cast<std::size_t>(image_.width());
-  return image_.texel(static_cast<int>(i % w), static_cast<int>(i / w));
+  const int w = image_.width(), h = image_.height();
+  const int x = std::min(static_cast<int>(uv.x * static_cast<float>(w)), w - 1);
+  const int y = std::min(static_cast<int>(uv.y * static_cast<float>(h)), h - 1);
+  return image_.texel(std::max(x, 0), std::max(y, 0));
 }
 
 RGB EnvironmentMap::radiance(Vec3f dir) const { return texel(direction_to_uv(normalize(dir))) * intensity_; }
 
 bool EnvironmentMap::sample(Vec2f u, LightSample& s) const {
-  if (texels_.size() == 0) return false;
-  Vec2f in;  // the point inside the texel
-  const std::size_t i = texels_.sample(u, in);
-  const int w = image_.width(), h = image_.height();
-  const int x = static_cast<int>(i % static_cast<std::size_t>(w)), y = static_cast<int>(i / static_cast<std::size_t>(w));
-  const Vec2f uv(std::min((static_cast<float>(x) + in.x) / static_cast<float>(w), kOneMinusEpsilon),
-                 std::min((static_cast<float>(y) + in.y) / static_cast<float>(h), kOneMinusEpsilon));
-  // The density in image coordinates: the texel's probability over its area 1 / (w h).
-  const float pdf_uv = texels_.pmf(i) * static_cast<float>(texels_.size());
+  float pdf_uv = 0.0f;
+  const Vec2f uv = distribution_.sample(u, &pdf_uv);
   const float sin_theta = std::sin(kPi * uv.y);
   if (!(pdf_uv > 0.0f) || !(sin_theta > 0.0f)) return false;
   s.wi = uv_to_direction(uv);
@@ -151,11 +138,9 @@ bool EnvironmentMap::sample(Vec2f u, LightSample& s) const {
 float EnvironmentMap::pdf(Vec3f dir) const { return pdf_at(direction_to_uv(dir)); }
 
 float EnvironmentMap::pdf_at(Vec2f uv) const {
-  if (!(uv.x >= 0.0f && uv.x < 1.0f && uv.y >= 0.0f && uv.y < 1.0f)) return 0.0f;
   const float sin_theta = std::sin(kPi * uv.y);
   if (!(sin_theta > 0.0f)) return 0.0f;
-  const float pdf_uv = texels_.pmf(texel_index(uv)) * static_cast<float>(texels_.size());
-  return pdf_uv / (2.0f * kPi * kPi * sin_theta);
+  return distribution_.pdf(uv) / (2.0f * kPi * kPi * sin_theta);
 }
 
 float EnvironmentMap::power(float scene_radius) const {

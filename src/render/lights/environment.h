@@ -9,18 +9,14 @@
 // rotation turns the environment counter-clockwise seen from above.
 //
 // Lookups are nearest-texel (the radiance is piecewise constant over texels),
-// so the sampling density, a piecewise-constant distribution over texels
+// so the sampling density, a 2D piecewise-constant distribution over texels
 // weighted by luminance * sin(theta), is exactly proportional to the radiance's
 // luminance wherever it is non-zero (pdf(d) = pdf(u, v) / (2 pi^2 sin theta)).
-// A texel is chosen by an alias table over all texels (one entry read per
-// sample, which also holds the texel's probability for pdf()), then a point
-// uniformly inside it.
 #pragma once
 
 #include <memory>
 #include <string>
 
-#include "core/alias_table.h"
 #include "core/sampling.h"
 #include "render/lights/light.h"
 #include "render/textures/texture.h"
@@ -61,14 +57,12 @@ class EnvironmentMap {
 
  private:
   const RGB& texel(Vec2f uv) const;
-  // The texel (x, y) holding image coordinates uv, as y * width + x.
-  std::size_t texel_index(Vec2f uv) const;
 
   Texture image_;
   Frame frame_;
   float u_offset_;
   float intensity_;
-  AliasTable texels_;  // the texels by luminance * sin(theta)
+  Distribution2D distribution_;
   float mean_luminance_ = 0.0f;
 };
 
