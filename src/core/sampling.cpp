@@ -143,67 +143,36 @@ float spherical_phi(Vec3f v) {
 }
 
 // ---------------------------------------------------------------- Distribution1D
-Distribution1D::Distribution1D(const std::vector<float>& f) : cells_(f.size() + 1), n_(f.size()) {
-  const std::size_t n = n_;
+Distribution1D::Distribution1D(const std::vector<float>& f) : func_(f), cdf_(f.size() + 1) {
+  const std::size_t n = func_.size();
+  for (float& v : func_) v = (v > 0.0f && std::isfinite(v)) ? v : 0.0f;
   std::vector<double> cdf(n + 1, 0.0);
-  for (std::size_t i = 0; i < n; ++i) {
-    const float v = (f[i] > 0.0f && std::isfinite(f[i])) ? f[i] : 0.0f;
-    cells_[i].func = v;
-    cdf[i + 1] = cdf[i] + static_cast<double>(v) / static_cast<double>(n);
-  }
-  cells_[n].func = 0.0f;
+  for (std::size_t i = 0; i < n; ++i) cdf[i + 1] = cdf[i] + static_cast<double>(func_[i]) / static_cast<double>(n);
   const double total = n > 0 ? cdf[n] : 0.0;
   integral_ = static_cast<float>(total);
   for (std::size_t i = 0; i <= n; ++i) {
     const double c = total > 0.0 ? cdf[i] / total : static_cast<double>(i) / static_cast<double>(std::max<std::size_t>(n, 1));
-    cells_[i].cdf = static_cast<float>(c);
+    cdf_[i] = static_cast<float>(c);
   }
-  if (n > 0) cells_[n].cdf = 1.0f;
-  // The guide: K steps of u (a power of two, so that k / K and u * K are exact).
-  const std::size_t steps = std::bit_ceil(std::max<std::size_t>(n / 4, 1));
-  guide_scale_ = static_cast<float>(steps);
-  guide_.resize(steps + 1);
-  std::size_t i = 0;
-  for (std::size_t k = 0; k <= steps; ++k) {
-    const float t = static_cast<float>(k) / guide_scale_;
-    while (i < n && !(t < cells_[i].cdf)) ++i;
-    guide_[k] = static_cast<uint32_t>(i);
-  }
+  if (n > 0) cdf_[n] = 1.0f;
 }
 
 std::size_t Distribution1D::find_cell(float u) const {
-  // One before the first i in [0, n) with u < cdf (std::upper_bound); for u in
-  // step k of the guide that i lies in [guide_[k], guide_[k + 1]]. Anything
-  // else (u outside [0, 1), NaN) searches everything.
-  std::size_t lo = 0, hi = n_;
-  if (u >= 0.0f && u < 1.0f) {
-    const std::size_t k = static_cast<std::size_t>(u * guide_scale_);
-    lo = guide_[k];
-    hi = guide_[k + 1];
-  }
-  const Cell* first = cells_.data() + lo;
-  for (std::size_t len = hi - lo; len > 0;) {
-    const std::size_t half = len / 2;
-    if (u < first[half].cdf) {
-      len = half;
-    } else {
-      first += half + 1;
-      len -= half + 1;
-    }
-  }
-  const std::size_t i = static_cast<std::size_t>(first - cells_.data());
-  return i == 0 ? 0 : std::min(i - 1, n_ - 1);
+  // The last i in [0, n) with cdf_[i] <= u: a cell of non-zero width containing u.
+  const auto it = std::upper_bound(cdf_.begin(), cdf_.end() - 1, u);
+  const std::size_t i = static_cast<std::size_t>(it - cdf_.begin());
+  return i == 0 ? 0 : std::min(i - 1, func_.size() - 1);
 }
 
 float Distribution1D::sample_continuous(float u, float* pdf, std::size_t* cell) const {
+  const std::size_t n = func_.size();
   const std::size_t o = find_cell(u);
-  const Cell& c = cells_[o];
-  float du = u - c.cdf;
-  const float width = cells_[o + 1].cdf - c.cdf;
+  float du = u - cdf_[o];
+  const float width = cdf_[o + 1] - cdf_[o];
   if (width > 0.0f) du /= width;
-  if (pdf) *pdf = integral_ > 0.0f ? c.func / integral_ : 1.0f;
+  if (pdf) *pdf = integral_ > 0.0f ? func_[o] / integral_ : 1.0f;
   if (cell) *cell = o;
-  const float x = (static_cast<float>(o) + std::clamp(du, 0.0f, 1.0f)) / static_cast<float>(n_);
+  const float x = (static_cast<float>(o) + std::clamp(du, 0.0f, 1.0f)) / static_cast<float>(n);
   return std::min(x, kOneMinusEpsilon);
 }
 
@@ -214,15 +183,15 @@ std::size_t Distribution1D::sample_discrete(float u, float* pmf_out) const {
 }
 
 float Distribution1D::pmf(std::size_t i) const {
-  if (i >= n_) return 0.0f;
-  const float n = static_cast<float>(n_);
-  return integral_ > 0.0f ? cells_[i].func / (integral_ * n) : 1.0f / n;
+  if (i >= func_.size()) return 0.0f;
+  const float n = static_cast<float>(func_.size());
+  return integral_ > 0.0f ? func_[i] / (integral_ * n) : 1.0f / n;
 }
 
 float Distribution1D::pdf(float x) const {
-  if (!(x >= 0.0f && x < 1.0f) || n_ == 0) return 0.0f;
-  const std::size_t i = std::min(static_cast<std::size_t>(x * static_cast<float>(n_)), n_ - 1);
-  return integral_ > 0.0f ? cells_[i].func / integral_ : 1.0f;
+  if (!(x >= 0.0f && x < 1.0f) || func_.empty()) return 0.0f;
+  const std::size_t i = std::min(static_cast<std::size_t>(x * static_cast<float>(func_.size())), func_.size() - 1);
+  return integral_ > 0.0f ? func_[i] / integral_ : 1.0f;
 }
 
 // ---------------------------------------------------------------- Distribution2D

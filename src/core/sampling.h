@@ -9,7 +9,6 @@
 #pragma once
 
 #include <cstddef>
-#include <cstdint>
 #include <vector>
 
 #include "core/math.h"
@@ -97,18 +96,12 @@ float spherical_phi(Vec3f v);
 // proportional to the given non-negative function values (pbrt's
 // PiecewiseConstant1D). The CDF is accumulated in double. If every value is
 // zero the density is uniform (and integral() is 0).
-//
-// Sampling inverts the CDF. A guide table (Chen and Asau's cutpoints: for each
-// of K = n / 4 (a power of two) equal steps of u, the first cell whose CDF
-// exceeds the step) narrows the search to the few cells of u's step; the cell
-// found is the one a binary search over the whole CDF finds. Each cell keeps its
-// CDF and its value side by side.
 class Distribution1D {
  public:
   Distribution1D() = default;
   explicit Distribution1D(const std::vector<float>& f);
 
-  std::size_t size() const { return n_; }
+  std::size_t size() const { return func_.size(); }
   // The integral of the function over [0, 1) (sum of values / n).
   float integral() const { return integral_; }
 
@@ -122,16 +115,10 @@ class Distribution1D {
   float pdf(float x) const;
 
  private:
-  struct Cell {
-    float cdf;   // the CDF at the cell's start (cells_[n].cdf = 1)
-    float func;  // the cell's (clamped) function value (cells_[n].func = 0)
-  };
   std::size_t find_cell(float u) const;
 
-  std::vector<Cell> cells_;       // size n + 1
-  std::vector<uint32_t> guide_;   // size K + 1: guide_[k] = first i < n with cdf > k / K, else n
-  float guide_scale_ = 0.0f;      // K
-  std::size_t n_ = 0;
+  std::vector<float> func_;
+  std::vector<float> cdf_;  // size n + 1, cdf_[0] = 0, cdf_[n] = 1
   float integral_ = 0.0f;
 };
 
