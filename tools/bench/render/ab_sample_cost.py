@@ -14,7 +14,7 @@ r + 1), alternating which goes first; each render is timed by the renderer's
 own run record (`performance.render_cpu_seconds`: the render phase's CPU time,
 every thread, so that the other jobs on a shared machine do not count) and
 measured with pt-imgerr against the reference (by default the committed
-converged image of the Cornell/Sponza peers comparison). The two renders of a
+converged image of the Sponza peers comparison). The two renders of a
 round are also compared pixel for pixel (`idiff -fail 0`): a change that
 claims to be exact must give identical images, round after round.
 
