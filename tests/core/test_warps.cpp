@@ -154,6 +154,49 @@ TEST(Warps, Distribution1DDiscreteAndContinuous) {
   }
 }
 
+// Distribution1D inverts its CDF. Swept over a fine grid of u in order, the
+// sample never moves backwards, never lands in a zero cell, and each cell
+// receives a share of the grid equal to its probability (to the grid's step and
+// the CDF's float rounding): a search that picked a neighbouring cell would
+// break all three. The function has long runs of zeros, a spike holding most of
+// the mass (a sun in a sky) and many tiny cells.
+TEST(Warps, Distribution1DInversionIsMonotoneAndExact) {
+  for (const std::size_t n : {std::size_t{1}, std::size_t{3}, std::size_t{7}, std::size_t{64}, std::size_t{1000},
+                              std::size_t{1024}}) {
+    std::vector<float> f(n);
+    Rng rng(static_cast<uint64_t>(n));
+    for (std::size_t i = 0; i < n; ++i) f[i] = (i % 7 == 3) ? 0.0f : 1e-4f * rng.next_float();
+    for (std::size_t i = n / 3; i < n / 2; ++i) f[i] = 0.0f;
+    f[(2 * n) / 3] = static_cast<float>(n);  // the spike
+    const Distribution1D d(f);
+    const int grid = 1 << 20;
+    std::vector<int> hits(n, 0);
+    float last = 0.0f;
+    for (int g = 0; g < grid; ++g) {
+      const float u = (static_cast<float>(g) + 0.5f) / static_cast<float>(grid);
+      float pdf = 0.0f;
+      std::size_t cell = 0;
+      const float x = d.sample_continuous(u, &pdf, &cell);
+      ASSERT_GE(x, last) << "n " << n << ", u " << u;
+      ASSERT_GT(f[cell], 0.0f) << "n " << n << ", u " << u;
+      // x lies in its cell (at its far end when u rounds onto the next cell's CDF).
+      ASSERT_LE(static_cast<float>(cell), x * static_cast<float>(n));
+      ASSERT_GE(static_cast<float>(cell + 1), x * static_cast<float>(n));
+      ASSERT_EQ(cell, d.sample_discrete(u));
+      last = x;
+      ++hits[cell];
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      EXPECT_NEAR(hits[i] / static_cast<double>(grid), d.pmf(i), 2.0 / grid + 1e-6) << "n " << n << ", cell " << i;
+    // The ends of u's range, and what lies outside it, still find a cell.
+    EXPECT_LT(d.sample_discrete(0.0f), n);
+    EXPECT_LT(d.sample_discrete(kOneMinusEpsilon), n);
+    EXPECT_GT(f[d.sample_discrete(kOneMinusEpsilon)], 0.0f);
+    EXPECT_LT(d.sample_discrete(1.0f), n);
+    EXPECT_LT(d.sample_discrete(std::nanf("")), n);
+  }
+}
+
 TEST(Warps, AllZeroDistributionIsUniform) {
   const Distribution1D d(std::vector<float>{0, 0, 0, 0});
   EXPECT_FLOAT_EQ(d.pmf(2), 0.25f);
