@@ -15,7 +15,6 @@
 #include <system_error>
 
 #include "core/file_access.h"
-#include "core/heap.h"
 #include "scene/asset_internal.h"
 #include "scene/gltf_json.h"
 #include "scene/mtl.h"
@@ -233,9 +232,6 @@ bool read_asset(const std::string& resolved, const std::string& written, const S
   std::vector<std::string> opened;
   const bool read = out.format == AssetFormat::Obj ? read_obj_asset(where, written, out, diag, opened)
                                                    : read_with_assimp(written, where, out, diag, opened);
-  // Assimp's code and constants, touched by this import, leave the resident
-  // set (core/heap.h): they would otherwise stay under the build's peak.
-  if (out.format != AssetFormat::Obj) release_library_pages({"libassimp.so", "libdraco.so"});
   if (!read) return false;
   finish(out, diag, std::move(opened));
   if (out.placements.empty()) {
