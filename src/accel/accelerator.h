@@ -40,6 +40,7 @@ struct AccelStats {
   std::string backend;          // "embree 3.13.5 (AVX2)" etc.
   double build_seconds = 0;
   std::size_t memory_bytes = 0; // acceleration-structure memory, best estimate
+  std::size_t build_peak_bytes = 0; // the most the build held at once (Embree's monitor; 0: not known)
   std::size_t primitive_count = 0;
 };
 

@@ -54,6 +54,7 @@ RunRecord run_record(const Options& o, const Job& job, const RenderScene& scene,
   const AccelStats stats = scene.accel->stats();
   record.accel_backend = stats.backend;
   record.accel_memory_bytes = stats.memory_bytes;
+  record.accel_build_peak_bytes = stats.build_peak_bytes;
   record.primitive_count = stats.primitive_count;
   record.timings = phase_timings(f.parse_s, f.build_s, f.render_s, f.write_s, job.desc, scene);
   record.pixel_samples = f.samples;

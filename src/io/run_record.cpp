@@ -33,6 +33,7 @@ std::string run_record_json(const RunRecord& r) {
                     {"partial", r.partial}, {"signal", r.signal}}},
       {"threads", r.threads},
       {"accel", {{"backend", r.accel_backend}, {"memory_bytes", r.accel_memory_bytes},
+                 {"build_peak_bytes", r.accel_build_peak_bytes},
                  {"primitive_count", r.primitive_count}, {"build_seconds", t.accel_build}}},
       {"timings", {{"parse", t.parse}, {"mesh_load", t.mesh_load}, {"texture_load", t.texture_load},
                    {"scene_build", t.scene_build}, {"accel_build", t.accel_build}, {"render", t.render},

@@ -64,6 +64,7 @@ struct RunRecord {
   int threads = 0;
   std::string accel_backend;   // AccelStats::backend
   std::size_t accel_memory_bytes = 0;
+  std::size_t accel_build_peak_bytes = 0;  // AccelStats::build_peak_bytes (0: not known)
   std::size_t primitive_count = 0;
   PhaseTimings timings;
   int64_t pixel_samples = 0;   // camera samples rendered by this run

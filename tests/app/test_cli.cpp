@@ -156,6 +156,19 @@ TEST_F(Cli, ReportRecordsSettingsAndPhases) {
   EXPECT_NEAR(j["timings"]["total"].get<double>(), sum, 1e-9);
 }
 
+// Embree's memory monitor gives the structure's bytes and its build's peak
+// (primitive references beside the structure); our BVH records no peak (0).
+TEST_F(Cli, ReportRecordsEmbreesBuildPeak) {
+  const Result r = run("phong.json -o out.ppm --accel=embree --report embree.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json e = nlohmann::json::parse(slurp(path("embree.json")));
+  const auto bytes = e["accel"]["memory_bytes"].get<uint64_t>();
+  EXPECT_GT(bytes, 0u);
+  EXPECT_GE(e["accel"]["build_peak_bytes"].get<uint64_t>(), bytes);
+  ASSERT_EQ(run("phong.json -o out.ppm --accel=bvh --report bvh.json").status, 0);
+  EXPECT_EQ(nlohmann::json::parse(slurp(path("bvh.json")))["accel"]["build_peak_bytes"], 0);
+}
+
 TEST_F(Cli, PathIntegratorOptionsAreUsedAndRecorded) {
   // The CGR rendermode "pathtracer" selects the path integrator.
   write("path.json", cgr_scene("pathtracer"));

@@ -161,12 +161,15 @@ bool report_device_errors(const Device& device, Diagnostics& diag) {
 // A scene with the flags every scene of this backend has. ROBUST: the
 // traversal avoids accuracy-reducing shortcuts (node boxes touched only at a
 // corner, where a ray aimed at a mesh vertex passes), and triangles are tested
-// with Embree's Plücker test, watertight along shared edges. HIGH: spatial
-// splits for triangles, the best tree Embree builds. COMPACT, only for scenes
-// of kEmbreeCompactTriangles or more: 4-wide nodes over indexed triangles (leaves
-// refer to the shared vertex buffer instead of copying the vertices), which
-// halves the build's peak memory (10M triangles: 53 instead of 107 bytes a
-// triangle above the process's baseline, docs/bench/scale.md).
+// with Embree's Plücker test, watertight along shared edges. HIGH: the best
+// build quality (with ROBUST, Embree 3.13 builds its binned SAH tree, not the
+// spatial-split one). COMPACT, only for scenes of kEmbreeCompactTriangles or
+// more: 4-wide nodes over indexed triangles (leaves refer to the shared vertex
+// buffer instead of copying the vertices), which halves the build's peak
+// memory (10M triangles: 53 instead of 107 bytes a triangle above the
+// process's baseline, docs/bench/scale.md). Embree's device option
+// tri_accel=bvh8.triangle4i would give 8-wide nodes over indexed triangles,
+// but with its non-robust test (rays aimed at vertices pass; docs/geometry.md).
 RTCScene EmbreeAccelerator::new_scene(Diagnostics& diag) {
   RTCScene scene = rtcNewScene(device_.get());
   if (scene == nullptr) {
@@ -277,6 +280,7 @@ bool EmbreeAccelerator::build(const SceneGeometry& geometry, WorkerPool& pool, D
   stats_.backend = device_.description();
   stats_.build_seconds = std::chrono::duration<double>(stop - start).count();
   stats_.memory_bytes = device_.bytes_in_use();
+  stats_.build_peak_bytes = device_.peak_bytes();
   for (const Shape& shape : geometry.shapes) stats_.primitive_count += primitive_count(shape);
   return true;
 }

@@ -1,5 +1,6 @@
 #include "accel/embree/embree_device.h"
 
+#include <cstdlib>
 #include <string>
 
 namespace pt::embree {
@@ -40,7 +41,8 @@ std::string isa_name(RTCDevice device) {
 }  // namespace
 
 Device::Device() : state_(std::make_unique<State>()) {
-  device_ = rtcNewDevice(nullptr);
+  const char* config = std::getenv("PT_EMBREE_CONFIG");
+  device_ = rtcNewDevice(config != nullptr && *config != '\0' ? config : nullptr);
   if (device_ == nullptr) {
     const RTCError code = rtcGetDeviceError(nullptr);
     state_->errors.push_back(std::string("cannot create an Embree device: ") + error_name(code));
@@ -63,7 +65,11 @@ void Device::on_error(void* user, RTCError code, const char* message) {
 }
 
 bool Device::on_memory(void* user, ssize_t bytes, bool /*post*/) {
-  static_cast<State*>(user)->bytes.fetch_add(bytes, std::memory_order_relaxed);
+  auto* state = static_cast<State*>(user);
+  const long long now = state->bytes.fetch_add(bytes, std::memory_order_relaxed) + bytes;
+  long long peak = state->peak.load(std::memory_order_relaxed);
+  while (now > peak && !state->peak.compare_exchange_weak(peak, now, std::memory_order_relaxed)) {
+  }
   return true;  // never refuse an allocation
 }
 
@@ -79,6 +85,11 @@ bool Device::has_errors() const {
 
 std::size_t Device::bytes_in_use() const {
   const long long b = state_->bytes.load(std::memory_order_relaxed);
+  return b > 0 ? static_cast<std::size_t>(b) : 0;
+}
+
+std::size_t Device::peak_bytes() const {
+  const long long b = state_->peak.load(std::memory_order_relaxed);
   return b > 0 ? static_cast<std::size_t>(b) : 0;
 }
 

@@ -207,13 +207,14 @@ def make_inputs(a):
     return inputs
 
 
-def run(a, scene, accel, build=None):
+def run(a, scene, accel, build=None, env=None):
     report = os.path.join(a.work, "report.json")
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.monotonic()
     p = subprocess.run([os.path.join(build or a.build, "pathtracer"), scene, "-o", os.path.join(a.work, "out." + a.image),
                         "--width", "16", "--height", "16", "--spp", "1", "--threads", str(a.threads),
-                        "--accel", accel, "--report", report], capture_output=True, text=True)
+                        "--accel", accel, "--report", report], capture_output=True, text=True,
+                       env=dict(os.environ, **(env or {})))
     wall = time.monotonic() - start
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if p.returncode != 0:
@@ -228,6 +229,7 @@ def run(a, scene, accel, build=None):
             # The peak before the acceleration structure is built (the memory pre-flight's reading).
             "load_peak_bytes": r["memory"].get("estimate_parts", {}).get("peak_so_far"),
             "accel_memory_bytes": r["accel"]["memory_bytes"],
+            "accel_build_peak_bytes": r["accel"].get("build_peak_bytes", 0),
             "primitives": r["accel"]["primitive_count"], "backend": r["accel"]["backend"]}
 
 
@@ -264,6 +266,10 @@ def main():
     p.add_argument("--note", default="")
     p.add_argument("--obj-triangles", type=int, default=1_000_000)
     p.add_argument("--compare", help="another build folder: every run is made with it and with --build, back to back")
+    p.add_argument("--variant", action="append", nargs="+", metavar="LABEL BUILD [ENV=VALUE]",
+                   help="a build folder and environment to compare (repeatable): every run is made with each "
+                        "variant back to back, e.g. --variant fast build --variant 4i build "
+                        "PT_EMBREE_CONFIG=tri_accel=bvh8.triangle4i")
     # ppm: no image module is loaded (docs/architecture.md), so the baseline is the bare process
     # (~17 MiB, not ~135) and a transient of loading (a course file's JSON tree) is not hidden
     # under the module's pages, which an EXR run maps only after the scene is loaded.
@@ -272,7 +278,10 @@ def main():
     a.inputs = a.inputs.split(",")
     accels = a.accel.split(",")
     inputs = make_inputs(a)
+    a.variants = [(v[0], v[1], dict(e.split("=", 1) for e in v[2:])) for v in (a.variant or [])]
     if a.compare:
+        a.variants = [("A", a.compare, {}), ("B", a.build, {})]
+    if a.variants:
         return compare(a, inputs, accels)
     load_before = load_average()
     runs = {(name, accel): [] for name in inputs for accel in accels}
@@ -325,45 +334,54 @@ def main():
 
 
 def compare(a, inputs, accels):
-    """Each input, backend and round with both builds back to back; the medians side by side."""
-    builds = [("A", a.compare), ("B", a.build)]
-    runs = {(n, acc, b): [] for n in inputs for acc in accels for b, _ in builds}
+    """Each input, backend and round with every variant back to back; the medians side by side."""
+    builds = a.variants
+    labels = [b[0] for b in builds]
+    runs = {(n, acc, b): [] for n in inputs for acc in accels for b in labels}
     for _ in range(a.runs):
         for name, spec in inputs.items():
             for accel in accels:
-                for label, build in builds:
-                    r = run(a, spec["scene"], accel, build)
+                for label, build, env in builds:
+                    r = run(a, spec["scene"], accel, build, env)
                     runs[(name, accel, label)].append(r)
                     print(f"{label} {name} {accel}: load+build {r['load_build_seconds']:.2f} s (mesh "
                           f"{r['phases']['mesh_load']:.2f}), cpu {r['process_cpu_seconds']:.2f} s, "
                           f"peak {r['peak_rss_bytes'] / 2**20:.0f} MiB", flush=True)
     med = lambda rs, f: statistics.median(f(x) for x in rs)
-    out = [f"A = {a.compare}, B = {a.build}; {a.runs} rounds, each pair back to back; load average "
-           f"{load_average()}", "",
-           "| input | backend | triangles | above baseline (B/triangle) A -> B | loading only (B/triangle) A -> B | "
-           "peak (MiB) A -> B | load + build (s) A -> B | CPU (s) A -> B |", "|---|---|---|---|---|---|---|---|"]
+    arrow = " -> ".join(labels)
+    out = ["; ".join(f"{label} = {build}" + "".join(f" {k}={v}" for k, v in env.items()) for label, build, env in builds)
+           + f"; {a.runs} rounds, the variants back to back; load average {load_average()}", "",
+           f"| input | backend | triangles | above baseline (B/triangle) {arrow} | loading only (B/triangle) {arrow} | "
+           f"peak (MiB) {arrow} | accel structure / its build's peak (B/triangle, the backend's count) {arrow} | "
+           f"CPU (s) {arrow} |", "|---|---|---|---|---|---|---|---|"]
     for name, spec in inputs.items():
         if name == "baseline":
             continue
         for accel in accels:
             cells = []
-            for label, _ in builds:
+            for label in labels:
                 rs = runs[(name, accel, label)]
-                base = med(runs[("baseline", accel, label)], lambda x: x["peak_rss_bytes"])
+                base = runs[("baseline", accel, label)]
                 tris = spec["triangles"] or rs[0]["primitives"]
                 peak = med(rs, lambda x: x["peak_rss_bytes"])
-                load = med(rs, lambda x: x["load_peak_bytes"]) - med(runs[("baseline", accel, label)],
-                                                                      lambda x: x["load_peak_bytes"])
-                cells.append(((peak - base) / tris, peak / 2**20, med(rs, lambda x: x["load_build_seconds"]),
-                              ", ".join(f"{x['process_cpu_seconds']:.2f}" for x in rs), tris, load / tris))
-            (pa, ma, la, ca, tris, da), (pb, mb, lb, cb, _, db) = cells
-            out.append(f"| {name} | {accel} | {tris:,} | {pa:.0f} -> {pb:.0f} | {da:.0f} -> {db:.0f} | "
-                       f"{ma:.0f} -> {mb:.0f} | {la:.2f} -> {lb:.2f} | {ca} -> {cb} |")
+                load = med(rs, lambda x: x["load_peak_bytes"]) - med(base, lambda x: x["load_peak_bytes"])
+                cells.append({"above": (peak - base_peak(base)) / tris, "peak": peak / 2**20, "load": load / tris,
+                              "accel": rs[0]["accel_memory_bytes"] / tris,
+                              "accel_peak": rs[0].get("accel_build_peak_bytes", 0) / tris,
+                              "cpu": ", ".join(f"{x['process_cpu_seconds']:.2f}" for x in rs), "tris": tris})
+            col = lambda fmt: " -> ".join(fmt.format(**c) for c in cells)
+            out.append(f"| {name} | {accel} | {cells[0]['tris']:,} | {col('{above:.0f}')} | {col('{load:.0f}')} | "
+                       f"{col('{peak:.1f}')} | {col('{accel:.0f} / {accel_peak:.0f}')} | {col('{cpu}')} |")
     print("\n".join(out))
     if a.json:
         with open(a.json, "w") as f:
-            json.dump({"command": " ".join(sys.argv), "runs": {"|".join(k): v for k, v in runs.items()},
+            json.dump({"command": " ".join(sys.argv), "variants": builds, "load_average_end": load_average(),
+                       "runs": {"|".join(k): v for k, v in runs.items()}, "table": out,
                        "machine_lscpu": lscpu()}, f, indent=2)
+
+
+def base_peak(rs):
+    return statistics.median(x["peak_rss_bytes"] for x in rs)
 
 
 def markdown(rec):
