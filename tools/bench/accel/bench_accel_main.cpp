@@ -157,6 +157,8 @@ bool measure(const BenchScene& scene, const Options& o, int all_threads, SceneRe
     if (!reference || !bvh) return false;
     rays = make_ray_sets(scene, *reference, pool);
     r.tree = *bvh::tree_stats(*bvh);
+    r.bvh_camera_work = count_work(*bvh, rays.camera.rays, pool);
+    r.bvh_diffuse_work = count_work(*bvh, rays.diffuse.rays, pool);
     r.check = cross_check(*reference, *bvh, scene.geometry, rays, pool);
   }
   r.camera_rays = rays.camera.rays.size();
