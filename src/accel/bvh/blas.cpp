@@ -5,7 +5,6 @@
 
 #include <tbb/parallel_for.h>
 
-#include "accel/bvh/presplit.h"
 #include "core/function_ref.h"
 
 namespace pt::bvh {
@@ -116,20 +115,6 @@ void fill_blocks(const TriangleMesh& mesh, const uint32_t* prims, uint32_t count
   }
 }
 
-// A leaf holding several pieces of one pre-split triangle (presplit.h) keeps
-// it once, at its first place.
-void store_once(BuildTree& tree) {
-  tbb::parallel_for(std::size_t{0}, tree.leaves.size(), [&](std::size_t l) {
-    BuildLeaf& leaf = tree.leaves[l];
-    uint32_t* ids = tree.prims.data() + leaf.begin;
-    uint32_t kept = 0;
-    for (uint32_t i = 0; i < leaf.count; ++i) {
-      if (std::find(ids, ids + kept, ids[i]) == ids + kept) ids[kept++] = ids[i];
-    }
-    leaf.count = kept;
-  });
-}
-
 // Clamps user-facing settings to what the layout can encode.
 BuildSettings sanitise(BuildSettings s, int leaf_block) {
   s.leaf_block = leaf_block;
@@ -143,9 +128,13 @@ Blas build_mesh_blas(const TriangleMesh& mesh, uint32_t object, const BuildSetti
   Blas blas;
   blas.kind = BlasKind::Triangles;
   blas.object = object;
-  BuildTree tree = build_tree(triangle_refs(mesh, settings.presplit), sanitise(settings, 4));
+  const auto n = static_cast<uint32_t>(mesh.triangle_count());
+  std::vector<PrimRef> refs(n);
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, 4096), [&](const tbb::blocked_range<uint32_t>& r) {
+    for (uint32_t i = r.begin(); i != r.end(); ++i) refs[i] = PrimRef{bounds(mesh, i), i};
+  });
+  BuildTree tree = build_tree(std::move(refs), sanitise(settings, 4));
   blas.bounds = tree.bounds;
-  if (settings.presplit > 0.0f) store_once(tree);
 
   // The flattening numbers the blocks in depth-first order; filling them
   // (reading the mesh) is then done in parallel.

@@ -54,9 +54,6 @@ struct BuildSettings {
   float node_cost = 1.0f;      // SAH cost of one more binary split (a share of a wide-node test)
   float block_cost = 1.0f;     // SAH cost of intersecting one leaf block
   std::size_t parallel_threshold = 2048;  // ranges larger than this are built by parallel tasks
-  // Mesh levels: pieces added by pre-splitting large triangles (presplit.h),
-  // as a fraction of the triangle count; 0: none.
-  float presplit = 0.3f;
 };
 
 // A reference to a child: a node index, or a leaf (kLeafRef set) indexing BuildTree::leaves.
