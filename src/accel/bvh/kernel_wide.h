@@ -133,6 +133,14 @@ struct TriangleRay {
         shear{splat<V>(q.sx), splat<V>(q.sy), splat<V>(q.sz)},
         tmin(splat<V>(q.tmin)),
         row{q.kx * 4, q.ky * 4, q.kz * 4} {}
+  // The 4-lane constants as the low halves of the 8-lane ones (no broadcast
+  // per ray for the odd block of a leaf).
+  explicit TriangleRay(const TriangleRay<8>& r)
+      : korg{_mm256_castps256_ps128(r.korg[0]), _mm256_castps256_ps128(r.korg[1]), _mm256_castps256_ps128(r.korg[2])},
+        shear{_mm256_castps256_ps128(r.shear[0]), _mm256_castps256_ps128(r.shear[1]),
+              _mm256_castps256_ps128(r.shear[2])},
+        tmin(_mm256_castps256_ps128(r.tmin)),
+        row{r.row[0], r.row[1], r.row[2]} {}
 };
 
 // Records the nearest of the hit lanes (the lowest one on a tie, as if the
@@ -230,7 +238,6 @@ class Avx2Ops {
         tmin_(_mm256_set1_ps(q.tmin)),
         near_{q.near[0] * 8, q.near[1] * 8, q.near[2] * 8},
         far_{(q.near[0] ^ 1u) * 8, (q.near[1] ^ 1u) * 8, (q.near[2] ^ 1u) * 8},
-        tri4_(q),
         tri8_(q) {}
 
   // Slab test; see kernel_sse2.cpp for the NaN rule (max/min keep their
@@ -262,14 +269,13 @@ class Avx2Ops {
         if constexpr (kAnyHit) return true;
       }
     }
-    if (i < count && intersect_blocks<kAnyHit>(tri4_, blocks + i, object, q, hit)) found = true;
+    if (i < count && intersect_blocks<kAnyHit>(TriangleRay<4>(tri8_), blocks + i, object, q, hit)) found = true;
     return found;
   }
 
  private:
   __m256 org_[3], rdir_[3], tmin_;
   uint32_t near_[3], far_[3];
-  TriangleRay<4> tri4_;
   TriangleRay<8> tri8_;
 };
 
