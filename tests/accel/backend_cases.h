@@ -1,7 +1,8 @@
 // Test-only helpers for running the same test on every backend: the backend
 // list (Embree, our BVH with the kernel the CPU gets, our BVH forced to the
-// baseline SSE2 kernel and, where Auto gets AVX-512, to the AVX2 one), building, and comparing a backend's answer with the
-// brute-force loop of brute_force.h.
+// baseline SSE2 kernel and, where Auto gets AVX-512, to the AVX2 one),
+// building, and comparing a backend's answer with the brute-force loop of
+// brute_force.h.
 #pragma once
 
 #include <gtest/gtest.h>

@@ -19,7 +19,8 @@ enum class Isa { Auto, Sse2, Avx2, Avx512 };
 
 struct Options {
   BuildSettings build;
-  Isa isa = Isa::Auto;  // Auto: AVX-512 where the CPU has it (kernels.h), else AVX2 where it has AVX2 and FMA, else SSE2
+  // Auto: AVX-512 where the CPU has it (kernels.h), else AVX2 where it has AVX2 and FMA, else SSE2.
+  Isa isa = Isa::Auto;
   const CutoutTest* cutouts = nullptr;  // the scene's alpha cutouts (accel/cutout.h); must outlive the accelerator
 };
 

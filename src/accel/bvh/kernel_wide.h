@@ -136,7 +136,8 @@ struct TriangleRay {
   // The 4-lane constants as the low halves of the 8-lane ones (no broadcast
   // per ray for the odd block of a leaf).
   explicit TriangleRay(const TriangleRay<8>& r)
-      : korg{_mm256_castps256_ps128(r.korg[0]), _mm256_castps256_ps128(r.korg[1]), _mm256_castps256_ps128(r.korg[2])},
+      : korg{_mm256_castps256_ps128(r.korg[0]), _mm256_castps256_ps128(r.korg[1]),
+             _mm256_castps256_ps128(r.korg[2])},
         shear{_mm256_castps256_ps128(r.shear[0]), _mm256_castps256_ps128(r.shear[1]),
               _mm256_castps256_ps128(r.shear[2])},
         tmin(_mm256_castps256_ps128(r.tmin)),

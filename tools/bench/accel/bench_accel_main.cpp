@@ -2,7 +2,8 @@
 // bunny, Crytek Sponza, a procedural sphere of about a million triangles, the
 // Path of Light example), measured in one run: build time, memory, and Mrays/s
 // for camera, shadow (any-hit) and diffuse-bounce rays with 1 and with all
-// threads; plus the BVH's tree statistics and a cross-check of both backends.
+// threads; plus the BVH's tree statistics, its work per ray (nodes and triangles
+// tested by camera and diffuse rays) and a cross-check of both backends.
 // Three accelerators are timed: bare Embree (the yardstick, embree_reference.h:
 // Embree called directly), the --accel=embree backend, and --accel=bvh.
 //

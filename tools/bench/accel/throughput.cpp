@@ -20,7 +20,8 @@ WorkPerRay count_work(const Accelerator& accel, const std::vector<Ray>& rays, Wo
   if (!accel.counts_traversal() || rays.empty()) return w;
   std::atomic<uint64_t> nodes{0}, prims{0};
   pool.run([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
+    const tbb::blocked_range<std::size_t> all(0, rays.size(), 256);
+    tbb::parallel_for(all, [&](const tbb::blocked_range<std::size_t>& r) {
       uint64_t n = 0, p = 0;
       for (std::size_t i = r.begin(); i != r.end(); ++i) {
         TraversalCounters c;
