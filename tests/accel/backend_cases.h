@@ -1,7 +1,8 @@
 // Test-only helpers for running the same test on every backend: the backend
 // list (Embree, our BVH with the kernel the CPU gets, our BVH forced to the
-// baseline SSE2 kernel), building, and comparing a backend's answer with the
-// brute-force loop of brute_force.h.
+// baseline SSE2 kernel and, where Auto gets AVX-512, to the AVX2 one),
+// building, and comparing a backend's answer with the brute-force loop of
+// brute_force.h.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -11,10 +12,13 @@
 #include <memory>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <variant>
+#include <vector>
 
 #include "accel/accelerator.h"
 #include "accel/bvh/bvh_accel.h"
+#include "accel/bvh/kernels.h"
 #include "accel/unbounded.h"
 #include "brute_force.h"
 #include "core/parallel.h"
@@ -35,8 +39,20 @@ struct Backend {
 inline void PrintTo(const Backend& b, std::ostream* os) { *os << b.name; }
 
 inline std::vector<Backend> all_backends() {
-  return {Backend{AccelKind::Embree, bvh::Isa::Auto, "embree"}, Backend{AccelKind::Bvh, bvh::Isa::Auto, "bvh"},
-          Backend{AccelKind::Bvh, bvh::Isa::Sse2, "bvh_sse2"}};
+  std::vector<Backend> b{Backend{AccelKind::Embree, bvh::Isa::Auto, "embree"},
+                         Backend{AccelKind::Bvh, bvh::Isa::Auto, "bvh"},
+                         Backend{AccelKind::Bvh, bvh::Isa::Sse2, "bvh_sse2"}};
+  // Auto picks the AVX-512 kernel where the CPU has it: the AVX2 one then runs as well.
+  if (bvh::cpu_has_avx512()) b.push_back(Backend{AccelKind::Bvh, bvh::Isa::Avx2, "bvh_avx2"});
+  return b;
+}
+
+// The wide kernels this CPU can run, with the names tree_stats() reports.
+inline std::vector<std::pair<bvh::Isa, std::string>> wide_kernels() {
+  std::vector<std::pair<bvh::Isa, std::string>> k;
+  if (bvh::cpu_has_avx2_fma()) k.emplace_back(bvh::Isa::Avx2, "AVX2");
+  if (bvh::cpu_has_avx512()) k.emplace_back(bvh::Isa::Avx512, "AVX-512VL");
+  return k;
 }
 
 inline std::string backend_name(const ::testing::TestParamInfo<Backend>& info) { return info.param.name; }

@@ -142,12 +142,22 @@ uint64_t BvhAccelerator::fingerprint() const {
 }
 
 bool choose_kernels(Isa isa, KernelTable& out, Diagnostics& diag) {
-  const bool avx2 = cpu_has_avx2_fma();
+  const bool avx2 = cpu_has_avx2_fma(), avx512 = cpu_has_avx512();
   if (isa == Isa::Avx2 && !avx2) {
     diag.error(SourceLocation{}, "bvh: the AVX2 kernel was requested but this CPU lacks AVX2 or FMA");
     return false;
   }
-  out = (isa == Isa::Sse2 || !avx2) ? sse2_kernels() : avx2_kernels();
+  if (isa == Isa::Avx512 && !avx512) {
+    diag.error(SourceLocation{}, "bvh: the AVX-512 kernel was requested but this CPU lacks AVX-512 F/VL/DQ/BW");
+    return false;
+  }
+  if (isa == Isa::Sse2 || !avx2) {
+    out = sse2_kernels();
+  } else if (isa == Isa::Avx2 || !avx512) {
+    out = avx2_kernels();
+  } else {
+    out = avx512_kernels();
+  }
   return true;
 }
 

@@ -15,11 +15,12 @@
 
 namespace pt::bvh {
 
-enum class Isa { Auto, Sse2, Avx2 };
+enum class Isa { Auto, Sse2, Avx2, Avx512 };
 
 struct Options {
   BuildSettings build;
-  Isa isa = Isa::Auto;  // Auto: AVX2 where the CPU has AVX2 and FMA, else SSE2
+  // Auto: AVX-512 where the CPU has it (kernels.h), else AVX2 where it has AVX2 and FMA, else SSE2.
+  Isa isa = Isa::Auto;
   const CutoutTest* cutouts = nullptr;  // the scene's alpha cutouts (accel/cutout.h); must outlive the accelerator
 };
 
@@ -28,7 +29,7 @@ struct SceneTreeStats {
   TreeStats bottom;               // all bottom-level BVHs together
   TreeStats top;                  // the top level (empty with a single bottom level)
   std::size_t bottom_levels = 0;
-  std::string isa;                // the kernel in use: "AVX2" or "SSE2"
+  std::string isa;                // the kernel in use: "AVX-512VL", "AVX2" or "SSE2"
 };
 
 std::unique_ptr<Accelerator> build(const SceneGeometry& geometry, WorkerPool& pool, Diagnostics& diag,

@@ -7,7 +7,7 @@
 namespace pt::bvh {
 
 struct KernelTable {
-  const char* isa;  // "SSE2", "AVX2"
+  const char* isa;  // "SSE2", "AVX2", "AVX-512VL"
   // Nearest hit in (q.tmin, q.tmax); fills `hit` and lowers q.tmax.
   bool (*intersect)(const SceneData& scene, RayQuery& q, HitRecord& hit);
   // Any hit in (q.tmin, q.tmax); returns at the first one found.
@@ -24,8 +24,12 @@ KernelTable sse2_kernels();
 // rounding), which then confirms each candidate. Call only where the CPU has
 // AVX2 and FMA (cpu_has_avx2_fma()).
 KernelTable avx2_kernels();
+// The AVX2 kernel's code compiled for AVX-512 F/VL/DQ/BW (8 lanes still; 32
+// registers, mask compares). Call only where cpu_has_avx512().
+KernelTable avx512_kernels();
 
 bool cpu_has_avx2_fma();
+bool cpu_has_avx512();  // AVX2, FMA and AVX-512 F, VL, DQ, BW (usable: the OS saves their state)
 
 // gamma(n) = n u / (1 - n u), u = 2^-24: the constants of the triangle test's
 // bound on the error of t, as fp::gamma(n) computes them (leaf_tests.cpp

@@ -97,4 +97,11 @@ static_assert(kNoInstanceId == kNoInstance);
 
 bool cpu_has_avx2_fma() { return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"); }
 
+// libgcc reports the AVX-512 features only where XCR0 shows that the OS saves
+// the mask and upper vector registers.
+bool cpu_has_avx512() {
+  return cpu_has_avx2_fma() && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+         __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw");
+}
+
 }  // namespace pt::bvh

@@ -2,7 +2,8 @@
 // bunny, Crytek Sponza, a procedural sphere of about a million triangles, the
 // Path of Light example), measured in one run: build time, memory, and Mrays/s
 // for camera, shadow (any-hit) and diffuse-bounce rays with 1 and with all
-// threads; plus the BVH's tree statistics and a cross-check of both backends.
+// threads; plus the BVH's tree statistics, its work per ray (nodes and triangles
+// tested by camera and diffuse rays) and a cross-check of both backends.
 // Three accelerators are timed: bare Embree (the yardstick, embree_reference.h:
 // Embree called directly), the --accel=embree backend, and --accel=bvh.
 //
@@ -157,6 +158,8 @@ bool measure(const BenchScene& scene, const Options& o, int all_threads, SceneRe
     if (!reference || !bvh) return false;
     rays = make_ray_sets(scene, *reference, pool);
     r.tree = *bvh::tree_stats(*bvh);
+    r.bvh_camera_work = count_work(*bvh, rays.camera.rays, pool);
+    r.bvh_diffuse_work = count_work(*bvh, rays.diffuse.rays, pool);
     r.check = cross_check(*reference, *bvh, scene.geometry, rays, pool);
   }
   r.camera_rays = rays.camera.rays.size();

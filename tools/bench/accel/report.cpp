@@ -114,7 +114,10 @@ std::string to_json(const Report& report) {
                            {{"bottom_levels", s.tree.bottom_levels},
                             {"bottom", tree_json(s.tree.bottom)},
                             {"top", tree_json(s.tree.top)},
-                            {"kernel", s.tree.isa}}},
+                            {"kernel", s.tree.isa},
+                            {"work_per_ray",
+                             {{"camera", {{"nodes", s.bvh_camera_work.nodes}, {"prims", s.bvh_camera_work.prims}}},
+                              {"diffuse", {{"nodes", s.bvh_diffuse_work.nodes}, {"prims", s.bvh_diffuse_work.prims}}}}}}},
                           {"cross_check",
                            {{"tolerance", s.check.tolerance},
                             {"camera", counts_json(s.check.camera)},
@@ -246,6 +249,9 @@ std::string to_markdown(const Report& report) {
        << " blocks, depth " << t.depth << ", SAH cost " << fmt("%.1f", t.sah_cost)
        << " (node tests + leaf-block tests expected per ray through the root box)";
     if (s.tree.top.nodes > 0) md << "; top level: " << s.tree.top.nodes << " nodes, depth " << s.tree.top.depth;
+    md << ". Work per ray (`intersect_counted`): camera " << fmt("%.1f", s.bvh_camera_work.nodes) << " nodes and "
+       << fmt("%.1f", s.bvh_camera_work.prims) << " triangles tested, diffuse " << fmt("%.1f", s.bvh_diffuse_work.nodes)
+       << " nodes and " << fmt("%.1f", s.bvh_diffuse_work.prims) << " triangles";
     md << ". Leaf sizes (primitives: leaves):";
     for (std::size_t k = 1; k < t.leaf_sizes.size(); ++k) {
       if (t.leaf_sizes[k] > 0) md << " " << k << ": " << thousands(t.leaf_sizes[k]) << ";";

@@ -34,6 +34,7 @@ struct SceneResult {
   std::size_t camera_rays = 0, shadow_rays = 0, diffuse_rays = 0;
   std::vector<ThreadRun> runs;  // 1 thread, then all threads
   bvh::SceneTreeStats tree;
+  WorkPerRay bvh_camera_work, bvh_diffuse_work;  // the BVH's nodes and primitives tested per ray
   CrossCheck check;             // the --accel=embree backend against the BVH, on the same rays
 };
 

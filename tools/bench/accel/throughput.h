@@ -68,4 +68,12 @@ struct Measured {
 
 Measured summarize(std::vector<double> samples);
 
+// The work an accelerator that counts_traversal() does per ray of a set,
+// traced as nearest-hit queries (intersect_counted): mean nodes whose children
+// were tested and mean primitives tested. Zero for a backend that cannot count.
+struct WorkPerRay {
+  double nodes = 0, prims = 0;
+};
+WorkPerRay count_work(const Accelerator& accel, const std::vector<Ray>& rays, WorkerPool& pool);
+
 }  // namespace pt::bench
