@@ -50,7 +50,7 @@ seed_files() {
   return 0
 }
 
-# The OBJ harness writes each input to a file (Assimp reads files): keep it in memory.
+# The OBJ harness writes each input to a file (load_obj reads files): keep it in memory.
 [ -z "${TMPDIR:-}" ] && [ -w /dev/shm ] && export TMPDIR=/dev/shm
 
 found=0

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <Imath/half.h>
+#include <cpuid.h>
 #include <immintrin.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -92,8 +93,17 @@ __attribute__((target("f16c"))) void pack_halves_f16c(const float* v, std::size_
   }
 }
 
+// F16C: its CPUID bit, and the AVX state the OS must save for VEX code
+// (__builtin_cpu_supports("avx") checks both the CPU and the OS). Asked of
+// CPUID because clang 14 (the fuzz and sanitizer builds) does not know
+// __builtin_cpu_supports("f16c").
+bool cpu_has_f16c() {
+  unsigned eax = 0, ebx = 0, ecx = 0, edx = 0;
+  return __builtin_cpu_supports("avx") && __get_cpuid(1, &eax, &ebx, &ecx, &edx) != 0 && (ecx & bit_F16C) != 0;
+}
+
 void pack_halves(const float* v, std::size_t stride, std::size_t n, unsigned char* o, std::size_t step) {
-  static const bool f16c = __builtin_cpu_supports("f16c");
+  static const bool f16c = cpu_has_f16c();
   if (f16c) {
     pack_halves_f16c(v, stride, n, o, step);
   } else {

@@ -584,6 +584,8 @@ def parse_args(argv):
     p.add_argument("--threads", type=int, default=0, help="0: Blender's default (every core)")
     p.add_argument("-o", "--output", required=True, help="the EXR to write")
     p.add_argument("--stats", help="write the timings as JSON here")
+    p.add_argument("--width", type=int, help="the film's width instead of the scene's (as pathtracer --width)")
+    p.add_argument("--height", type=int, help="the film's height instead of the scene's (as pathtracer --height)")
     p.add_argument("--terminator-geometry-offset", type=float, metavar="F",
                    help="Cycles' per-object Shadow Terminator > Geometry Offset, set on every object "
                         "(Blender's default 0.1; 0 switches it off)")
@@ -638,6 +640,9 @@ def main():
     args = parse_args(argv)
     with open(args.scene) as f:
         scene_json = json.load(f)
+    for key in ("width", "height"):
+        if getattr(args, key):
+            scene_json.setdefault("film", {})[key] = getattr(args, key)
     if scene_json.get("format") != "pathtracer-scene":
         print(f"{args.scene}: error: only native scenes (\"format\": \"pathtracer-scene\") are converted",
               file=sys.stderr)

@@ -36,7 +36,9 @@
    scene made first (Blender's start, the converter, scene sync, BVH, writing). Both processes'
    whole CPU seconds are kept as well.
 
-Both renderers get the same scene at the same size (a copy written with --width/--height), the same
+Both renderers get the same scene at the same size (--width/--height passed to both: ours takes them
+on its command line, scene_to_cycles.py as its own --width/--height; no copy of the scene is written
+anywhere, so nothing appears beside it for a concurrent build to pick up), the same
 threads and the bounce cap of the scene (scene_to_cycles.py maps it); Cycles gets seed s + 1 where
 ours gets s (a Cycles seed of 0 is fine too; they just differ per run).
 """
@@ -45,6 +47,7 @@ import json
 import math
 import os
 import re
+import shutil
 import statistics
 import subprocess
 import sys
@@ -59,17 +62,9 @@ import pt_tools  # noqa: E402
 CONVERTER = os.path.join(HERE, "scene_to_cycles.py")
 
 
-def sized_scene(scene_path, width, height):
-    """A copy of the scene at the given size, written beside the original (relative paths keep working)."""
-    scene = json.load(open(scene_path))
-    if width:
-        scene.setdefault("film", {})["width"] = width
-    if height:
-        scene.setdefault("film", {})["height"] = height
-    fd, path = tempfile.mkstemp(suffix=".json", prefix=".tte-", dir=os.path.dirname(os.path.abspath(scene_path)))
-    with os.fdopen(fd, "w") as f:
-        json.dump(scene, f)
-    return path
+def size_args(a):
+    """The film size asked for, as arguments that both pathtracer and scene_to_cycles.py take."""
+    return (["--width", str(a.width)] if a.width else []) + (["--height", str(a.height)] if a.height else [])
 
 
 def run_timed(cmd):
@@ -83,8 +78,9 @@ def run_timed(cmd):
 
 
 def run_ours(exe, scene, spp, seed, threads, out):
+    """scene: [the scene file, more arguments (size_args)]."""
     report = out + ".report.json"
-    cmd = ["nice", "-n", "10", exe, scene, "-o", out, "--spp", str(spp), "--seed", str(seed), "--threads",
+    cmd = ["nice", "-n", "10", exe, *scene, "-o", out, "--spp", str(spp), "--seed", str(seed), "--threads",
            str(threads), "--quiet", "--report", report]
     code, err, cpu = run_timed(cmd)
     if code != 0:
@@ -95,8 +91,9 @@ def run_ours(exe, scene, spp, seed, threads, out):
 
 
 def run_cycles(blender, scene, spp, seed, threads, out):
+    """scene: as run_ours'."""
     stats = out + ".stats.json"
-    cmd = ["nice", "-n", "10", blender, "-b", "--factory-startup", "--python", CONVERTER, "--", scene,
+    cmd = ["nice", "-n", "10", blender, "-b", "--factory-startup", "--python", CONVERTER, "--", *scene,
            "--spp", str(spp), "--seed", str(seed), "--threads", str(threads), "-o", out, "--stats", stats]
     code, err, cpu = run_timed(cmd)
     if code != 0:
@@ -244,7 +241,7 @@ def main():
         write_markdown(a.md, os.path.dirname(a.json))
         return 0
 
-    scene = sized_scene(a.scene, a.width, a.height)
+    scene = [a.scene] + size_args(a)
     work = tempfile.mkdtemp(prefix="pt-tte-")
     loads = []
     try:
@@ -281,7 +278,7 @@ def main():
                     done[name] = True
             spp *= 2
     finally:
-        os.unlink(scene)
+        shutil.rmtree(work, ignore_errors=True)
     write_record(a, runs, loads, reference, overhead)
     write_markdown(a.md, os.path.dirname(a.json))
     return 0
