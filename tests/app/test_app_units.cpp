@@ -304,6 +304,43 @@ TEST(RenderPasses, ConsecutiveRangesUpToTheTarget) {
   EXPECT_EQ(film.sum(0, 0).samples, 8u);
 }
 
+// Every pass of one render gets the same RenderCache (what an integrator
+// learns before its samples is learned once per render), unless the caller
+// brings its own.
+TEST(RenderPasses, GuidesAreLearnedOncePerRender) {
+  RenderScene scene;
+  Film film(1, 1);
+  WorkerPool pool(1);
+  std::vector<std::pair<int, int>> log;
+  std::vector<RenderCache*> caches;
+  int learned = 0;
+  DriverCallbacks cb;
+  cb.make_integrator = [&](const IntegratorSettings& s) {
+    caches.push_back(s.cache);
+    if (s.cache != nullptr && !s.cache->slot) {
+      s.cache->slot = std::make_shared<int>(1);
+      ++learned;
+    }
+    return std::make_unique<RecordingIntegrator>(s, log);
+  };
+  PassPlan plan;
+  plan.target_spp = 12;
+  plan.pass_spp = 4;
+  render_passes(scene, film, pool, plan, IntegratorSettings{}, cb);
+  ASSERT_EQ(caches.size(), 3u);
+  EXPECT_NE(caches[0], nullptr);
+  EXPECT_EQ(caches[1], caches[0]);
+  EXPECT_EQ(caches[2], caches[0]);
+  EXPECT_EQ(learned, 1);
+  RenderCache mine;
+  IntegratorSettings settings;
+  settings.cache = &mine;
+  caches.clear();
+  render_passes(scene, film, pool, plan, settings, cb);
+  for (RenderCache* c : caches) EXPECT_EQ(c, &mine);
+  EXPECT_TRUE(mine.slot);
+}
+
 TEST(RenderPasses, EqualPassesNeverEndWithASmallerOne) {
   RenderScene scene;
   Film film(1, 1);
