@@ -158,6 +158,7 @@ TEST(RenderSettings, LightGuidingAndTheTerminatorOffsetAreStampedAndRecorded) {
   // integrator), 0 where it is not used; the terminator offset as resolved.
   SceneDescription desc = cornell_box();
   desc.render.light_guiding.value = 16;
+  desc.render.path_guiding.value = 8;  // and render.path_guiding the same way
   desc.render.shadow_terminator_geometry_offset.value = 0.25f;
   const struct {
     const char* integrator;
@@ -175,6 +176,9 @@ TEST(RenderSettings, LightGuidingAndTheTerminatorOffsetAreStampedAndRecorded) {
     const auto* guiding = stamped_value(metadata.ints, "pathtracer:lightGuiding");
     ASSERT_NE(guiding, nullptr);
     EXPECT_EQ(*guiding, c.guiding);
+    const auto* path_guiding = stamped_value(metadata.ints, "pathtracer:pathGuiding");
+    ASSERT_NE(path_guiding, nullptr);
+    EXPECT_EQ(*path_guiding, c.guiding / 2);
     const auto* offset = stamped_value(metadata.floats, "pathtracer:shadowTerminatorOffset");
     ASSERT_NE(offset, nullptr);
     EXPECT_EQ(*offset, 0.25f);
@@ -182,6 +186,7 @@ TEST(RenderSettings, LightGuidingAndTheTerminatorOffsetAreStampedAndRecorded) {
     s.describe(record);
     const auto image = nlohmann::json::parse(run_record_json(record))["image"];
     EXPECT_EQ(image["light_guiding"], c.guiding);
+    EXPECT_EQ(image["path_guiding"], c.guiding / 2);
     EXPECT_EQ(image["shadow_terminator_geometry_offset"], 0.25f);
   }
 }
