@@ -5,7 +5,8 @@
 // one light, chosen for the vertex (LightSet::choose), is sampled (next-event estimation) and combined
 // with BSDF sampling by the power heuristic, except delta lights (only NEE can
 // find them) and delta lobes (only BSDF sampling can); then the BSDF picks the
-// next direction. Russian roulette starts after `roulette_depth` bounces, with
+// next direction (or, with render.path_guiding, a mixture of the BSDF and the
+// learned path guide, render/guiding/path_guide.h). Russian roulette starts after `roulette_depth` bounces, with
 // survival probability min(1, max channel of the throughput / threshold), and
 // divides by it, so it is unbiased. `max_depth` bounds the number of bounces: a path sees
 // emitters and lights across at most max_depth scattering events.
