@@ -65,6 +65,8 @@ RenderOutcome render_passes(const RenderScene& scene, Film& film, WorkerPool& po
   const int target = plan.target_spp > 0 ? plan.target_spp : (1 << 30);
   double seconds_per_spp = 0;
   int previous = 0;
+  RenderCache cache;  // the passes' integrators learn once (RenderCache)
+  if (settings.cache == nullptr) settings.cache = &cache;
   while (out.spp_done < target) {
     const double elapsed = seconds_since(start);
     const double left = plan.time_budget_s > 0 ? plan.time_budget_s - elapsed : 1e300;

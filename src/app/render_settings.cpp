@@ -37,6 +37,7 @@ bool resolve_render_settings(const SceneDescription& desc, const SettingsOverrid
   s.roulette_threshold = o.roulette_threshold;
   s.film_transparent = o.film_transparent || desc.render.film_transparent.value;
   s.light_guiding = desc.render.light_guiding.value;
+  s.path_guiding = desc.render.path_guiding.value;
   out.light_sampler = desc.render.light_sampler.value;
   out.shadow_terminator_offset = desc.render.shadow_terminator_geometry_offset.value;
   BuildOptions size;
@@ -65,6 +66,7 @@ RenderStamp RenderSettings::stamp() const {
   stamp.filter = filter_name();
   stamp.light_sampler = light_sampler_name();
   stamp.light_guiding = light_guiding();
+  stamp.path_guiding = path_guiding();
   stamp.shadow_terminator_offset = shadow_terminator_offset;
   stamp.max_depth = integration.max_depth;
   stamp.clamp = integration.clamp;
@@ -83,6 +85,7 @@ void RenderSettings::describe(RunRecord& record) const {
   record.filter = filter_name();
   record.light_sampler = light_sampler_name();
   record.light_guiding = light_guiding();
+  record.path_guiding = path_guiding();
   record.shadow_terminator_offset = shadow_terminator_offset;
   record.clamp = integration.clamp;
 }
@@ -103,6 +106,7 @@ nlohmann::ordered_json RenderSettings::identity() const {
   if (light_sampler != LightSamplerType::Bvh)
     id["light_sampler"] = kLightSamplerNames[static_cast<int>(light_sampler)];
   if (integration.light_guiding != kDefaultLightGuiding) id["light_guiding"] = integration.light_guiding;
+  if (integration.path_guiding != kDefaultPathGuiding) id["path_guiding"] = integration.path_guiding;
   if (shadow_terminator_offset != kDefaultShadowTerminatorOffset)
     id["shadow_terminator_geometry_offset"] = shadow_terminator_offset;
   return id;

@@ -60,6 +60,8 @@ struct RenderSettings {
   // render.light_guiding where it is used (the integrators that choose one
   // light per vertex); 0 for the others.
   int light_guiding() const { return integrator->lights == LightModel::Physical ? integration.light_guiding : 0; }
+  // render.path_guiding where it is used (the path integrator); 0 for the others.
+  int path_guiding() const { return integrator->lights == LightModel::Physical ? integration.path_guiding : 0; }
   bool equal_passes() const { return integrator->equal_passes(integration.sampler); }
 
   BuildOptions build_options(AccelKind accel) const;

@@ -41,6 +41,7 @@ struct RenderStamp {
   std::string filter;   // pixel filter
   std::string light_sampler;  // the path integrator's light choice ("bvh", "power"); "all" (whitted), "none" (views)
   int light_guiding = 0;      // the path integrator's pre-pass paths per pixel (render.light_guiding); 0: off
+  int path_guiding = 0;       // the same for its path guiding (render.path_guiding); 0: off
   float shadow_terminator_offset = 0.0f;  // render.shadow_terminator_geometry_offset; 0: off
   int max_depth = 0;
   float clamp = 0.0f;   // firefly clamp on each sample's radiance; 0: off
@@ -59,7 +60,7 @@ struct RenderStamp {
 // (float; clamp 0 means off), pathtracer:spp, pathtracer:maxDepth,
 // pathtracer:partial and pathtracer:filmTransparent (int 0/1), pathtracer:seed, pathtracer:backend,
 // pathtracer:integrator, pathtracer:sampler, pathtracer:filter, pathtracer:lightSampler,
-// pathtracer:version (strings), pathtracer:lightGuiding (int), pathtracer:shadowTerminatorOffset (float), and worldToCamera / worldToNDC when has_camera
+// pathtracer:version (strings), pathtracer:lightGuiding and pathtracer:pathGuiding (int), pathtracer:shadowTerminatorOffset (float), and worldToCamera / worldToNDC when has_camera
 // (worldToNDC only for a camera that has one: not the spherical camera).
 inline void add_render_stamp(ImageMetadata& metadata, const RenderStamp& stamp) {
   metadata.set("pathtracer:renderTime", static_cast<float>(stamp.render_seconds));
@@ -72,6 +73,7 @@ inline void add_render_stamp(ImageMetadata& metadata, const RenderStamp& stamp) 
   metadata.set("pathtracer:filter", stamp.filter);
   metadata.set("pathtracer:lightSampler", stamp.light_sampler);
   metadata.set("pathtracer:lightGuiding", stamp.light_guiding);
+  metadata.set("pathtracer:pathGuiding", stamp.path_guiding);
   metadata.set("pathtracer:shadowTerminatorOffset", stamp.shadow_terminator_offset);
   metadata.set("pathtracer:maxDepth", stamp.max_depth);
   metadata.set("pathtracer:clamp", stamp.clamp);

@@ -25,6 +25,7 @@ std::string run_record_json(const RunRecord& r) {
       {"image", {{"width", r.width}, {"height", r.height}, {"spp", r.spp}, {"integrator", r.integrator},
                  {"sampler", r.sampler}, {"max_depth", r.max_depth}, {"seed", r.seed}, {"filter", r.filter},
                  {"light_sampler", r.light_sampler}, {"light_guiding", r.light_guiding},
+                 {"path_guiding", r.path_guiding},
                  {"shadow_terminator_geometry_offset", r.shadow_terminator_offset}, {"clamp", r.clamp}}},
       {"progress", {{"spp_reached", r.spp}, {"target_spp", r.target_spp}, {"time_budget", r.time_budget},
                     {"passes", r.passes},

@@ -59,6 +59,7 @@ struct RunRecord {
   std::string filter = "box";  // pixel filter (path integrator)
   std::string light_sampler;   // RenderStamp::light_sampler
   int light_guiding = 0;       // RenderStamp::light_guiding
+  int path_guiding = 0;        // RenderStamp::path_guiding
   float shadow_terminator_offset = 0.0f;  // RenderStamp::shadow_terminator_offset
   float clamp = 0.0f;          // firefly clamp; 0 = off (recorded either way)
   int threads = 0;

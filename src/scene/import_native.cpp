@@ -147,6 +147,7 @@ void read_render(ImportContext& ctx, const JsonValue& v) {
   r.read("shadow_terminator_geometry_offset", render.shadow_terminator_geometry_offset);
   r.read("film_transparent", render.film_transparent);
   r.read("light_guiding", render.light_guiding);
+  r.read("path_guiding", render.path_guiding);
   Sourced<std::string> image;
   if (r.read("background_image", image) && image.where.valid()) {
     if (const std::optional<std::string> resolved = find_scene_file(ctx, image, "background image"))

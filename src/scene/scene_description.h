@@ -153,6 +153,7 @@ inline constexpr const char* kLightSamplerNames[] = {"bvh", "power"};
 inline constexpr float kDefaultShadowTerminatorOffset = 0.1f;
 
 inline constexpr int kDefaultLightGuiding = 0;
+inline constexpr int kDefaultPathGuiding = 0;
 
 struct RenderDesc {
   Sourced<std::string> integrator{std::string("whitted")};  // registry name, see render/integrators
@@ -176,6 +177,9 @@ struct RenderDesc {
   // The path integrator's light guiding: pre-pass paths per pixel, 0 = off
   // (render/guiding/light_guide.h; docs/path-tracing.md, "Light guiding").
   Sourced<int> light_guiding{kDefaultLightGuiding};
+  // The path integrator's path guiding of bounce directions: pre-pass paths
+  // per pixel, 0 = off (render/guiding/path_guide.h; docs/path-tracing.md, "Path guiding").
+  Sourced<int> path_guiding{kDefaultPathGuiding};
 };
 
 

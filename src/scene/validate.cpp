@@ -89,6 +89,10 @@ class Validator {
       diag_.error(render.light_guiding.where,
                   "light_guiding must be between 0 and 1024 pre-pass paths per pixel (0 turns it off), got " +
                       str(render.light_guiding.value));
+    if (render.path_guiding.value < 0 || render.path_guiding.value > 1024)
+      diag_.error(render.path_guiding.where,
+                  "path_guiding must be between 0 and 1024 pre-pass paths per pixel (0 turns it off), got " +
+                      str(render.path_guiding.value));
   }
 
   void material(const MaterialDesc& m) {

@@ -158,6 +158,7 @@ TEST(RenderSettings, LightGuidingAndTheTerminatorOffsetAreStampedAndRecorded) {
   // integrator), 0 where it is not used; the terminator offset as resolved.
   SceneDescription desc = cornell_box();
   desc.render.light_guiding.value = 16;
+  desc.render.path_guiding.value = 8;  // and render.path_guiding the same way
   desc.render.shadow_terminator_geometry_offset.value = 0.25f;
   const struct {
     const char* integrator;
@@ -175,6 +176,9 @@ TEST(RenderSettings, LightGuidingAndTheTerminatorOffsetAreStampedAndRecorded) {
     const auto* guiding = stamped_value(metadata.ints, "pathtracer:lightGuiding");
     ASSERT_NE(guiding, nullptr);
     EXPECT_EQ(*guiding, c.guiding);
+    const auto* path_guiding = stamped_value(metadata.ints, "pathtracer:pathGuiding");
+    ASSERT_NE(path_guiding, nullptr);
+    EXPECT_EQ(*path_guiding, c.guiding / 2);
     const auto* offset = stamped_value(metadata.floats, "pathtracer:shadowTerminatorOffset");
     ASSERT_NE(offset, nullptr);
     EXPECT_EQ(*offset, 0.25f);
@@ -182,6 +186,7 @@ TEST(RenderSettings, LightGuidingAndTheTerminatorOffsetAreStampedAndRecorded) {
     s.describe(record);
     const auto image = nlohmann::json::parse(run_record_json(record))["image"];
     EXPECT_EQ(image["light_guiding"], c.guiding);
+    EXPECT_EQ(image["path_guiding"], c.guiding / 2);
     EXPECT_EQ(image["shadow_terminator_geometry_offset"], 0.25f);
   }
 }
@@ -302,6 +307,43 @@ TEST(RenderPasses, ConsecutiveRangesUpToTheTarget) {
   EXPECT_EQ(log, (std::vector<std::pair<int, int>>{{2, 4}, {6, 4}}));
   EXPECT_EQ(done, (std::vector<int>{6, 10}));
   EXPECT_EQ(film.sum(0, 0).samples, 8u);
+}
+
+// Every pass of one render gets the same RenderCache (what an integrator
+// learns before its samples is learned once per render), unless the caller
+// brings its own.
+TEST(RenderPasses, GuidesAreLearnedOncePerRender) {
+  RenderScene scene;
+  Film film(1, 1);
+  WorkerPool pool(1);
+  std::vector<std::pair<int, int>> log;
+  std::vector<RenderCache*> caches;
+  int learned = 0;
+  DriverCallbacks cb;
+  cb.make_integrator = [&](const IntegratorSettings& s) {
+    caches.push_back(s.cache);
+    if (s.cache != nullptr && !s.cache->slot) {
+      s.cache->slot = std::make_shared<int>(1);
+      ++learned;
+    }
+    return std::make_unique<RecordingIntegrator>(s, log);
+  };
+  PassPlan plan;
+  plan.target_spp = 12;
+  plan.pass_spp = 4;
+  render_passes(scene, film, pool, plan, IntegratorSettings{}, cb);
+  ASSERT_EQ(caches.size(), 3u);
+  EXPECT_NE(caches[0], nullptr);
+  EXPECT_EQ(caches[1], caches[0]);
+  EXPECT_EQ(caches[2], caches[0]);
+  EXPECT_EQ(learned, 1);
+  RenderCache mine;
+  IntegratorSettings settings;
+  settings.cache = &mine;
+  caches.clear();
+  render_passes(scene, film, pool, plan, settings, cb);
+  for (RenderCache* c : caches) EXPECT_EQ(c, &mine);
+  EXPECT_TRUE(mine.slot);
 }
 
 TEST(RenderPasses, EqualPassesNeverEndWithASmallerOne) {

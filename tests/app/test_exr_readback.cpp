@@ -136,6 +136,8 @@ TEST_F(ExrReadBack, EveryAovChannelTypeTheCropWindowAndEveryMetadataKey) {
   EXPECT_EQ(spec.get_string_attribute("pathtracer:lightSampler"), "bvh");  // the default render.light_sampler
   attribute("pathtracer:lightGuiding", OIIO::TypeInt);
   EXPECT_EQ(spec.get_int_attribute("pathtracer:lightGuiding", -1), 0);  // off by default
+  attribute("pathtracer:pathGuiding", OIIO::TypeInt);
+  EXPECT_EQ(spec.get_int_attribute("pathtracer:pathGuiding", -1), 0);  // off by default
   attribute("pathtracer:shadowTerminatorOffset", OIIO::TypeFloat);
   attribute("pathtracer:maxDepth", OIIO::TypeInt);
   EXPECT_EQ(spec.get_int_attribute("pathtracer:maxDepth"), 7);

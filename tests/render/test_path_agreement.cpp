@@ -311,5 +311,44 @@ TEST(PathAgreement, LightGuidingConvergesToThePlainImageWithSkyAlone) {
   EXPECT_TRUE(agree(estimate_guided(d, 0, AccelKind::Embree), estimate_guided(d, 8, AccelKind::Embree)));
 }
 
+// ---------------------------------------------------------------- path guiding
+// render.path_guiding (render/guiding/path_guide.h) changes how bounce
+// directions are sampled (a mixture with the BSDF's sampling, used in MIS with
+// next-event estimation), never what the image converges to: the courtyard,
+// lit mostly through bounces, guided and plain, on both backends; and the
+// microfacet scene (glossy, rough conductor, coated, rough glass and Lambert
+// surfaces under area lights) with a smooth glass sphere added (delta lobes).
+BlockEstimate estimate_path_guided(const SceneDescription& d, int guiding, AccelKind accel, int light_guiding = 0) {
+  return estimate([&](uint64_t seed) {
+    BuildOptions options;
+    options.accel = accel;
+    IntegratorSettings s = test::path_settings(16, 6, seed);
+    s.path_guiding = guiding;
+    s.light_guiding = light_guiding;
+    return test::render_with(d, "path", s, 2, options);
+  });
+}
+
+TEST(PathAgreement, PathGuidingConvergesToThePlainImageInTheCourtyard) {
+  const SceneDescription d = test::courtyard_scene(true);
+  const BlockEstimate plain = estimate_path_guided(d, 0, AccelKind::Embree);
+  EXPECT_TRUE(agree(plain, estimate_path_guided(d, 8, AccelKind::Embree))) << "Embree";
+  EXPECT_TRUE(agree(plain, estimate_path_guided(d, 8, AccelKind::Embree, 4))) << "Embree, light guiding too";
+  {
+    WorkerPool pool(1);
+    Diagnostics diag;
+    BuildOptions options;
+    options.accel = AccelKind::Bvh;
+    if (!build_render_scene(d, options, pool, diag)) GTEST_SKIP() << "no BVH backend in this build: " << diag.format();
+  }
+  EXPECT_TRUE(agree(plain, estimate_path_guided(d, 8, AccelKind::Bvh))) << "BVH";
+}
+
+TEST(PathAgreement, PathGuidingConvergesToThePlainImageWithMicrofacetsAndGlass) {
+  SceneDescription d = microfacet_scene();
+  add_sphere(d, {-0.9f, 0.25f, 0.8f}, 0.25f, add_material(d, microfacet_desc(MaterialType::Dielectric, 0.0f, 0.0f)));
+  EXPECT_TRUE(agree(estimate_path_guided(d, 0, AccelKind::Embree), estimate_path_guided(d, 8, AccelKind::Embree)));
+}
+
 }  // namespace
 }  // namespace pt

@@ -4,12 +4,8 @@
 #include <cmath>
 #include <variant>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
-#include "core/parallel.h"
-#include "core/rng.h"
 #include "geometry/shapes.h"
+#include "render/guiding/prepass.h"
 #include "render/materials/bsdf.h"
 #include "render/render_scene.h"
 
@@ -17,9 +13,7 @@ namespace pt {
 
 namespace {
 
-constexpr int kMaxTreeDepth = 24;
 constexpr int kMaxPrepassDepth = 6;  // bounces of a pre-pass path: deeper vertices add little that is new
-constexpr int64_t kPathsPerTask = 64;
 constexpr uint64_t kPrepassKey = 0x6c69676874677569ULL;  // keeps the pre-pass apart from the render's numbers
 
 struct Prepass {
@@ -59,10 +53,7 @@ void test_lights(const Prepass& pp, const Intersection& isect, const Bsdf& bsdf,
 // roulette after 3 bounces).
 void trace_path(const Prepass& pp, Rng& rng, std::vector<LightGuide::Record>& out) {
   const RenderScene& scene = pp.scene;
-  const Vec2f film(rng.next_float() * static_cast<float>(scene.width),
-                   rng.next_float() * static_cast<float>(scene.height));
-  Ray ray = scene.camera.has_lens() ? scene.camera.generate_ray(film, Vec2f(rng.next_float(), rng.next_float()))
-                                    : scene.camera.generate_ray(film);
+  Ray ray = prepass_camera_ray(scene, rng);
   RGB beta(1.0f);
   for (int depth = 0; depth < pp.max_depth; ++depth) {
     Intersection isect;
@@ -84,32 +75,6 @@ void trace_path(const Prepass& pp, Rng& rng, std::vector<LightGuide::Record>& ou
     ray = spawn_ray(isect.geo, bs.wi);
   }
 }
-
-// The pre-pass's records in path order (so the result does not depend on the thread count).
-std::vector<LightGuide::Record> run_prepass(const Prepass& pp, WorkerPool& pool, int64_t paths, uint64_t seed) {
-  const int64_t tasks = (paths + kPathsPerTask - 1) / kPathsPerTask;
-  std::vector<std::vector<LightGuide::Record>> parts(static_cast<std::size_t>(tasks));
-  pool.run([&] {
-    tbb::parallel_for(tbb::blocked_range<int64_t>(0, tasks), [&](const tbb::blocked_range<int64_t>& r) {
-      for (int64_t task = r.begin(); task != r.end(); ++task) {
-        auto& out = parts[static_cast<std::size_t>(task)];
-        const int64_t end = std::min(paths, (task + 1) * kPathsPerTask);
-        for (int64_t path = task * kPathsPerTask; path < end; ++path) {
-          Rng rng(hash_keys(seed, kPrepassKey, static_cast<uint64_t>(path)));
-          trace_path(pp, rng, out);
-        }
-      }
-    });
-  });
-  std::size_t total = 0;
-  for (const auto& part : parts) total += part.size();
-  std::vector<LightGuide::Record> records;
-  records.reserve(total);
-  for (const auto& part : parts) records.insert(records.end(), part.begin(), part.end());
-  return records;
-}
-
-float axis_of(Vec3f v, int axis) { return axis == 0 ? v.x : axis == 1 ? v.y : v.z; }
 
 }  // namespace
 
@@ -134,38 +99,13 @@ LightGuide LightGuide::learn(const RenderScene& scene, WorkerPool& pool, int pat
   const int64_t paths = std::min(kMaxPrepassPaths, int64_t{paths_per_pixel} * scene.width * scene.height);
   const Prepass pp{scene, guide.bins_, guide.map_, guide.map_ != nullptr ? env : -1,
                    std::min(max_depth, kMaxPrepassDepth)};
-  std::vector<Record> records = run_prepass(pp, pool, paths, seed);
-  if (records.empty()) return guide;
-  Bounds3f bounds;
-  for (const Record& r : records) bounds.extend(r.p);
-  guide.build(records, 0, records.size(), bounds, 0);
+  std::vector<Record> records = run_prepass<Record>(
+      pool, paths, seed, kPrepassKey, [&](Rng& rng, std::vector<Record>& out) { trace_path(pp, rng, out); });
+  guide.tree_.build(records, kLeafRecords, [&](const Record* first, std::size_t count) {
+    guide.leaves_.emplace_back();
+    guide.learn_leaf(guide.leaves_.back(), first, count);
+  });
   return guide;
-}
-
-int LightGuide::build(std::vector<Record>& records, std::size_t begin, std::size_t end, const Bounds3f& bounds,
-                      int depth) {
-  const int node = static_cast<int>(nodes_.size());
-  nodes_.push_back({});
-  const Vec3f e = bounds.extent();
-  const int axis = e.x >= e.y && e.x >= e.z ? 0 : e.y >= e.z ? 1 : 2;
-  if (end - begin <= static_cast<std::size_t>(kLeafRecords) || depth >= kMaxTreeDepth || !(axis_of(e, axis) > 0.0f)) {
-    nodes_[static_cast<std::size_t>(node)].a = static_cast<int>(leaves_.size());
-    leaves_.emplace_back();
-    learn_leaf(leaves_.back(), records.data() + begin, end - begin);
-    return node;
-  }
-  const float split = axis_of(bounds.centre(), axis);
-  const auto mid = std::stable_partition(records.begin() + static_cast<std::ptrdiff_t>(begin),
-                                         records.begin() + static_cast<std::ptrdiff_t>(end),
-                                         [&](const Record& r) { return axis_of(r.p, axis) < split; });
-  const std::size_t m = static_cast<std::size_t>(mid - records.begin());
-  Bounds3f left = bounds, right = bounds;
-  (axis == 0 ? left.hi.x : axis == 1 ? left.hi.y : left.hi.z) = split;
-  (axis == 0 ? right.lo.x : axis == 1 ? right.lo.y : right.lo.z) = split;
-  const int a = build(records, begin, m, left, depth + 1);
-  const int b = build(records, m, end, right, depth + 1);
-  nodes_[static_cast<std::size_t>(node)] = {axis, split, a, b};
-  return node;
 }
 
 // The choice: each light's share of the contributions. The environment: per
@@ -206,10 +146,8 @@ void LightGuide::learn_leaf(Leaf& leaf, const Record* first, std::size_t count) 
 }
 
 const LightGuide::Leaf* LightGuide::leaf(Vec3f p) const {
-  if (nodes_.empty()) return nullptr;
-  const Node* node = &nodes_[0];
-  while (node->axis >= 0) node = &nodes_[static_cast<std::size_t>(axis_of(p, node->axis) < node->split ? node->a : node->b)];
-  return &leaves_[static_cast<std::size_t>(node->a)];
+  if (tree_.empty()) return nullptr;
+  return &leaves_[static_cast<std::size_t>(tree_.leaf(p))];
 }
 
 int LightGuide::choose(const Site& at, Vec3f n, float u, float& pmf) const {

@@ -33,6 +33,7 @@
 
 #include "core/sampling.h"
 #include "render/guiding/environment_bins.h"
+#include "render/guiding/prepass.h"
 #include "render/lights/light_set.h"
 
 namespace pt {
@@ -57,7 +58,7 @@ class LightGuide {
   static LightGuide learn(const RenderScene& scene, WorkerPool& pool, int paths_per_pixel, int max_depth,
                           uint64_t seed);
 
-  bool active() const { return !nodes_.empty(); }
+  bool active() const { return !tree_.empty(); }
   int leaves() const { return static_cast<int>(leaves_.size()); }
 
   struct Leaf {
@@ -91,13 +92,6 @@ class LightGuide {
   };
 
  private:
-  struct Node {
-    int axis = -1;  // -1: a leaf
-    float split = 0.0f;
-    int a = 0;  // a leaf: its entry in leaves_; else the child below the split
-    int b = 0;  // the child at or above it
-  };
-  int build(std::vector<Record>& records, std::size_t begin, std::size_t end, const Bounds3f& bounds, int depth);
   void learn_leaf(Leaf& leaf, const Record* first, std::size_t count) const;
   const Leaf* leaf(Vec3f p) const;
   float environment_pdf(const Leaf* l, Vec2f uv) const;
@@ -107,7 +101,7 @@ class LightGuide {
   EnvironmentBins bins_;
   bool guide_choice_ = false;
   std::vector<float> plain_choice_;  // per light: LightSet's probability (all lights infinite)
-  std::vector<Node> nodes_;
+  SpatialTree tree_;
   std::vector<Leaf> leaves_;
 };
 

@@ -45,6 +45,15 @@ class RenderMonitor {
   }
 };
 
+// What an integrator learns before its samples (the path integrator's
+// guides), kept across the passes of one render: render_passes() makes one
+// per render, the integrator of its first pass stores its state in `slot`
+// and those of the later passes reuse it (each pass's integrator is made
+// anew with that pass's sample range; what was learned depends on none of it).
+struct RenderCache {
+  std::shared_ptr<const void> slot;
+};
+
 struct IntegratorSettings {
   int max_depth = 5;    // recursion limit (path: the number of bounces)
   int spp = 1;          // samples per pixel
@@ -67,6 +76,9 @@ struct IntegratorSettings {
   // path: light guiding's pre-pass paths per pixel (render.light_guiding,
   // render/guiding/light_guide.h); 0 = off.
   int light_guiding = 0;
+  // path: path guiding's pre-pass paths per pixel (render.path_guiding,
+  // render/guiding/path_guide.h); 0 = off.
+  int path_guiding = 0;
   // Cycles' Film > Transparent: what camera rays see when they hit nothing
   // (background, environment, background image) is left out of the image
   // (black, alpha 0); it still lights the scene and shows in reflections.
@@ -75,6 +87,7 @@ struct IntegratorSettings {
   // crop (the sampler still sees spp, so the sample is the one a full render draws).
   int only_sample = -1;
   RenderMonitor* monitor = nullptr;  // optional; not owned; the image does not depend on it unless it cancels
+  RenderCache* cache = nullptr;      // optional; not owned; null: every render() call learns anew
 };
 
 class Integrator {

@@ -5,16 +5,19 @@
 // one light, chosen for the vertex (LightSet::choose), is sampled (next-event estimation) and combined
 // with BSDF sampling by the power heuristic, except delta lights (only NEE can
 // find them) and delta lobes (only BSDF sampling can); then the BSDF picks the
-// next direction. Russian roulette starts after `roulette_depth` bounces, with
+// next direction (or, with render.path_guiding, a mixture of the BSDF and the
+// learned path guide, render/guiding/path_guide.h). Russian roulette starts after `roulette_depth` bounces, with
 // survival probability min(1, max channel of the throughput / threshold), and
 // divides by it, so it is unbiased. `max_depth` bounds the number of bounces: a path sees
 // emitters and lights across at most max_depth scattering events.
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "core/sampling.h"
 #include "geometry/shapes.h"
 #include "render/guiding/light_guide.h"
+#include "render/guiding/path_guide.h"
 #include "render/integrators/builtin.h"
 #include "render/integrators/path_aov.h"
 #include "render/integrators/render_loop.h"
@@ -27,10 +30,12 @@ namespace {
 
 class PathTracer {
  public:
-  PathTracer(const RenderScene& scene, const IntegratorSettings& settings, const LightGuide& guide)
+  PathTracer(const RenderScene& scene, const IntegratorSettings& settings, const LightGuide& guide,
+             const PathGuide& path_guide)
       : scene_(scene),
         lights_(scene.lights),
         guide_(guide),
+        path_guide_(path_guide),
         max_depth_(std::max(0, settings.max_depth)),
         clamp_(settings.clamp),
         strategy_(settings.light_strategy),
@@ -76,9 +81,10 @@ class PathTracer {
       if (bsdf.black()) break;
       if (rec.active() && depth == 0) rec.first_vertex(bsdf);
       const LightGuide::Site site = guide_.site(isect.geo.p);
+      const PathGuide::Leaf* region = bsdf.delta_only() ? nullptr : path_guide_.leaf(isect.geo.p, bsdf.shading_normal());
       if (!bsdf.delta_only() && !lights_.empty()) {
         Vec3f wi_light;
-        const RGB term = beta * direct_light(isect, site, bsdf, wo, sampler, &wi_light);
+        const RGB term = beta * direct_light(isect, site, region, bsdf, wo, sampler, &wi_light);
         L += term;
         if (rec.active() && !term.is_black()) rec.light(depth, term, wo, wi_light);
       }
@@ -86,7 +92,7 @@ class PathTracer {
       BsdfSample bs;
       // A BSDF with one lobe has nothing to choose: no sample dimension for it.
       const float u_lobe = bsdf.needs_lobe_choice() ? sampler.get_1d() : 0.0f;
-      if (!bsdf.sample(wo, u_lobe, sampler.get_2d(), bs)) break;
+      if (!PathGuide::sample_bounce(bsdf, region, wo, u_lobe, sampler.get_2d(), bs)) break;
       if (rec.active() && depth == 0) rec.first_bounce(wo, bs);
       beta *= bs.weight;
       eta2 *= bs.eta2;
@@ -141,8 +147,8 @@ class PathTracer {
 
   // Next-event estimation: one light, chosen for this point and normal, sampled at one point.
   // `wi_out`, when not null, receives the sampled light direction (for the AOV split).
-  RGB direct_light(const Intersection& isect, const LightGuide::Site& site, const Bsdf& bsdf, Vec3f wo,
-                   Sampler& sampler, Vec3f* wi_out = nullptr) const {
+  RGB direct_light(const Intersection& isect, const LightGuide::Site& site, const PathGuide::Leaf* region,
+                   const Bsdf& bsdf, Vec3f wo, Sampler& sampler, Vec3f* wi_out = nullptr) const {
     // Where there is nothing to choose (one light that can be picked), no
     // sample dimension is spent on the choice.
     const float u_light = lights_.needs_choice() ? sampler.get_1d() : 0.0f;
@@ -157,19 +163,11 @@ class PathTracer {
     if (wi_out != nullptr) *wi_out = ls.wi;
     const RGB f = bsdf.f(wo, ls.wi);
     if (f.is_black()) return {};
-    Ray shadow;
-    if (ls.infinite) {
-      shadow = spawn_ray(isect.geo, ls.wi);
-    } else if (ls.delta) {
-      shadow = spawn_ray_to(isect.geo, ls.p_light);
-    } else {
-      shadow = spawn_ray_to(isect.geo, offset_ray_origin(ls.p_light, ls.n_light, -ls.wi));
-    }
-    if (scene_.occluded(shadow)) return {};
+    if (scene_.occluded(light_shadow_ray(isect.geo, ls))) return {};
     const float light_pdf = pmf * ls.pdf;
     const float w = (ls.delta || strategy_ == LightStrategy::LightOnly)
                         ? 1.0f
-                        : power_heuristic(light_pdf, bsdf.pdf(wo, ls.wi));
+                        : power_heuristic(light_pdf, PathGuide::bounce_pdf(bsdf, region, wo, ls.wi));
     const float cos_i = std::fabs(dot(ls.wi, bsdf.shading_normal()));
     return f * ls.L * (cos_i * w / light_pdf);
   }
@@ -177,6 +175,7 @@ class PathTracer {
   const RenderScene& scene_;
   const LightSet& lights_;
   const LightGuide& guide_;  // the light choice and sampling (LightSet's own when guiding is off)
+  const PathGuide& path_guide_;  // the bounces' guide (inactive when path guiding is off)
   int max_depth_;
   float clamp_;
   LightStrategy strategy_;
@@ -189,17 +188,33 @@ class PathIntegrator final : public Integrator {
   explicit PathIntegrator(const IntegratorSettings& settings) : settings_(settings), filter_(settings.filter) {}
 
   void render(const RenderScene& scene, Film& film, WorkerPool& pool) const override {
-    // Learned before the samples and frozen (render.light_guiding; light_guide.h).
-    const LightGuide guide = settings_.light_guiding > 0 ? LightGuide::learn(scene, pool, settings_.light_guiding,
-                                                                             settings_.max_depth, settings_.seed)
-                                                         : LightGuide(scene.lights);
-    const PathTracer tracer(scene, settings_, guide);
+    const std::shared_ptr<const Guides> guides = learned(scene, pool);
+    const PathTracer tracer(scene, settings_, guides->light, guides->path);
     render_samples(scene, film, pool, settings_, make_sampler(settings_.sampler, settings_.spp, settings_.seed),
                    filter_,
                    [&](const CameraRay& ray, Sampler& sampler, AovSample* aov) { return tracer.radiance(ray, sampler, aov); });
   }
 
  private:
+  // Learned before the samples and frozen (render.light_guiding, light_guide.h;
+  // render.path_guiding, path_guide.h): once per render where the settings
+  // carry a RenderCache, else for this call.
+  struct Guides {
+    LightGuide light;
+    PathGuide path;
+  };
+  std::shared_ptr<const Guides> learned(const RenderScene& scene, WorkerPool& pool) const {
+    if (settings_.cache != nullptr && settings_.cache->slot)
+      return std::static_pointer_cast<const Guides>(settings_.cache->slot);
+    const IntegratorSettings& s = settings_;
+    auto guides = std::make_shared<const Guides>(Guides{
+        s.light_guiding > 0 ? LightGuide::learn(scene, pool, s.light_guiding, s.max_depth, s.seed)
+                            : LightGuide(scene.lights),
+        s.path_guiding > 0 ? PathGuide::learn(scene, pool, s.path_guiding, s.max_depth, s.seed) : PathGuide()});
+    if (settings_.cache != nullptr) settings_.cache->slot = guides;
+    return guides;
+  }
+
   IntegratorSettings settings_;
   PixelFilter filter_;
 };

@@ -85,6 +85,9 @@ class Bsdf {
   // hit): otherwise its `u_lobe` is not read and the caller need not spend a
   // sample dimension on it.
   bool needs_lobe_choice() const { return needs_lobe_choice_; }
+  // True if wi may lie on the other side of the surface (glass); false for
+  // the reflective kinds, whose f and pdf are 0 below shading_normal().
+  bool transmits() const { return transmits_; }
 
   // The non-delta part of f(wo, wi) for unit world directions.
   RGB f(Vec3f wo, Vec3f wi) const;
@@ -111,6 +114,7 @@ class Bsdf {
     delta_only_ = k.delta_only();
     black_ = k.black();
     needs_lobe_choice_ = k.needs_lobe_choice();
+    transmits_ = K::kTransmits;
   }
 
   // std::visit, with the classic lobes (every course material, the Cornell
@@ -141,7 +145,7 @@ class Bsdf {
   Frame frame_;
   Vec3f ng_;  // geometric normal: on wo's side for reflective kinds, the shape's own for transmissive ones
   BsdfKind kind_;
-  bool delta_only_ = false, black_ = false, needs_lobe_choice_ = false;
+  bool delta_only_ = false, black_ = false, needs_lobe_choice_ = false, transmits_ = false;
   bool smooth_ = false;
 };
 

@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
-"""A/B of the path integrator's light guiding (render.light_guiding, docs/path-tracing.md,
-"Light guiding"): the same build, off against on, in one interleaved run; writes
-docs/bench/guiding.md (and the runs as JSON beside it).
+"""A/B of the path integrator's guiding (render.light_guiding and render.path_guiding,
+docs/path-tracing.md, "Light guiding" and "Path guiding"): the same build, off against on, in one
+interleaved run; writes docs/bench/guiding.md (or --out; and the runs as JSON beside it).
+
+A variant is name=L (light guiding's pre-pass paths per pixel) or name=L/P (and path guiding's).
 
 For each case: a reference (the case's committed one, or one rendered once here with guiding off
 at many samples, its own seed), then ROUNDS rounds of one render per variant at the case's sample
@@ -15,7 +17,7 @@ round (MSE falling as 1 / samples; the pre-pass is a fixed cost, so this holds a
 sample count, which is chosen near the error the peers comparison targets), median and min-max.
 
 Usage: guiding_ab.py [--build build] [--out docs/bench/guiding.md] [--rounds 3] [--case NAME]
-                     [--variants off=0,on=4]
+                     [--variants off=0,on=4 | off=0/0,light=16/0,path=0/16,both=16/16]
 """
 import argparse
 import json
@@ -47,10 +49,25 @@ def loadavg():
         return float(f.read().split()[0])
 
 
+def parse_variant(text):
+    """name=L or name=L/P -> (name, (L, P))."""
+    name, value = text.split("=")
+    parts = [int(x) for x in value.split("/")]
+    return name, (parts[0], parts[1] if len(parts) > 1 else 0)
+
+
+def describe(guiding):
+    light, path = guiding
+    return "`light_guiding` %d" % light + (", `path_guiding` %d" % path if path else "")
+
+
 def render(exe, scene, width, height, spp, guiding, seed, out):
     report = out + ".report.json"
+    light, path = guiding
     cmd = ["nice", "-n", "10", exe, os.path.join(ROOT, scene), "-o", out, "--spp", str(spp), "--seed", str(seed),
-           "--threads", "2", "--quiet", "--report", report, "--set", "render.light_guiding=%d" % guiding]
+           "--threads", "2", "--quiet", "--report", report, "--set", "render.light_guiding=%d" % light]
+    if path:
+        cmd += ["--set", "render.path_guiding=%d" % path]
     if width:
         cmd += ["--width", str(width), "--height", str(height)]
     r = subprocess.run(cmd, capture_output=True, text=True)
@@ -64,7 +81,7 @@ def run_case(args, tmp, case, variants):
     name, scene, width, height, ref, ref_spp, spp = case
     if ref is None:
         ref = os.path.join(tmp, "ref.exr")
-        render(args.exe, scene, width, height, ref_spp, 0, 1000, ref)
+        render(args.exe, scene, width, height, ref_spp, (0, 0), 1000, ref)
     else:
         ref = os.path.join(ROOT, ref)
     res = {v: {"time": [], "wall": [], "mse": [], "load": []} for v, _ in variants}
@@ -94,8 +111,8 @@ def table(cases, variants):
             r = c["res"][v]
             ratios = [(m * t) / (mb * tb) for m, t, mb, tb in zip(r["mse"], r["time"], b["mse"], b["time"])]
             mse = statistics.mean(r["mse"])
-            lines.append("| %s | %s (`light_guiding` %d) | %d | %.2f (%.2f-%.2f) | %.3g | %.4f | %.2f (%.2f-%.2f) |" % (
-                c["name"], v, guiding, c["spp"], statistics.median(r["time"]), min(r["time"]), max(r["time"]), mse,
+            lines.append("| %s | %s (%s) | %d | %.2f (%.2f-%.2f) | %.3g | %.4f | %.2f (%.2f-%.2f) |" % (
+                c["name"], v, describe(guiding), c["spp"], statistics.median(r["time"]), min(r["time"]), max(r["time"]), mse,
                 mse ** 0.5, statistics.median(ratios), min(ratios), max(ratios)))
     return "\n".join(lines)
 
@@ -106,17 +123,17 @@ def main():
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "bench", "guiding.md"))
     ap.add_argument("--rounds", type=int, default=3)
     ap.add_argument("--case", default="", help="only the cases whose name starts with this")
-    ap.add_argument("--variants", default="off=0,on=16", help="name=pre-pass paths per pixel, ...; the first is the base")
+    ap.add_argument("--variants", default="off=0,on=16", help="name=L or name=L/P (light and path guiding's pre-pass paths per pixel), ...; the first is the base")
     args = ap.parse_args()
     args.exe = os.path.join(args.build, "pathtracer")
     args.imgerr = os.path.join(args.build, "tools", "imgerr", "pt-imgerr")
-    variants = [(v.split("=")[0], int(v.split("=")[1])) for v in args.variants.split(",")]
+    variants = [parse_variant(v) for v in args.variants.split(",")]
     loads = [loadavg()]
     with tempfile.TemporaryDirectory() as tmp:
         cases = [run_case(args, tmp, c, variants) for c in CASES if c[0].startswith(args.case)]
     loads.append(loadavg())
     all_loads = [l for c in cases for v in c["res"].values() for l in v["load"]]
-    text = ["# Light guiding: A/B", "", MARKER, "",
+    text = ["# Guiding: A/B", "", MARKER, "",
             "Written by `tools/bench/guiding/guiding_ab.py --variants %s --rounds %d` (how it measures: its "
             "docstring). Same build, interleaved, 2 threads, the render phase's CPU time from the run record (the "
             "pre-pass included). 1-minute load average before each render: min %.1f, median %.1f, max %.1f." % (
