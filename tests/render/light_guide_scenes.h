@@ -1,14 +1,21 @@
-// Scenes for the light guide's tests (render/guiding/light_guide.h): a
+// Scenes for the guides' tests (render/guiding/light_guide.h, path_guide.h): a
 // courtyard that sees its sky through an opening, under an environment map
-// and a sun, and a white sphere under a uniform map (a furnace).
+// and a sun, and a white sphere under a uniform map (a furnace); and a guide
+// learned over a scene.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 
 #include <gtest/gtest.h>
 
+#include "core/parallel.h"
+#include "core/rng.h"
 #include "io/image_io.h"
+#include "path_test_util.h"
+#include "render/render_scene.h"
 #include "test_scenes.h"
 
 namespace pt::test {
@@ -71,6 +78,29 @@ inline SceneDescription furnace_scene(float albedo) {
   d.environment = env;
   add_sphere(d, {0, 0, 0}, 1.0f, add_material(d, diffuse_material(RGB(albedo))));
   return d;
+}
+
+// A guide (LightGuide or PathGuide) learned over `d` with its own pre-pass:
+// `paths_per_pixel` paths, depth 6, `seed`.
+template <class Guide>
+struct Learned {
+  std::unique_ptr<RenderScene> scene;
+  std::unique_ptr<Guide> guide;
+};
+
+template <class Guide>
+Learned<Guide> learn_guide(const SceneDescription& d, int threads, int paths_per_pixel, uint64_t seed) {
+  WorkerPool pool(threads);
+  Learned<Guide> l;
+  l.scene = build(d, pool);
+  EXPECT_TRUE(l.scene);
+  if (l.scene) l.guide = std::make_unique<Guide>(Guide::learn(*l.scene, pool, paths_per_pixel, 6, seed));
+  return l;
+}
+
+// Points inside the courtyard (floor, walls, mid-air).
+inline Vec3f courtyard_point(Rng& rng) {
+  return Vec3f(rng.next_float() * 3.8f - 1.9f, rng.next_float() * 2.9f + 0.05f, rng.next_float() * 3.8f - 1.9f);
 }
 
 }  // namespace pt::test

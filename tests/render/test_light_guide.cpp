@@ -18,24 +18,13 @@
 namespace pt {
 namespace {
 
-struct Learned {
-  std::unique_ptr<RenderScene> scene;
-  std::unique_ptr<LightGuide> guide;
-};
+using Learned = test::Learned<LightGuide>;
 
 Learned learn(const SceneDescription& d, int threads, int paths_per_pixel = 4, uint64_t seed = 1) {
-  WorkerPool pool(threads);
-  Learned l;
-  l.scene = test::build(d, pool);
-  EXPECT_TRUE(l.scene);
-  if (l.scene) l.guide = std::make_unique<LightGuide>(LightGuide::learn(*l.scene, pool, paths_per_pixel, 6, seed));
-  return l;
+  return test::learn_guide<LightGuide>(d, threads, paths_per_pixel, seed);
 }
 
-// Points inside the courtyard (floor, walls, mid-air).
-Vec3f courtyard_point(Rng& rng) {
-  return Vec3f(rng.next_float() * 3.8f - 1.9f, rng.next_float() * 2.9f + 0.05f, rng.next_float() * 3.8f - 1.9f);
-}
+using test::courtyard_point;
 
 TEST(LightGuide, LearnsLeavesAndItsEnvironmentDensityIntegratesToOne) {
   const Learned l = learn(test::courtyard_scene(true), 2);

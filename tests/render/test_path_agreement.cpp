@@ -36,6 +36,15 @@ constexpr int kSeeds = 16;
 constexpr double kSigmas = 5.0;
 constexpr int kBlocks = 4;  // per side
 
+// Empty where our BVH builds `d`; else why not (a build without it).
+std::string bvh_unavailable(const SceneDescription& d) {
+  WorkerPool pool(1);
+  Diagnostics diag;
+  BuildOptions options;
+  options.accel = AccelKind::Bvh;
+  return build_render_scene(d, options, pool, diag) ? std::string() : diag.format();
+}
+
 struct BlockEstimate {
   std::vector<double> mean, error;  // per block and channel
 };
@@ -185,13 +194,7 @@ TEST(PathAgreement, GlassOfIndexOneIsEmptySpaceWhenLit) {
 
 TEST(PathAgreement, BothBackendsConvergeToTheSameImage) {
   const SceneDescription d = mis_scene();
-  {
-    WorkerPool pool(1);
-    Diagnostics diag;
-    BuildOptions options;
-    options.accel = AccelKind::Bvh;
-    if (!build_render_scene(d, options, pool, diag)) GTEST_SKIP() << "no BVH backend in this build: " << diag.format();
-  }
+  if (const std::string why = bvh_unavailable(d); !why.empty()) GTEST_SKIP() << "no BVH backend in this build: " << why;
   auto with_backend = [&](AccelKind kind) {
     return estimate([&](uint64_t seed) {
       BuildOptions options;
@@ -296,13 +299,7 @@ TEST(PathAgreement, LightGuidingConvergesToThePlainImageWithSkyAndSun) {
   const SceneDescription d = test::courtyard_scene(true);
   const BlockEstimate plain = estimate_guided(d, 0, AccelKind::Embree);
   EXPECT_TRUE(agree(plain, estimate_guided(d, 4, AccelKind::Embree))) << "Embree";
-  {
-    WorkerPool pool(1);
-    Diagnostics diag;
-    BuildOptions options;
-    options.accel = AccelKind::Bvh;
-    if (!build_render_scene(d, options, pool, diag)) GTEST_SKIP() << "no BVH backend in this build: " << diag.format();
-  }
+  if (const std::string why = bvh_unavailable(d); !why.empty()) GTEST_SKIP() << "no BVH backend in this build: " << why;
   EXPECT_TRUE(agree(plain, estimate_guided(d, 4, AccelKind::Bvh))) << "BVH";
 }
 
@@ -334,13 +331,7 @@ TEST(PathAgreement, PathGuidingConvergesToThePlainImageInTheCourtyard) {
   const BlockEstimate plain = estimate_path_guided(d, 0, AccelKind::Embree);
   EXPECT_TRUE(agree(plain, estimate_path_guided(d, 8, AccelKind::Embree))) << "Embree";
   EXPECT_TRUE(agree(plain, estimate_path_guided(d, 8, AccelKind::Embree, 4))) << "Embree, light guiding too";
-  {
-    WorkerPool pool(1);
-    Diagnostics diag;
-    BuildOptions options;
-    options.accel = AccelKind::Bvh;
-    if (!build_render_scene(d, options, pool, diag)) GTEST_SKIP() << "no BVH backend in this build: " << diag.format();
-  }
+  if (const std::string why = bvh_unavailable(d); !why.empty()) GTEST_SKIP() << "no BVH backend in this build: " << why;
   EXPECT_TRUE(agree(plain, estimate_path_guided(d, 8, AccelKind::Bvh))) << "BVH";
 }
 
