@@ -285,27 +285,35 @@ TEST(PathAgreement, LightSamplersRenderTheCornellBoxBitForBit) {
 // the sun are sampled, never what the image converges to: a courtyard lit
 // through its roof's opening by an environment map and a sun, guided and
 // plain, on both backends.
-BlockEstimate estimate_guided(const SceneDescription& d, int guiding, AccelKind accel) {
+// The guides' pre-pass paths per pixel (render.light_guiding,
+// render.path_guiding); 0 = off.
+struct Guiding {
+  int light = 0;
+  int path = 0;
+};
+
+BlockEstimate estimate_guided(const SceneDescription& d, Guiding guiding, AccelKind accel) {
   return estimate([&](uint64_t seed) {
     BuildOptions options;
     options.accel = accel;
     IntegratorSettings s = test::path_settings(16, 6, seed);
-    s.light_guiding = guiding;
+    s.light_guiding = guiding.light;
+    s.path_guiding = guiding.path;
     return test::render_with(d, "path", s, 2, options);
   });
 }
 
 TEST(PathAgreement, LightGuidingConvergesToThePlainImageWithSkyAndSun) {
   const SceneDescription d = test::courtyard_scene(true);
-  const BlockEstimate plain = estimate_guided(d, 0, AccelKind::Embree);
-  EXPECT_TRUE(agree(plain, estimate_guided(d, 4, AccelKind::Embree))) << "Embree";
+  const BlockEstimate plain = estimate_guided(d, {}, AccelKind::Embree);
+  EXPECT_TRUE(agree(plain, estimate_guided(d, {.light = 4}, AccelKind::Embree))) << "Embree";
   if (const std::string why = bvh_unavailable(d); !why.empty()) GTEST_SKIP() << "no BVH backend in this build: " << why;
-  EXPECT_TRUE(agree(plain, estimate_guided(d, 4, AccelKind::Bvh))) << "BVH";
+  EXPECT_TRUE(agree(plain, estimate_guided(d, {.light = 4}, AccelKind::Bvh))) << "BVH";
 }
 
 TEST(PathAgreement, LightGuidingConvergesToThePlainImageWithSkyAlone) {
   const SceneDescription d = test::courtyard_scene(false);
-  EXPECT_TRUE(agree(estimate_guided(d, 0, AccelKind::Embree), estimate_guided(d, 8, AccelKind::Embree)));
+  EXPECT_TRUE(agree(estimate_guided(d, {}, AccelKind::Embree), estimate_guided(d, {.light = 8}, AccelKind::Embree)));
 }
 
 // ---------------------------------------------------------------- path guiding
@@ -315,30 +323,19 @@ TEST(PathAgreement, LightGuidingConvergesToThePlainImageWithSkyAlone) {
 // lit mostly through bounces, guided and plain, on both backends; and the
 // microfacet scene (glossy, rough conductor, coated, rough glass and Lambert
 // surfaces under area lights) with a smooth glass sphere added (delta lobes).
-BlockEstimate estimate_path_guided(const SceneDescription& d, int guiding, AccelKind accel, int light_guiding = 0) {
-  return estimate([&](uint64_t seed) {
-    BuildOptions options;
-    options.accel = accel;
-    IntegratorSettings s = test::path_settings(16, 6, seed);
-    s.path_guiding = guiding;
-    s.light_guiding = light_guiding;
-    return test::render_with(d, "path", s, 2, options);
-  });
-}
-
 TEST(PathAgreement, PathGuidingConvergesToThePlainImageInTheCourtyard) {
   const SceneDescription d = test::courtyard_scene(true);
-  const BlockEstimate plain = estimate_path_guided(d, 0, AccelKind::Embree);
-  EXPECT_TRUE(agree(plain, estimate_path_guided(d, 8, AccelKind::Embree))) << "Embree";
-  EXPECT_TRUE(agree(plain, estimate_path_guided(d, 8, AccelKind::Embree, 4))) << "Embree, light guiding too";
+  const BlockEstimate plain = estimate_guided(d, {}, AccelKind::Embree);
+  EXPECT_TRUE(agree(plain, estimate_guided(d, {.path = 8}, AccelKind::Embree))) << "Embree";
+  EXPECT_TRUE(agree(plain, estimate_guided(d, {.light = 4, .path = 8}, AccelKind::Embree))) << "Embree, light guiding too";
   if (const std::string why = bvh_unavailable(d); !why.empty()) GTEST_SKIP() << "no BVH backend in this build: " << why;
-  EXPECT_TRUE(agree(plain, estimate_path_guided(d, 8, AccelKind::Bvh))) << "BVH";
+  EXPECT_TRUE(agree(plain, estimate_guided(d, {.path = 8}, AccelKind::Bvh))) << "BVH";
 }
 
 TEST(PathAgreement, PathGuidingConvergesToThePlainImageWithMicrofacetsAndGlass) {
   SceneDescription d = microfacet_scene();
   add_sphere(d, {-0.9f, 0.25f, 0.8f}, 0.25f, add_material(d, microfacet_desc(MaterialType::Dielectric, 0.0f, 0.0f)));
-  EXPECT_TRUE(agree(estimate_path_guided(d, 0, AccelKind::Embree), estimate_path_guided(d, 8, AccelKind::Embree)));
+  EXPECT_TRUE(agree(estimate_guided(d, {}, AccelKind::Embree), estimate_guided(d, {.path = 8}, AccelKind::Embree)));
 }
 
 }  // namespace
