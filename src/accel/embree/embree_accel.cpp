@@ -50,16 +50,10 @@ constexpr float kEmbreeLargest = 1.844e18f;
 //
 // This runs for every ray (a camera ray of a five-shape scene costs Embree
 // about 90 ns), so it tests the Ray's eight floats as two SSE vectors, and
-// writes the RTCRay's first 48 bytes as three 16-byte stores: Embree reads
-// (org, tnear) and (dir, time) as 16-byte loads, and a load that spans
-// several smaller stores cannot take its data from the store buffer; it waits
-// until they reach the cache. What this gained (camera rays 5-26% more per
-// second): docs/bench/embree-wrapper.md.
+// writes the RTCRay as Embree reads it (store_ray, queries.h).
 inline bool to_embree(const Ray& ray, RTCRay& out) {
   static_assert(sizeof(Ray) == 8 * sizeof(float) && offsetof(Ray, dir) == 3 * sizeof(float) &&
                 offsetof(Ray, tmin) == 6 * sizeof(float));
-  static_assert(offsetof(RTCRay, tnear) == 12 && offsetof(RTCRay, dir_x) == 16 && offsetof(RTCRay, time) == 28 &&
-                offsetof(RTCRay, tfar) == 32 && offsetof(RTCRay, flags) == 44);
   const __m128 org = _mm_loadu_ps(&ray.origin.x);  // ox oy oz dx
   const __m128 dir = _mm_loadu_ps(&ray.dir.x);     // dx dy dz tmin
   const __m128 magnitude = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
@@ -78,13 +72,10 @@ inline bool to_embree(const Ray& ray, RTCRay& out) {
   const uint32_t tmax_bits = std::bit_cast<uint32_t>(ray.tmax);
   const uint32_t tfar_bits = ray.tmax < kInfinity ? tmax_bits - 1 : tmax_bits;
   if (!(tnear <= std::bit_cast<float>(tfar_bits))) return false;
-  // (org, tnear): tnear into lane 3; (dir, time = 0); (tfar, mask, id = 0, flags = 0).
+  // (org, tnear): tnear into lane 3.
   const __m128 keep3 = _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0));
   const __m128 tnear3 = _mm_castsi128_ps(_mm_slli_si128(_mm_castps_si128(_mm_set_ss(tnear)), 12));
-  _mm_storeu_ps(&out.org_x, _mm_or_ps(_mm_and_ps(org, keep3), tnear3));
-  _mm_storeu_ps(&out.dir_x, _mm_and_ps(dir, keep3));
-  _mm_storeu_si128(reinterpret_cast<__m128i*>(&out.tfar),
-                   _mm_setr_epi32(static_cast<int>(tfar_bits), static_cast<int>(kMask), 0, 0));
+  store_ray(out, _mm_or_ps(_mm_and_ps(org, keep3), tnear3), dir, tfar_bits);
   return true;
 }
 

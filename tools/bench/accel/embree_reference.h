@@ -54,21 +54,15 @@ class BareEmbree final : public Accelerator {
   AccelStats stats() const override { return stats_; }
 
  private:
-  // Written as Embree reads it: three 16-byte stores ((org, tnear), (dir,
-  // time), (tfar, mask, id, flags)). Filled field by field, Embree's 16-byte
-  // loads of the ray wait for the small stores to reach the cache (no store
-  // forwarding), which made the yardstick 5-25% slower than Embree is on camera
-  // rays (docs/bench/embree-wrapper.md). tnear is at least the smallest normal
+  // Written as Embree reads it (store_ray; filled field by field, the
+  // yardstick was 5-25% slower than Embree is on camera rays,
+  // docs/bench/embree-wrapper.md). tnear is at least the smallest normal
   // float, the query the backend asks for rays with tmin <= 0 (tnear = 0 cost
   // Embree time on shadow and diffuse rays starting on a surface).
   static void set(const Ray& ray, RTCRay& r) {
-    static_assert(offsetof(RTCRay, tnear) == 12 && offsetof(RTCRay, dir_x) == 16 &&
-                  offsetof(RTCRay, tfar) == 32 && offsetof(RTCRay, flags) == 44);
     const float tnear = std::max(ray.tmin, std::numeric_limits<float>::min());
-    const uint32_t tfar = std::bit_cast<uint32_t>(ray.tmax);
-    _mm_storeu_ps(&r.org_x, _mm_setr_ps(ray.origin.x, ray.origin.y, ray.origin.z, tnear));
-    _mm_storeu_ps(&r.dir_x, _mm_setr_ps(ray.dir.x, ray.dir.y, ray.dir.z, 0.0f));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(&r.tfar), _mm_setr_epi32(static_cast<int>(tfar), -1, 0, 0));
+    embree::store_ray(r, _mm_setr_ps(ray.origin.x, ray.origin.y, ray.origin.z, tnear),
+                      _mm_setr_ps(ray.dir.x, ray.dir.y, ray.dir.z, 0.0f), std::bit_cast<uint32_t>(ray.tmax));
   }
   RTCScene new_scene() const;
   bool attach(RTCScene scene, const SceneGeometry& geometry, uint32_t object);
