@@ -8,6 +8,7 @@
 #include "core/parallel.h"
 #include "render/film/film.h"
 #include "render/integrators/integrator.h"
+#include "render/integrators/render_loop.h"
 #include "test_scenes.h"
 
 namespace pt {
@@ -88,6 +89,26 @@ TEST(Determinism, SeedChangesOnlyJitteredImages) {
   const SceneDescription d = scene_with_everything();
   EXPECT_TRUE(identical(render(d, 2, 16, 1, 1), render(d, 2, 16, 1, 2)));  // pixel centres
   EXPECT_FALSE(identical(render(d, 2, 16, 4, 1), render(d, 2, 16, 4, 2)));
+}
+
+// The tiles are the unit of work a thread takes: a small image on many threads
+// gets smaller tiles (at least kTilesPerThread a thread, down to kMinTileSize),
+// so that the last tile, run while the other threads wait, is a small share.
+TEST(Determinism, SmallImagesOnManyThreadsAreCutIntoSmallerTiles) {
+  EXPECT_EQ(scheduled_tile_size(16, 1920, 1080, 16), 16);  // 8160 tiles
+  EXPECT_EQ(scheduled_tile_size(16, 256, 256, 2), 16);     // 256 tiles, 128 a thread
+  EXPECT_EQ(scheduled_tile_size(16, 256, 256, 16), 8);     // 1024 tiles, 64 a thread
+  EXPECT_EQ(scheduled_tile_size(16, 256, 256, 64), 4);     // at most kMinTileSize
+  EXPECT_EQ(scheduled_tile_size(16, 64, 64, 16), kMinTileSize);
+  EXPECT_EQ(scheduled_tile_size(5, 8, 8, 64), 5);          // never below kMinTileSize by halving
+  EXPECT_EQ(scheduled_tile_size(1, 8, 8, 64), 1);          // a requested size below it is kept
+  EXPECT_EQ(scheduled_tile_size(0, 8, 8, 1), 1);
+  for (int threads : {1, 2, 3, 16, 64}) {
+    const int tile = scheduled_tile_size(16, 300, 200, threads);
+    const int tiles = ((300 + tile - 1) / tile) * ((200 + tile - 1) / tile);
+    EXPECT_TRUE(tiles >= kTilesPerThread * threads || tile == kMinTileSize) << threads << " threads: " << tile;
+    EXPECT_TRUE(tile == 16 || tiles / 4 < kTilesPerThread * threads) << "halved once too often: " << tile;
+  }
 }
 
 }  // namespace

@@ -5,8 +5,9 @@
 #include <utility>
 #include <vector>
 
-#include <tbb/blocked_range2d.h>
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
 
 #include "core/parallel.h"
 #include "render/film/film.h"
@@ -41,6 +42,16 @@ CameraRay camera_ray(const RenderScene& scene, Sampler& sampler, Vec2f film_px, 
 
 }  // namespace
 
+int scheduled_tile_size(int requested, int width, int height, int threads) {
+  int tile = std::max(1, requested);
+  const auto tiles = [&](int t) {
+    return static_cast<int64_t>((width + t - 1) / t) * static_cast<int64_t>((height + t - 1) / t);
+  };
+  while (tile / 2 >= kMinTileSize && tiles(tile) < static_cast<int64_t>(kTilesPerThread) * std::max(1, threads))
+    tile /= 2;
+  return tile;
+}
+
 Vec2f sample_position(int x, int y, int index, int spp, uint64_t seed, uint64_t pixel_index) {
   StratifiedPixelSampler sampler(spp, seed, 1);
   sampler.start(pixel_index, index);
@@ -68,7 +79,7 @@ void first_hit_aovs(const RenderScene& scene, const CameraRay& ray, AovSample& a
 void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, const IntegratorSettings& settings,
                     const Sampler& prototype, const PixelFilter& filter, SampleRadianceFn radiance) {
   const PixelRect crop = film.crop();
-  const int tile = std::max(1, settings.tile_size);
+  const int tile = scheduled_tile_size(settings.tile_size, crop.width(), crop.height(), pool.threads());
   const auto [first, end] = sample_range(settings);
   const int tiles_x = (crop.width() + tile - 1) / tile;
   const int tiles_y = (crop.height() + tile - 1) / tile;
@@ -118,31 +129,37 @@ void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, cons
   };
 
   pool.run([&] {
-    tbb::parallel_for(tbb::blocked_range2d<int>(0, tiles_y, 0, tiles_x), [&](const tbb::blocked_range2d<int>& r) {
-      Sampler sampler = prototype;
-      AovScratch scratch = film.make_scratch();
-      NonFiniteReport bad;
-      for (int ty = r.rows().begin(); ty != r.rows().end(); ++ty) {
-        for (int tx = r.cols().begin(); tx != r.cols().end(); ++tx) {
-          if (monitor != nullptr && monitor->cancelled()) break;
-          const int x0 = crop.x0 + tx * tile, y0 = crop.y0 + ty * tile;
-          const int x1 = std::min(crop.x1, x0 + tile), y1 = std::min(crop.y1, y0 + tile);
-          const uint64_t rays_before = rays_traced_by_this_thread();
-          int64_t samples = 0;
-          for (int y = y0; y < y1; ++y)
-            for (int x = x0; x < x1; ++x) {
-              if (monitor != nullptr && monitor->cancelled()) break;  // each pixel: a pass may be long
-              samples += render_pixel(sampler, scratch, bad, x, y);
-            }
-          if (monitor != nullptr)
-            monitor->tile_done(samples, static_cast<int64_t>(rays_traced_by_this_thread() - rays_before));
-        }
-      }
-      if (bad.total() > 0) {
-        const std::lock_guard<std::mutex> lock(report_mutex);
-        report.merge(bad);
-      }
-    });
+    // One task per tile (simple_partitioner, grain 1), in row-major order: a
+    // thread that runs out of work steals whole tiles, so the render's tail,
+    // the time the last tile runs while the other threads have nothing left,
+    // is at most one tile's time (auto_partitioner's ranges can leave several
+    // tiles to one thread at the end).
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, tiles_x * tiles_y, 1),
+        [&](const tbb::blocked_range<int>& r) {
+          Sampler sampler = prototype;
+          AovScratch scratch = film.make_scratch();
+          NonFiniteReport bad;
+          for (int t = r.begin(); t != r.end(); ++t) {
+            if (monitor != nullptr && monitor->cancelled()) break;
+            const int x0 = crop.x0 + (t % tiles_x) * tile, y0 = crop.y0 + (t / tiles_x) * tile;
+            const int x1 = std::min(crop.x1, x0 + tile), y1 = std::min(crop.y1, y0 + tile);
+            const uint64_t rays_before = rays_traced_by_this_thread();
+            int64_t samples = 0;
+            for (int y = y0; y < y1; ++y)
+              for (int x = x0; x < x1; ++x) {
+                if (monitor != nullptr && monitor->cancelled()) break;  // each pixel: a pass may be long
+                samples += render_pixel(sampler, scratch, bad, x, y);
+              }
+            if (monitor != nullptr)
+              monitor->tile_done(samples, static_cast<int64_t>(rays_traced_by_this_thread() - rays_before));
+          }
+          if (bad.total() > 0) {
+            const std::lock_guard<std::mutex> lock(report_mutex);
+            report.merge(bad);
+          }
+        },
+        tbb::simple_partitioner());
   });
   film.add_non_finite(report);
 }

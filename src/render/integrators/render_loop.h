@@ -58,9 +58,18 @@ using SampleRadianceFn = FunctionRef<CameraEstimate(const CameraRay&, Sampler&, 
 // With settings.film_transparent, a camera ray that hits nothing adds black
 // (and no lighting AOV): the background is seen as transparent, not lit.
 // Geometric AOVs (Film::wants_geometry) come from intersecting the camera ray
-// once more. Runs tiles of settings.tile_size pixels in parallel inside `pool`.
+// once more. Runs tiles (scheduled_tile_size) in parallel inside `pool`.
 void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, const IntegratorSettings& settings,
                     const Sampler& sampler, const PixelFilter& filter, SampleRadianceFn radiance);
+
+// The side of the tiles render_samples schedules for a crop of width x height
+// on `threads` threads: `requested` (IntegratorSettings::tile_size), halved
+// down to kMinTileSize pixels while there are fewer than kTilesPerThread tiles
+// per thread, so that on many threads the last tiles are a small share of a
+// small image. The image does not depend on it.
+inline constexpr int kTilesPerThread = 32;
+inline constexpr int kMinTileSize = 4;
+int scheduled_tile_size(int requested, int width, int height, int threads);
 
 // Fills the geometric part of `aov` (albedo, normal, position, depth, ids,
 // Cryptomatte ids) for a camera ray.

@@ -8,12 +8,15 @@
 # PPM and read no image, so the environment map of sponza-env-sun.json is
 # replaced by a constant sky.
 #
-#   tools/bench/threads/device_bundle.sh [EXE] [OUT_DIR]   -> OUT_DIR/bundle.tar.xz (~21 MB)
-#   on the machine: tar -C /tmp/b -xJf bundle.tar.xz && python3 /tmp/b/device_scaling.py 1,2,4,8,12,16 2
+#   tools/bench/threads/device_bundle.sh [EXE] [OUT_DIR] [NAME=EXE2 ...]  -> OUT_DIR/bundle.tar.xz (~21 MB)
+#   on the machine: tar -C /tmp/b -xJf bundle.tar.xz && python3 /tmp/b/device_scaling.py --rounds 2
+# Each NAME=EXE2 adds a second build as NAME (same libraries; e.g. old=main's build for an A/B:
+# device_scaling.py --exes new=pathtracer,old=old).
 set -euo pipefail
 REPO=$(cd "$(dirname "$0")/../../.." && pwd)
 EXE=${1:-$REPO/build/pathtracer}
 OUT=${2:-$REPO/devcarry}
+shift $(( $# < 2 ? $# : 2 ))
 SHARED=${SHARED:-$REPO/../shared}
 B=$(mktemp -d)
 trap 'rm -rf "$B"' EXIT
@@ -27,6 +30,12 @@ D=$(dirname "$(readlink -f "$0")")
 exec "$D/lib/ld-linux-x86-64.so.2" --library-path "$D/lib" "$D/pathtracer.bin" "$@"
 EOS
 chmod +x "$B/pathtracer"
+for extra in "$@"; do
+  name=${extra%%=*}
+  cp "${extra#*=}" "$B/$name.bin"
+  sed "s/pathtracer.bin/$name.bin/" "$B/pathtracer" > "$B/$name"
+  chmod +x "$B/$name"
+done
 python3 - "$REPO/tools/bench/threads/sponza-env-sun.json" "$B/sponza-sky-sun.json" <<'EOP'
 import json, sys
 s = json.load(open(sys.argv[1]))
