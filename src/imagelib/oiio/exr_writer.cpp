@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <vector>
 
 #include <Imath/half.h>
@@ -172,6 +173,39 @@ bool check_layers(const LayeredImage& image, std::string& error) {
   return true;
 }
 
+// The one part of an EXR written band by band (ImageLibrary::open_exr).
+class OiioExrBandWriter final : public ExrBandWriter {
+ public:
+  OiioExrBandWriter(std::unique_ptr<OIIO::ImageOutput> out, std::size_t row_bytes)
+      : out_(std::move(out)), row_bytes_(row_bytes) {}
+
+  std::size_t row_bytes() const override { return row_bytes_; }
+
+  void pack(const LayeredImage& band, unsigned char* out) const override {
+    std::vector<const ImageLayer*> layers;
+    for (const ImageLayer& layer : band.layers) layers.push_back(&layer);
+    std::size_t pixel_bytes = 0;
+    const std::vector<PackedChannel> channels = packed_channels(layers, pixel_bytes);
+    pack_rows(band, channels, pixel_bytes, 0, band.height, out);
+  }
+
+  bool write(int y0, int y1, const unsigned char* packed, std::string& error) override {
+    if (out_->write_scanlines(y0, y1, 0, OIIO::TypeUnknown, packed)) return true;
+    error = out_->geterror();
+    return false;
+  }
+
+  bool close(std::string& error) override {
+    if (out_->close()) return true;
+    error = out_->geterror();
+    return false;
+  }
+
+ private:
+  std::unique_ptr<OIIO::ImageOutput> out_;
+  std::size_t row_bytes_;
+};
+
 }  // namespace
 
 void add_image_metadata(OIIO::ImageSpec& spec, const ImageMetadata& metadata, bool typed) {
@@ -216,6 +250,34 @@ bool write_exr_layers(const std::string& path, const LayeredImage& image, const 
     ok = false;
   }
   return ok;
+}
+
+std::unique_ptr<ExrBandWriter> open_exr_bands(const std::string& path, const LayeredImage& layout,
+                                              const ImageMetadata& metadata, const ExrSettings& exr,
+                                              std::string& error) {
+  if (layout.layers.empty() || layout.pixel_count() == 0) {
+    error = "the image has no pixels";
+    return nullptr;
+  }
+  OIIO::attribute("exr_threads", exr.threads > 0 ? exr.threads : 0);  // as write_exr_layers
+  std::vector<const ImageLayer*> layers;
+  for (const ImageLayer& layer : layout.layers) layers.push_back(&layer);
+  ExrSettings one_part = exr;
+  one_part.multipart = false;
+  const OIIO::ImageSpec spec = part_spec(layout, layers, metadata, one_part);
+  auto out = OIIO::ImageOutput::create("openexr");
+  if (!out) {
+    error = OIIO::geterror();
+    return nullptr;
+  }
+  if (!out->open(path, spec)) {
+    error = out->geterror();
+    return nullptr;
+  }
+  std::size_t pixel_bytes = 0;  // as packed_channels counts them (the layout holds no values to point at)
+  for (const ImageLayer& layer : layout.layers)
+    pixel_bytes += layer.channels.size() * (layer.type == ChannelType::Half ? sizeof(uint16_t) : sizeof(float));
+  return std::make_unique<OiioExrBandWriter>(std::move(out), pixel_bytes * static_cast<std::size_t>(layout.width));
 }
 
 }  // namespace pt
