@@ -19,6 +19,7 @@
 #include "core/parallel.h"
 #include "core/stopwatch.h"
 #include "imagelib/image_library.h"
+#include "io/image_io.h"
 
 namespace pt {
 namespace {
@@ -125,6 +126,38 @@ bool merge_bands(const std::vector<Input>& inputs, ShardMerger& merger, LayeredI
   return merger.merge_layers(states, layers, error);
 }
 
+// The band merge written as it is made (ShardMerger::merge_streamed): one
+// EXR output of one part, no --shard-out. The shards' coverage is checked
+// (finish) before anything is written; a refusal leaves no file.
+bool streams(const MergeOptions& m) {
+  return m.shard_out.empty() && m.outputs.size() == 1 && is_exr_path(m.outputs.front()) && !m.exr.multipart;
+}
+
+bool merge_streamed(const MergeOptions& m, const std::vector<Input>& inputs, ShardMerger& merger,
+                    OutputStamps& stamps, std::string& error) {
+  std::vector<std::optional<MappedFile>> files(inputs.size());
+  std::vector<std::string_view> states(inputs.size());
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    ShardInfo again;
+    if (!map_shard(inputs[i], files[i], again, states[i], error)) return false;
+  }
+  if (!merger.view_states(states, error) || !merger.finish(error)) return false;
+  std::string refusal;
+  const bool ok = write_guarded(
+      m.outputs.front(), stamps,
+      [&](const std::string& path, std::string& e) {
+        return write_exr_bands(path, merger.layout(), merger.metadata(), m.exr, [&](ExrBandWriter& writer, std::string& why) {
+          bool refused = false;
+          if (merger.merge_streamed(writer, why, refused)) return true;
+          if (refused) refusal = why;
+          return false;
+        }, e);
+      },
+      error);
+  if (!refusal.empty()) error = refusal;  // the merge's message, as the band merge gives it
+  return ok;
+}
+
 // Every output checked before any shard is read (as a render's: app/output_checks.h),
 // and none of them one of the shards (the merge would replace its input).
 bool check_merge_outputs(const MergeOptions& m, std::vector<OutputFile>& files, std::string& error) {
@@ -171,6 +204,14 @@ bool merge_and_write(const MergeOptions& m, const std::vector<Input>& inputs, Sh
     std::string ignored;
     if (!m.outputs.empty()) image_library(ignored);
   });
+  if (streams(m)) {
+    phase = "read, add, resolve and write";
+    const bool ok = merge_streamed(m, inputs, merger, stamps, error);
+    preload.join();
+    times[0] = seconds_since(t0);
+    times[1] = process_cpu_seconds() - cpu0;
+    return ok;
+  }
   LayeredImage layers;
   const bool bands = m.shard_out.empty();
   phase = bands ? "read, add and resolve" : "read and add";
@@ -229,7 +270,9 @@ int merge(const MergeOptions& m) {
               << (merger.shards() == 1 ? "" : "s") << " into " << join(written, ", ") << " (" << window.width()
               << "x" << window.height() << ", " << merger.spp() << " spp"
               << (merger.info().partial ? ", partial" : "") << "): " << phase << " " << times[0] << " s (CPU "
-              << times[1] << " s), write " << times[2] << " s (CPU " << times[3] << " s)\n";
+              << times[1] << " s)";
+    if (!streams(m)) std::cout << ", write " << times[2] << " s (CPU " << times[3] << " s)";
+    std::cout << '\n';
   }
   return 0;
 }

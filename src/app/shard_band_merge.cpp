@@ -1,14 +1,19 @@
-// ShardMerger::merge_layers: the band merge of `pathtracer merge`
-// (docs/distributed.md, "The merge").
+// ShardMerger::merge_layers and merge_streamed: the band merge of
+// `pathtracer merge` (docs/distributed.md, "The merge").
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <memory>
 
 #include <tbb/blocked_range.h>
+#include <tbb/concurrent_queue.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_pipeline.h>
+#include <tbb/task_arena.h>
 
 #include "app/shard_merge.h"
+#include "imagelib/image_library.h"
 
 namespace pt {
 namespace {
@@ -16,6 +21,10 @@ namespace {
 // A band film holds about this many bytes of state (it stays in the cache
 // while every shard's rows are added into it and it is resolved).
 constexpr std::size_t kBandBytes = std::size_t{1} << 20;
+// The streamed write hands the file about this many bytes of packed rows at
+// a time, in whole blocks of 32 rows (zip's 16, piz's 32), so that
+// OpenEXR compresses a chunk's blocks in parallel.
+constexpr std::size_t kChunkBytes = std::size_t{8} << 20;
 
 void lower(std::atomic<std::size_t>& lowest, std::size_t value) {
   std::size_t seen = lowest.load();
@@ -25,7 +34,21 @@ void lower(std::atomic<std::size_t>& lowest, std::size_t value) {
 
 }  // namespace
 
-bool ShardMerger::merge_layers(const std::vector<std::string_view>& states, LayeredImage& out, std::string& error) {
+struct ShardMerger::Bands {
+  Bands(Film shape_, std::vector<AovRequest> aovs_, ChannelType beauty_, std::size_t shards)
+      : shape(std::move(shape_)), aovs(std::move(aovs_)), beauty(beauty_), views(shards), bad(shards) {
+    for (auto& b : bad) b = SIZE_MAX;
+  }
+  Film shape;  // the merged film's frame and AOVs, no pixels
+  std::vector<AovRequest> aovs;
+  ChannelType beauty;
+  int rows = 1;  // rows of a band film
+  std::vector<StateView> views;
+  std::vector<std::map<Key, std::pair<bool, int>>> orders;
+  std::vector<std::atomic<std::size_t>> bad;  // per shard: the first pixel it is refused at
+};
+
+bool ShardMerger::view_states(const std::vector<std::string_view>& states, std::string& error) {
   if (states.size() != infos_.size() || states.empty()) {
     error = "the merge has " + std::to_string(states.size()) + " film states for " + std::to_string(infos_.size()) +
             " shards";
@@ -35,50 +58,148 @@ bool ShardMerger::merge_layers(const std::vector<std::string_view>& states, Laye
   ChannelType beauty;
   if (!merged_.film_aovs(aovs, beauty, error)) return false;
   const PixelRect& w = merged_.window;
-  const Film shape(merged_.width, merged_.height, PixelRect{w.x0, w.y0, w.x1, w.y0}, aovs);  // no pixels
-  const std::size_t pixel_bytes = sizeof(PixelSum) + static_cast<std::size_t>(shape.aov_slots()) * sizeof(ExactSum);
-  const int rows = static_cast<int>(std::max<std::size_t>(1, kBandBytes / (pixel_bytes * static_cast<std::size_t>(w.width()))));
+  auto b = std::make_shared<Bands>(Film(merged_.width, merged_.height, PixelRect{w.x0, w.y0, w.x1, w.y0}, aovs), aovs,
+                                   beauty, states.size());  // the shape: no pixels
+  const std::size_t pixel_bytes = sizeof(PixelSum) + static_cast<std::size_t>(b->shape.aov_slots()) * sizeof(ExactSum);
+  b->rows = static_cast<int>(std::max<std::size_t>(1, kBandBytes / (pixel_bytes * static_cast<std::size_t>(w.width()))));
   // Every state viewed (its size checked) and its precedence taken, in the
   // order checked, before anything is added (as add() would, one by one).
-  std::vector<StateView> views(states.size());
-  std::vector<std::map<Key, std::pair<bool, int>>> orders;
   for (std::size_t i = 0; i < states.size(); ++i) {
-    if (std::string why; !shape.view_state(states[i], infos_[i].crop, w, views[i], why)) {
+    if (std::string why; !b->shape.view_state(states[i], infos_[i].crop, w, b->views[i], why)) {
       error = "'" + names_[i] + "': " + why;
       return false;
     }
-    orders.push_back(precedence(infos_[i]));
-    for (const auto& [key, first] : orders.back())
+    b->orders.push_back(precedence(infos_[i]));
+    for (const auto& [key, first] : b->orders.back())
       if (first.first) first_start_[key] = first.second;
   }
-  out = shape.layer_layout(beauty, w);
-  std::vector<std::atomic<std::size_t>> bad(states.size());  // per shard: the first pixel it is refused at
-  for (auto& b : bad) b = SIZE_MAX;
-  const PixelRect first_band{w.x0, w.y0, w.x1, std::min(w.y1, w.y0 + rows)};
-  tbb::enumerable_thread_specific<Film> bands([&] { return Film(merged_.width, merged_.height, first_band, aovs); });
+  bands_ = std::move(b);
+  return true;
+}
+
+LayeredImage ShardMerger::layout() const {
+  LayeredImage out = bands_->shape.layer_layout(bands_->beauty, PixelRect{});
+  const PixelRect& w = merged_.window;
+  out.x = w.x0;
+  out.y = w.y0;
+  out.width = w.width();
+  out.height = w.height();
+  return out;
+}
+
+void ShardMerger::add_band(Bands& b, Film& band, int y0, int y1) const {
+  band.recrop({merged_.window.x0, y0, merged_.window.x1, y1});
+  for (std::size_t i = 0; i < b.views.size(); ++i) {
+    const int from = std::max(y0, b.views[i].crop.y0), to = std::min(y1, b.views[i].crop.y1);
+    if (from >= to) continue;
+    const std::size_t refused = band.add_state_rows(b.views[i], rules(infos_[i], b.orders[i], from, to), from, to);
+    if (refused != SIZE_MAX) lower(b.bad[i], refused);
+  }
+}
+
+bool ShardMerger::refused(const Bands& b, std::string& error) const {
+  for (std::size_t i = 0; i < b.views.size(); ++i) {
+    if (b.bad[i] == SIZE_MAX) continue;
+    const auto y = b.views[i].crop.y0 + static_cast<int>(b.bad[i] / static_cast<std::size_t>(b.views[i].crop.width()));
+    error = "'" + names_[i] + "': " + b.shape.refusal(b.views[i], b.bad[i], rules(infos_[i], b.orders[i], y, y + 1));
+    return true;
+  }
+  return false;
+}
+
+bool ShardMerger::merge_layers(const std::vector<std::string_view>& states, LayeredImage& out, std::string& error) {
+  if (!view_states(states, error)) return false;
+  Bands& b = *bands_;
+  const PixelRect& w = merged_.window;
+  out = b.shape.layer_layout(b.beauty, w);
+  const PixelRect first_band{w.x0, w.y0, w.x1, std::min(w.y1, w.y0 + b.rows)};
+  tbb::enumerable_thread_specific<Film> bands([&] { return Film(merged_.width, merged_.height, first_band, b.aovs); });
   // Every pixel is added and resolved by one task, with integer sums: bands
   // in parallel give the bits of add() then layers(), and resolve with the
   // caller's floating-point settings, as layers() does.
   tbb::task_group_context context;
   context.capture_fp_settings();
-  tbb::parallel_for(tbb::blocked_range<int>(w.y0, w.y1, rows), [&](const tbb::blocked_range<int>& r) {
+  tbb::parallel_for(tbb::blocked_range<int>(w.y0, w.y1, b.rows), [&](const tbb::blocked_range<int>& r) {
     Film& band = bands.local();
-    band.recrop({w.x0, r.begin(), w.x1, r.end()});
-    for (std::size_t i = 0; i < views.size(); ++i) {
-      const int y0 = std::max(r.begin(), views[i].crop.y0), y1 = std::min(r.end(), views[i].crop.y1);
-      if (y0 >= y1) continue;
-      const std::size_t refused = band.add_state_rows(views[i], rules(infos_[i], orders[i], y0, y1), y0, y1);
-      if (refused != SIZE_MAX) lower(bad[i], refused);
-    }
+    add_band(b, band, r.begin(), r.end());
     band.resolve_into(out);
   }, tbb::simple_partitioner(), context);
-  for (std::size_t i = 0; i < views.size(); ++i) {
-    if (bad[i] == SIZE_MAX) continue;
-    const auto y = views[i].crop.y0 + static_cast<int>(bad[i] / static_cast<std::size_t>(views[i].crop.width()));
-    error = "'" + names_[i] + "': " + shape.refusal(views[i], bad[i], rules(infos_[i], orders[i], y, y + 1));
+  return !refused(b, error);
+}
+
+bool ShardMerger::merge_streamed(ExrBandWriter& writer, std::string& error, bool& refusal) {
+  refusal = false;
+  Bands& b = *bands_;
+  const PixelRect& w = merged_.window;
+  const std::size_t row_bytes = writer.row_bytes();
+  const int tokens = std::max(2, 2 * tbb::this_task_arena::max_concurrency());
+  // A chunk: about kChunkBytes, and no more than a tokens-th of the window (so
+  // that the pipeline overlaps), in whole blocks of 32 rows.
+  const int chunk_rows =
+      std::max(32, static_cast<int>(std::min<std::size_t>(kChunkBytes / row_bytes,
+                                                          static_cast<std::size_t>((w.height() + tokens - 1) / tokens))) /
+                       32 * 32);
+  const PixelRect first_band{w.x0, w.y0, w.x1, std::min(w.y1, w.y0 + b.rows)};
+  tbb::enumerable_thread_specific<Film> bands([&] { return Film(merged_.width, merged_.height, first_band, b.aovs); });
+  // A band's resolved layers (the layout over a band film's rows), then packed into its chunk.
+  tbb::enumerable_thread_specific<LayeredImage> resolved([&] { return b.shape.layer_layout(b.beauty, first_band); });
+  // Chunks of packed rows, reused: as many as the pipeline holds at once.
+  struct Chunk {
+    int y0 = 0, y1 = 0;
+    std::unique_ptr<unsigned char[]> packed;
+  };
+  std::vector<Chunk> chunks(static_cast<std::size_t>(tokens));
+  tbb::concurrent_queue<Chunk*> spare;
+  for (Chunk& c : chunks) spare.push(&c);
+  int next = w.y0;
+  bool write_failed = false;
+  std::string why;
+  // As merge_layers: each pixel added and resolved by one task, with the
+  // caller's floating-point settings. Every band is merged even after a
+  // refusal (nothing more is written), so that the refusal reported is
+  // merge_layers' (the first shard's first refused pixel).
+  tbb::task_group_context context;
+  context.capture_fp_settings();
+  tbb::parallel_pipeline(
+      static_cast<std::size_t>(tokens),
+      tbb::make_filter<void, Chunk*>(tbb::filter_mode::serial_in_order,
+                                     [&](tbb::flow_control& fc) -> Chunk* {
+                                       Chunk* c = nullptr;
+                                       if (next >= w.y1 || !spare.try_pop(c)) {
+                                         fc.stop();
+                                         return nullptr;
+                                       }
+                                       c->y0 = next;
+                                       c->y1 = next = std::min(w.y1, next + chunk_rows);
+                                       if (!c->packed) c->packed.reset(new unsigned char[static_cast<std::size_t>(chunk_rows) * row_bytes]);
+                                       return c;
+                                     }) &
+          tbb::make_filter<Chunk*, Chunk*>(tbb::filter_mode::parallel,
+                                           [&](Chunk* c) {
+                                             tbb::parallel_for(tbb::blocked_range<int>(c->y0, c->y1, b.rows), [&](const tbb::blocked_range<int>& r) {
+                                               Film& band = bands.local();
+                                               add_band(b, band, r.begin(), r.end());
+                                               LayeredImage& image = resolved.local();
+                                               image.y = r.begin();
+                                               image.height = static_cast<int>(r.size());
+                                               band.resolve_into(image);
+                                               writer.pack(image, c->packed.get() + static_cast<std::size_t>(r.begin() - c->y0) * row_bytes);
+                                             }, tbb::simple_partitioner());
+                                             return c;
+                                           }) &
+          tbb::make_filter<Chunk*, void>(tbb::filter_mode::serial_in_order,
+                                         [&](Chunk* c) {
+                                           const bool any_refused = std::any_of(b.bad.begin(), b.bad.end(), [](const auto& x) { return x != SIZE_MAX; });
+                                           if (!any_refused && !write_failed) write_failed = !writer.write(c->y0, c->y1, c->packed.get(), why);
+                                           spare.push(c);
+                                         }),
+      context);
+  if (refused(b, error)) {
+    refusal = true;
     return false;
   }
-  return true;
+  if (write_failed) error = why;
+  return !write_failed;
 }
 
 }  // namespace pt

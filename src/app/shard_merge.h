@@ -10,6 +10,7 @@
 #pragma once
 
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -23,6 +24,7 @@
 
 namespace pt {
 
+class ExrBandWriter;  // imagelib/image_library.h
 class OutputStamps;
 
 class ShardMerger {
@@ -55,6 +57,22 @@ class ShardMerger {
   // same checks (a state's size before anything is added, samples per pixel,
   // Cryptomatte slots). False with `error` naming the shard.
   bool merge_layers(const std::vector<std::string_view>& states, LayeredImage& out, std::string& error);
+  // The band merge in steps, for the streamed write. view_states: every
+  // state viewed (its size checked) and its precedence taken, before
+  // anything is added; false with `error` naming the shard, as merge_layers.
+  bool view_states(const std::vector<std::string_view>& states, std::string& error);
+  // After view_states: the merged image's layout (frame, window, layers), without values.
+  LayeredImage layout() const;
+  // After view_states: merge_layers' bands written as they are made. Every
+  // band of rows is added and resolved as merge_layers does, packed for the
+  // file and handed to `writer` (one part: io/image_io.h, write_exr_bands)
+  // in order, while the next bands are merged (a TBB pipeline), so that the
+  // write overlaps the merge and the whole image's layers are never held.
+  // The same bytes as write_exr of merge_layers' image. False with `error`:
+  // `refused` says whether a state was refused (the message merge_layers
+  // gives, naming the shard; nothing is written after the refused band) or
+  // the writer failed (its message).
+  bool merge_streamed(ExrBandWriter& writer, std::string& error, bool& refused);
   // The merged beauty's half/float type.
   ChannelType beauty_type() const;
   // After the last shard: every tile of the window and every sample of the
@@ -93,6 +111,13 @@ class ShardMerger {
   // there (its lowest first sample is below every earlier shard's), and that
   // first sample; the caller records the ones that come first.
   std::map<Key, std::pair<bool, int>> precedence(const ShardInfo& info) const;
+  // The band merge's state (shard_band_merge.cpp): the viewed states, their
+  // precedence, and per shard the first pixel refused.
+  struct Bands;
+  // Adds every shard's rows [y0, y1) of a band into `band` (recropped to them).
+  void add_band(Bands& b, Film& band, int y0, int y1) const;
+  // The refusal of the first shard (in order) that had a pixel refused; false if none.
+  bool refused(const Bands& b, std::string& error) const;
   std::string missing_tiles() const;
   std::string missing_samples() const;
 
@@ -102,6 +127,7 @@ class ShardMerger {
   ShardInfo merged_;
   std::vector<Placed> placed_;
   std::optional<Film> film_;
+  std::shared_ptr<Bands> bands_;  // after view_states
   std::map<Key, int> first_start_;  // per crop: the lowest first sample added so far
   std::vector<std::string> warnings_;
   std::string notes_;

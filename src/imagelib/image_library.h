@@ -34,7 +34,7 @@
 
 namespace pt {
 
-inline constexpr int kImageLibraryAbi = 2;
+inline constexpr int kImageLibraryAbi = 3;
 
 // What an image file's header says.
 struct ImageHeader {
@@ -93,6 +93,28 @@ class TextureSystem {
 
 inline constexpr const char* kSrgbDecodedSuffix = "#pt-srgb-decoded";
 
+// An EXR file of one part written band by band, top to bottom, while the
+// bands are made (the streamed merge: app/shard_band_merge.cpp). Opened with
+// the image's layout (a LayeredImage's frame, window and layers' names,
+// channels and types; no values), it writes the same bytes as write_exr of
+// the whole image would (whatever the bands' heights).
+class ExrBandWriter {
+ public:
+  virtual ~ExrBandWriter() = default;
+  // The bytes of one packed row: every channel of a pixel in its file type
+  // (half or float), interleaved, as the file stores them.
+  virtual std::size_t row_bytes() const = 0;
+  // Packs every row of `band` (the layout's layers over rows
+  // [band.y, band.y + band.height) of the window; values as LayeredImage
+  // holds them) into `out` (band.height * row_bytes() bytes). Thread-safe.
+  virtual void pack(const LayeredImage& band, unsigned char* out) const = 0;
+  // Writes packed rows [y0, y1) (frame coordinates); each call's rows follow
+  // the last call's. False with `error`.
+  virtual bool write(int y0, int y1, const unsigned char* packed, std::string& error) = 0;
+  // Finishes the file (after every row). False with `error`.
+  virtual bool close(std::string& error) = 0;
+};
+
 class ImageLibrary {
  public:
   virtual ~ImageLibrary() = default;
@@ -109,6 +131,11 @@ class ImageLibrary {
   // Writes `image` to `path` as OpenEXR (io/image_io.h, write_layered_image).
   virtual bool write_exr(const std::string& path, const LayeredImage& image, const ImageMetadata& metadata,
                          const ExrSettings& exr, std::string& error) const = 0;
+  // Opens `path` for an EXR of `layout` (one part: exr.multipart is not
+  // taken) written band by band. nullptr with `error` on failure.
+  virtual std::unique_ptr<ExrBandWriter> open_exr(const std::string& path, const LayeredImage& layout,
+                                                  const ImageMetadata& metadata, const ExrSettings& exr,
+                                                  std::string& error) const = 0;
   virtual std::unique_ptr<TextureSystem> texture_system(uint64_t max_bytes) const = 0;
 };
 

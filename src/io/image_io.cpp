@@ -257,6 +257,23 @@ bool write_layered_image(const std::string& path, const LayeredImage& image, con
       error);
 }
 
+bool write_exr_bands(const std::string& path, const LayeredImage& layout, const ImageMetadata& metadata,
+                     const ExrSettings& exr, const std::function<bool(ExrBandWriter&, std::string&)>& write,
+                     std::string& error) {
+  if (layout.width <= 0 || layout.height <= 0) {
+    error = "cannot write '" + path + "': the image is empty";
+    return false;
+  }
+  return write_atomically(
+      path,
+      [&](const std::string& tmp, std::string& why) {
+        const ImageLibrary* lib = library(why);
+        const std::unique_ptr<ExrBandWriter> writer = lib != nullptr ? lib->open_exr(tmp, layout, metadata, exr, why) : nullptr;
+        return writer != nullptr && write(*writer, why) && writer->close(why);
+      },
+      error);
+}
+
 bool read_image(const std::string& path, Image& out, std::string& error) {
   std::string why;
   const ImageLibrary* lib = library(why);

@@ -6,6 +6,7 @@
 // then renamed, so a failed or killed run never leaves a partial image.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,8 @@
 #include "scene/scene_description.h"
 
 namespace pt {
+
+class ExrBandWriter;  // imagelib/image_library.h
 
 // Extensions write_image accepts (".exr", ".png", ".jpg", ".jpeg", ".ppm").
 std::vector<std::string> supported_image_extensions();
@@ -51,6 +54,17 @@ bool write_image(const std::string& path, const Image& image, const DisplaySetti
 // un-premultiplied before the display transform, as PNG's alpha is straight).
 bool write_layered_image(const std::string& path, const LayeredImage& image, const DisplaySettings& settings,
                          std::string& error, const ImageMetadata& metadata = {}, const ExrSettings& exr = {});
+
+// Writes an EXR of `layout` (one part; exr.multipart is not taken) band by
+// band while the bands are made: `write(writer, why)` writes every row of the
+// window through `writer`, top to bottom, or returns false with `why`. The
+// same bytes as write_layered_image of the whole image, and as atomically (on
+// failure nothing is left at `path`; `error` says "cannot write '<path>':
+// <why>"). `layout`: the image's frame, window and layers (names, channels,
+// types); its values are not read.
+bool write_exr_bands(const std::string& path, const LayeredImage& layout, const ImageMetadata& metadata,
+                     const ExrSettings& exr, const std::function<bool(ExrBandWriter&, std::string&)>& write,
+                     std::string& error);
 
 // Reads an image (any format OpenImageIO reads) as float RGB: float files (EXR)
 // as they are; integer files (PNG, PPM) as code / max code, i.e. the display

@@ -120,7 +120,7 @@ TEST_F(Distributed, SampleSharesMergeToTheSingleRenderBitForBit) {
   for (const std::string args : {"--threads 1", "--threads 3 --shard-out m3.ptshard"}) {
     const RunResult m = run("merge n3_2.ptshard n3_0.ptshard n3_1.ptshard -o t.exr " + args);
     ASSERT_EQ(m.status, 0) << m.err;
-    EXPECT_NE(m.out.find(args.find("shard-out") != std::string::npos ? "read and add" : "read, add and resolve"),
+    EXPECT_NE(m.out.find(args.find("shard-out") != std::string::npos ? "read and add" : "read, add, resolve and write"),
               std::string::npos) << m.out;
     EXPECT_EQ(differs(single, read_exr(path("t.exr"))), "") << args;
   }
@@ -208,11 +208,15 @@ TEST_F(Distributed, DamagedShardFilesAreRefusedAndNothingIsWritten) {
   const std::string good = slurp(path("1.ptshard"));
   const auto refused = [&](const std::string& bytes, const std::string& message) {
     write("bad.ptshard", bytes);
-    const RunResult r = run("merge 0.ptshard bad.ptshard -o m.exr --shard-out m.ptshard");
-    EXPECT_EQ(r.status, 1) << message;
-    EXPECT_NE(r.err.find("'bad.ptshard': " + message), std::string::npos) << r.err;
-    EXPECT_FALSE(std::filesystem::exists(path("m.exr")));
-    EXPECT_FALSE(std::filesystem::exists(path("m.ptshard")));
+    // The merged film (--shard-out), the band merge (two images) and the streamed one (one EXR).
+    for (const std::string outputs : {"-o m.exr --shard-out m.ptshard", "-o m.exr -o m.png", "-o m.exr"}) {
+      const RunResult r = run("merge 0.ptshard bad.ptshard " + outputs);
+      EXPECT_EQ(r.status, 1) << message << ", " << outputs;
+      EXPECT_NE(r.err.find("'bad.ptshard': " + message), std::string::npos) << outputs << ": " << r.err;
+      EXPECT_FALSE(std::filesystem::exists(path("m.exr"))) << outputs;
+      EXPECT_FALSE(std::filesystem::exists(path("m.png"))) << outputs;
+      EXPECT_FALSE(std::filesystem::exists(path("m.ptshard"))) << outputs;
+    }
   };
   refused(good.substr(0, good.size() - 1), "truncated film state");
   refused(good.substr(0, good.size() / 2), "truncated film state");
@@ -238,6 +242,62 @@ TEST_F(Distributed, DamagedShardFilesAreRefusedAndNothingIsWritten) {
   refused(listed, "corrupt film state (wide value 0 of 1)");
   const RunResult r = run("merge 0.ptshard 1.ptshard -o m.exr");  // the good ones still merge
   EXPECT_EQ(r.status, 0) << r.err;
+}
+
+// An EXR's bytes with its capDate's value (the time of writing) blanked.
+std::string without_cap_date(std::string bytes) {
+  const std::string key("capDate\0string\0", 15);
+  const std::size_t at = bytes.find(key);
+  if (at != std::string::npos) bytes.replace(at + key.size() + 4, 19, 19, '-');  // after its 4-byte size
+  return bytes;
+}
+
+// One EXR output is written as the bands are merged (ShardMerger::merge_streamed):
+// the same bytes as the band merge's image written whole (an EXR with a PNG
+// beside it), for every compression, on one thread and on several, over a
+// frame of many chunks of rows, a crop and a partial merge; --multipart and
+// --shard-out take the other paths and give the same pixels.
+TEST_F(Distributed, StreamedMergeWritesTheSameBytesAsTheWholeImage) {
+  write("tall.json", path_scene(20, 150, 3));
+  const std::string render = "tall.json --seed 7 --quiet --aov albedo,N:float,P:half,Z,IndexOB,variance,samples,"
+                             "CryptoObject,beauty:half";
+  for (const char* k : {"0", "1", "2"}) {
+    const RunResult r = run(render + " --shard " + std::string(k) + "/3 --shard-out s" + k + ".ptshard");
+    ASSERT_EQ(r.status, 0) << r.err;
+  }
+  ASSERT_EQ(run(render + " -o single.exr").status, 0);
+  const Exr single = read_exr(path("single.exr"));
+  for (const std::string& c : {"none", "rle", "zips", "zip", "piz", "b44", "b44a", "dwaa", "dwab"}) {
+    for (const char* threads : {"1", "3"}) {
+      if (threads[0] == '1' && c != "none" && c != "zip") continue;  // one thread: two compressions suffice
+      const std::string args = " --exr-compression " + c + " --threads " + threads;
+      RunResult r = run("merge s0.ptshard s1.ptshard s2.ptshard -o streamed.exr" + args);
+      ASSERT_EQ(r.status, 0) << c << ": " << r.err;
+      EXPECT_NE(r.out.find("read, add, resolve and write"), std::string::npos) << r.out;
+      r = run("merge s0.ptshard s1.ptshard s2.ptshard -o whole.exr -o whole.png" + args);
+      ASSERT_EQ(r.status, 0) << c << ": " << r.err;
+      EXPECT_NE(r.out.find("read, add and resolve"), std::string::npos) << r.out;
+      const std::string streamed = slurp(path("streamed.exr"));
+      EXPECT_GT(streamed.size(), 20u * 150u) << c;
+      EXPECT_TRUE(without_cap_date(streamed) == without_cap_date(slurp(path("whole.exr")))) << c << ", --threads " << threads;
+      if (c == "none" || c == "zip") EXPECT_EQ(differs(single, read_exr(path("streamed.exr"))), "") << c;
+    }
+  }
+  for (const std::string args : {"--multipart", "--shard-out m.ptshard"}) {
+    const RunResult r = run("merge s0.ptshard s1.ptshard s2.ptshard -o other.exr " + args);
+    ASSERT_EQ(r.status, 0) << args << ": " << r.err;
+    EXPECT_EQ(r.out.find("resolve and write"), std::string::npos) << r.out;
+    if (args != "--multipart") EXPECT_EQ(differs(single, read_exr(path("other.exr"))), "") << args;
+  }
+  // A crop of shares, and a partial merge (a share missing): the same bytes too.
+  for (const char* k : {"0", "1"})
+    ASSERT_EQ(run(render + " --crop-px 3,40,14,90 --shard " + std::string(k) + "/2 --shard-out c" + k + ".ptshard").status, 0);
+  for (const std::string shards : {"c0.ptshard c1.ptshard", "s0.ptshard s2.ptshard --allow-partial"}) {
+    ASSERT_EQ(run("merge " + shards + " -o streamed.exr").status, 0) << shards;
+    ASSERT_EQ(run("merge " + shards + " -o whole.exr -o whole.png").status, 0) << shards;
+    EXPECT_TRUE(without_cap_date(slurp(path("streamed.exr"))) == without_cap_date(slurp(path("whole.exr")))) << shards;
+  }
+  EXPECT_EQ(read_exr(path("streamed.exr")).attr("pathtracer:partial"), "1");
 }
 
 TEST_F(Distributed, CompositingLayersMergeExactly) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <vector>
 
 #include <Imath/half.h>
@@ -48,49 +49,50 @@ OIIO::ImageSpec part_spec(const LayeredImage& image, const std::vector<const Ima
   return spec;
 }
 
-// One channel of a part as packed for the file: where its float values are
-// (every `stride`-th, a layer's values being interleaved), where it goes in
-// a packed pixel, and whether it is stored as half.
-struct PackedChannel {
+// One layer of a part as packed for the file: its float values (its
+// channels interleaved), where its channels go in a packed pixel (one after
+// another), and whether they are stored as half.
+struct PackedLayer {
   const float* values;
-  std::size_t stride, offset;
+  std::size_t channels, offset;
   bool half;
 };
 
-// The channels of a part holding `layers`, in order, and the bytes of a
-// packed pixel: OpenImageIO's "native" layout, each channel in its file type.
-std::vector<PackedChannel> packed_channels(const std::vector<const ImageLayer*>& layers, std::size_t& pixel_bytes) {
-  std::vector<PackedChannel> channels;
+// The layers of a part, in order, and the bytes of a packed pixel:
+// OpenImageIO's "native" layout, each channel in its file type.
+std::vector<PackedLayer> packed_layers(const std::vector<const ImageLayer*>& layers, std::size_t& pixel_bytes) {
+  std::vector<PackedLayer> packed;
   pixel_bytes = 0;
   for (const ImageLayer* layer : layers) {
     const bool half = layer->type == ChannelType::Half;
-    for (std::size_t c = 0; c < layer->channels.size(); ++c) {
-      channels.push_back({layer->values.data() + c, layer->channels.size(), pixel_bytes, half});
-      pixel_bytes += half ? sizeof(uint16_t) : sizeof(float);
+    packed.push_back({layer->values.data(), layer->channels.size(), pixel_bytes, half});
+    pixel_bytes += layer->channels.size() * (half ? sizeof(uint16_t) : sizeof(float));
+  }
+  return packed;
+}
+
+// `n` pixels of `channels` floats each (`v`, interleaved) as half bits into
+// `o`, a pixel's halves one after another and pixels `step` bytes apart,
+// rounded to nearest even: Imath's conversion (OpenImageIO's), in software
+// since the build targets plain x86-64, or the CPU's F16C one, which rounds
+// the same way (finite values, infinities, subnormals; NaNs, whose payloads
+// the two treat differently, go through Imath).
+void pack_halves_soft(const float* v, std::size_t channels, std::size_t n, unsigned char* o, std::size_t step) {
+  for (std::size_t x = 0; x < n; ++x)
+    for (std::size_t c = 0; c < channels; ++c) {
+      const uint16_t bits = Imath::half(v[x * channels + c]).bits();
+      std::memcpy(o + x * step + c * sizeof bits, &bits, sizeof bits);
     }
-  }
-  return channels;
 }
 
-// `n` floats (every `stride`-th of `v`) as half bits into `o`, `step` bytes
-// apart, rounded to nearest even: Imath's conversion (OpenImageIO's), in
-// software since the build targets plain x86-64, or the CPU's F16C one,
-// which rounds the same way (finite values, infinities, subnormals; NaNs,
-// whose payloads the two treat differently, go through Imath).
-void pack_halves_soft(const float* v, std::size_t stride, std::size_t n, unsigned char* o, std::size_t step) {
-  for (std::size_t x = 0; x < n; ++x) {
-    const uint16_t bits = Imath::half(v[x * stride]).bits();
-    std::memcpy(o + x * step, &bits, sizeof bits);
-  }
-}
-
-__attribute__((target("f16c"))) void pack_halves_f16c(const float* v, std::size_t stride, std::size_t n,
+__attribute__((target("f16c"))) void pack_halves_f16c(const float* v, std::size_t channels, std::size_t n,
                                                       unsigned char* o, std::size_t step) {
-  for (std::size_t x = 0; x < n; ++x) {
-    const float f = v[x * stride];
-    const uint16_t bits = std::isnan(f) ? Imath::half(f).bits() : _cvtss_sh(f, _MM_FROUND_TO_NEAREST_INT);
-    std::memcpy(o + x * step, &bits, sizeof bits);
-  }
+  for (std::size_t x = 0; x < n; ++x)
+    for (std::size_t c = 0; c < channels; ++c) {
+      const float f = v[x * channels + c];
+      const uint16_t bits = std::isnan(f) ? Imath::half(f).bits() : _cvtss_sh(f, _MM_FROUND_TO_NEAREST_INT);
+      std::memcpy(o + x * step + c * sizeof bits, &bits, sizeof bits);
+    }
 }
 
 // F16C: its CPUID bit, and the AVX state the OS must save for VEX code
@@ -102,34 +104,51 @@ bool cpu_has_f16c() {
   return __builtin_cpu_supports("avx") && __get_cpuid(1, &eax, &ebx, &ecx, &edx) != 0 && (ecx & bit_F16C) != 0;
 }
 
-void pack_halves(const float* v, std::size_t stride, std::size_t n, unsigned char* o, std::size_t step) {
+void pack_halves(const float* v, std::size_t channels, std::size_t n, unsigned char* o, std::size_t step) {
   static const bool f16c = cpu_has_f16c();
   if (f16c) {
-    pack_halves_f16c(v, stride, n, o, step);
+    pack_halves_f16c(v, channels, n, o, step);
   } else {
-    pack_halves_soft(v, stride, n, o, step);
+    pack_halves_soft(v, channels, n, o, step);
+  }
+}
+
+// `n` pixels of `channels` floats each (`v`) into `o`, pixels `step` bytes
+// apart; the usual counts with a copy of a fixed size (inlined).
+template <std::size_t kChannels>
+void copy_pixels(const float* v, std::size_t n, unsigned char* o, std::size_t step) {
+  for (std::size_t x = 0; x < n; ++x) std::memcpy(o + x * step, v + x * kChannels, kChannels * sizeof(float));
+}
+void copy_floats(const float* v, std::size_t channels, std::size_t n, unsigned char* o, std::size_t step) {
+  switch (channels) {
+    case 1: return copy_pixels<1>(v, n, o, step);
+    case 3: return copy_pixels<3>(v, n, o, step);
+    case 4: return copy_pixels<4>(v, n, o, step);
+    default:
+      for (std::size_t x = 0; x < n; ++x) std::memcpy(o + x * step, v + x * channels, channels * sizeof(float));
   }
 }
 
 // Rows [y0, y1) of the data window packed into `out`, channels interleaved
 // in their file types (halves rounded to nearest even, as OpenImageIO's
-// conversion does), rows in parallel. Writing this "native" data lets
-// OpenImageIO hand it to OpenEXR as it is: no float image of every channel
-// interleaved, and no conversion copy of it.
-void pack_rows(const LayeredImage& image, const std::vector<PackedChannel>& channels, std::size_t pixel_bytes, int y0,
+// conversion does), rows in parallel, a layer's channels of a pixel at a
+// time (they are next to each other on both sides). Writing this "native"
+// data lets OpenImageIO hand it to OpenEXR as it is: no float image of every
+// channel interleaved, and no conversion copy of it.
+void pack_rows(const LayeredImage& image, const std::vector<PackedLayer>& layers, std::size_t pixel_bytes, int y0,
                int y1, unsigned char* out) {
   const auto width = static_cast<std::size_t>(image.width);
   tbb::parallel_for(tbb::blocked_range<int>(y0, y1), [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y < rows.end(); ++y) {
       const std::size_t first = static_cast<std::size_t>(y) * width;
       unsigned char* row = out + static_cast<std::size_t>(y - y0) * width * pixel_bytes;
-      for (const PackedChannel& c : channels) {
-        const float* v = c.values + first * c.stride;
-        unsigned char* o = row + c.offset;
-        if (c.half) {
-          pack_halves(v, c.stride, width, o, pixel_bytes);
+      for (const PackedLayer& l : layers) {
+        const float* v = l.values + first * l.channels;
+        unsigned char* o = row + l.offset;
+        if (l.half) {
+          pack_halves(v, l.channels, width, o, pixel_bytes);
         } else {
-          for (std::size_t x = 0; x < width; ++x) std::memcpy(o + x * pixel_bytes, v + x * c.stride, sizeof(float));
+          copy_floats(v, l.channels, width, o, pixel_bytes);
         }
       }
     }
@@ -142,14 +161,14 @@ constexpr std::size_t kBandBytes = std::size_t{32} << 20;
 // Writes the pixels of a part holding `layers` (opened), band by band.
 bool write_part(OIIO::ImageOutput& out, const LayeredImage& image, const std::vector<const ImageLayer*>& layers) {
   std::size_t pixel_bytes = 0;
-  const std::vector<PackedChannel> channels = packed_channels(layers, pixel_bytes);
+  const std::vector<PackedLayer> packed = packed_layers(layers, pixel_bytes);
   const std::size_t row_bytes = pixel_bytes * static_cast<std::size_t>(image.width);
   // Whole blocks of 32 rows (zip's 16, piz's 32) keep OpenEXR's compression of a band's blocks parallel.
   const int band = std::min(image.height, std::max(32, static_cast<int>(kBandBytes / row_bytes) / 32 * 32));
   std::vector<unsigned char> buffer(static_cast<std::size_t>(band) * row_bytes);
   for (int y0 = 0; y0 < image.height; y0 += band) {
     const int y1 = std::min(image.height, y0 + band);
-    pack_rows(image, channels, pixel_bytes, y0, y1, buffer.data());
+    pack_rows(image, packed, pixel_bytes, y0, y1, buffer.data());
     if (!out.write_scanlines(image.y + y0, image.y + y1, 0, OIIO::TypeUnknown, buffer.data())) return false;
   }
   return true;
@@ -171,6 +190,39 @@ bool check_layers(const LayeredImage& image, std::string& error) {
   }
   return true;
 }
+
+// The one part of an EXR written band by band (ImageLibrary::open_exr).
+class OiioExrBandWriter final : public ExrBandWriter {
+ public:
+  OiioExrBandWriter(std::unique_ptr<OIIO::ImageOutput> out, std::size_t row_bytes)
+      : out_(std::move(out)), row_bytes_(row_bytes) {}
+
+  std::size_t row_bytes() const override { return row_bytes_; }
+
+  void pack(const LayeredImage& band, unsigned char* out) const override {
+    std::vector<const ImageLayer*> layers;
+    for (const ImageLayer& layer : band.layers) layers.push_back(&layer);
+    std::size_t pixel_bytes = 0;
+    const std::vector<PackedLayer> packed = packed_layers(layers, pixel_bytes);
+    pack_rows(band, packed, pixel_bytes, 0, band.height, out);
+  }
+
+  bool write(int y0, int y1, const unsigned char* packed, std::string& error) override {
+    if (out_->write_scanlines(y0, y1, 0, OIIO::TypeUnknown, packed)) return true;
+    error = out_->geterror();
+    return false;
+  }
+
+  bool close(std::string& error) override {
+    if (out_->close()) return true;
+    error = out_->geterror();
+    return false;
+  }
+
+ private:
+  std::unique_ptr<OIIO::ImageOutput> out_;
+  std::size_t row_bytes_;
+};
 
 }  // namespace
 
@@ -216,6 +268,34 @@ bool write_exr_layers(const std::string& path, const LayeredImage& image, const 
     ok = false;
   }
   return ok;
+}
+
+std::unique_ptr<ExrBandWriter> open_exr_bands(const std::string& path, const LayeredImage& layout,
+                                              const ImageMetadata& metadata, const ExrSettings& exr,
+                                              std::string& error) {
+  if (layout.layers.empty() || layout.pixel_count() == 0) {
+    error = "the image has no pixels";
+    return nullptr;
+  }
+  OIIO::attribute("exr_threads", exr.threads > 0 ? exr.threads : 0);  // as write_exr_layers
+  std::vector<const ImageLayer*> layers;
+  for (const ImageLayer& layer : layout.layers) layers.push_back(&layer);
+  ExrSettings one_part = exr;
+  one_part.multipart = false;
+  const OIIO::ImageSpec spec = part_spec(layout, layers, metadata, one_part);
+  auto out = OIIO::ImageOutput::create("openexr");
+  if (!out) {
+    error = OIIO::geterror();
+    return nullptr;
+  }
+  if (!out->open(path, spec)) {
+    error = out->geterror();
+    return nullptr;
+  }
+  std::size_t pixel_bytes = 0;  // as packed_layers counts them (the layout holds no values to point at)
+  for (const ImageLayer& layer : layout.layers)
+    pixel_bytes += layer.channels.size() * (layer.type == ChannelType::Half ? sizeof(uint16_t) : sizeof(float));
+  return std::make_unique<OiioExrBandWriter>(std::move(out), pixel_bytes * static_cast<std::size_t>(layout.width));
 }
 
 }  // namespace pt

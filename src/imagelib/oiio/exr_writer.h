@@ -2,10 +2,12 @@
 // module; the public entry point is write_layered_image in io/image_io.h).
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include <OpenImageIO/imageio.h>
 
+#include "imagelib/image_library.h"
 #include "io/exr_settings.h"
 #include "io/image_metadata.h"
 #include "io/layered_image.h"
@@ -24,5 +26,10 @@ void add_image_metadata(OIIO::ImageSpec& spec, const ImageMetadata& metadata, bo
 // "rgba"), each with every metadata attribute.
 bool write_exr_layers(const std::string& path, const LayeredImage& image, const ImageMetadata& metadata,
                       const ExrSettings& exr, std::string& error);
+
+// The same file (one part) written band by band (ImageLibrary::open_exr).
+std::unique_ptr<ExrBandWriter> open_exr_bands(const std::string& path, const LayeredImage& layout,
+                                              const ImageMetadata& metadata, const ExrSettings& exr,
+                                              std::string& error);
 
 }  // namespace pt

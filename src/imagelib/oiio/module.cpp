@@ -122,6 +122,12 @@ class OiioLibrary final : public ImageLibrary {
     return write_exr_layers(path, image, metadata, exr, error);
   }
 
+  std::unique_ptr<ExrBandWriter> open_exr(const std::string& path, const LayeredImage& layout,
+                                          const ImageMetadata& metadata, const ExrSettings& exr,
+                                          std::string& error) const override {
+    return open_exr_bands(path, layout, metadata, exr, error);
+  }
+
   std::unique_ptr<TextureSystem> texture_system(uint64_t max_bytes) const override {
     return make_texture_system(max_bytes);
   }

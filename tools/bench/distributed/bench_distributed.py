@@ -92,12 +92,13 @@ def run_record(report):
 
 
 def merge_times(stdout):
-    # "read and add" (the merged film; its write resolves it), or "read, add and resolve" (the band merge).
-    m = re.search(r"read(?:,)? (?:and )?add(?: and resolve)? ([0-9.]+) s \(CPU ([0-9.]+) s\), write ([0-9.]+) s"
-                  r" \(CPU ([0-9.]+) s\)", stdout)
+    # "read and add" (the merged film; its write resolves it), "read, add and resolve" (the band merge), or
+    # "read, add, resolve and write" (the streamed band merge: the write overlaps the merge; no write phase, 0 here).
+    m = re.search(r"read(?:,)? (?:and )?add(?:,? (?:and )?resolve)?(?: and write)? ([0-9.]+) s \(CPU ([0-9.]+) s\)"
+                  r"(?:, write ([0-9.]+) s \(CPU ([0-9.]+) s\))?", stdout)
     if not m:
         raise SystemExit(f"the merge printed no times:\n{stdout}")
-    return tuple(float(m.group(i)) for i in range(1, 5))
+    return tuple(float(m.group(i) or 0) for i in range(1, 5))
 
 
 def common(a):
