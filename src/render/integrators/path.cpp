@@ -85,20 +85,7 @@ class PathTracer {
       if (rec.active() && depth == 0) rec.first_vertex(bsdf);
       const LightGuide::Site site = guide_.site(isect.geo.p);
       const PathGuide::Leaf* region = bsdf.delta_only() ? nullptr : path_guide_.leaf(isect.geo.p, bsdf.shading_normal());
-      if (!bsdf.delta_only() && !each_.empty()) {
-        for (const int index : each_) {  // every light, each with its own sample and shadow ray
-          Vec3f wi_light;
-          const Vec2f u = sampler.get_2d();
-          const RGB term = beta * sample_one(isect, site, region, bsdf, wo, index, 1.0f, u, &wi_light);
-          L += term;
-          if (rec.active() && !term.is_black()) rec.light(depth, term, wo, wi_light);
-        }
-      } else if (!bsdf.delta_only() && !lights_.empty()) {
-        Vec3f wi_light;
-        const RGB term = beta * direct_light(isect, site, region, bsdf, wo, sampler, &wi_light);
-        L += term;
-        if (rec.active() && !term.is_black()) rec.light(depth, term, wo, wi_light);
-      }
+      if (!bsdf.delta_only()) L += next_event(isect, site, region, bsdf, wo, beta, depth, sampler, rec);
 
       BsdfSample bs;
       // A BSDF with one lobe has nothing to choose: no sample dimension for it.
@@ -154,6 +141,28 @@ class PathTracer {
     const Light& light = lights_[static_cast<std::size_t>(index)];
     const float pdf = choice_pmf(prev, prev_n, index) * light_pdf(light, prev.p, dir, isect.geo.p, isect.geo.ng);
     return power_heuristic(prev_pdf, pdf);
+  }
+
+  // Next-event estimation at a vertex reached with throughput beta: its
+  // contribution (each term also given to the AOV split).
+  RGB next_event(const Intersection& isect, const LightGuide::Site& site, const PathGuide::Leaf* region,
+                 const Bsdf& bsdf, Vec3f wo, RGB beta, int depth, Sampler& sampler, PathAovRecorder& rec) const {
+    RGB sum;
+    if (!each_.empty()) {
+      for (const int index : each_) {  // every light, each with its own sample and shadow ray
+        Vec3f wi_light;
+        const Vec2f u = sampler.get_2d();
+        const RGB term = beta * sample_one(isect, site, region, bsdf, wo, index, 1.0f, u, &wi_light);
+        sum += term;
+        if (rec.active() && !term.is_black()) rec.light(depth, term, wo, wi_light);
+      }
+    } else if (!lights_.empty()) {
+      Vec3f wi_light;
+      const RGB term = beta * direct_light(isect, site, region, bsdf, wo, sampler, &wi_light);
+      sum += term;
+      if (rec.active() && !term.is_black()) rec.light(depth, term, wo, wi_light);
+    }
+    return sum;
   }
 
   // The probability that next-event estimation at `at` samples `light`:
