@@ -4,7 +4,10 @@
 // furnace renders exactly its albedo with it. That guided and plain renders
 // converge to the same image: PathAgreement.LightGuiding* (test_path_agreement.cpp).
 #include <cmath>
+#include <filesystem>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -12,7 +15,9 @@
 #include "core/rng.h"
 #include "light_guide_scenes.h"
 #include "path_test_util.h"
+#include "render/guiding/environment_bins.h"
 #include "render/guiding/light_guide.h"
+#include "render/lights/environment.h"
 #include "render/render_scene.h"
 
 namespace pt {
@@ -69,6 +74,59 @@ TEST(LightGuide, SamplesFollowItsDensity) {
       sum += s.L.luminance() / s.pdf;
     }
     EXPECT_NEAR(sum / kN, reference, 0.02 * reference) << "point " << point;
+  }
+}
+
+// The bins' importance grids (environment_bins.h) on a 300 x 70 map (bins of
+// 9-10 x 4-5 texels: cells of 1-2 texels, uneven) with one bright texel: in
+// every bin the density integrates to one over the bin, samples land in their
+// bin where the density is positive, and E[1 / density] over a bin's samples
+// is its area (every texel is lit, so the grid's support is the whole bin,
+// within 3%); the bright texel's cell (1-2 texels) gets most of its bin's samples; the
+// table is bins x kCells^2 floats and a few indices.
+TEST(LightGuide, EnvironmentBinsSampleTheirImportanceGrids) {
+  constexpr int kW = 300, kH = 70;
+  Image img(kW, kH);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) img.at(x, y) = RGB(0.1f + 0.05f * static_cast<float>((x * 7 + y * 3) % 11));
+  img.at(101, 20) = RGB(500.0f);
+  const auto path = std::filesystem::temp_directory_path() / "pt_test_environment_bins.exr";
+  std::string error;
+  ASSERT_TRUE(write_image(path.string(), img, DisplaySettings{}, error)) << error;
+  EnvironmentDesc desc;
+  desc.resolved = path.string();
+  const std::unique_ptr<EnvironmentMap> map = EnvironmentMap::load(desc, error);
+  ASSERT_TRUE(map) << error;
+  const EnvironmentBins bins(*map);
+  ASSERT_EQ(bins.size(), 32 * 16);
+  EXPECT_LE(bins.table_bytes(), static_cast<std::size_t>(bins.size()) * EnvironmentBins::kCells *
+                                        EnvironmentBins::kCells * sizeof(float) + 8192);
+  const auto texel_uv = [](int x, int y) { return Vec2f((x + 0.5f) / kW, (y + 0.5f) / kH); };
+  std::vector<double> integral(static_cast<std::size_t>(bins.size()), 0.0), area(integral);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const int b = bins.bin_at(texel_uv(x, y));
+      integral[static_cast<std::size_t>(b)] += bins.density(b, texel_uv(x, y)) / (kW * kH);
+      area[static_cast<std::size_t>(b)] += 1.0 / (kW * kH);
+    }
+  Rng rng(11);
+  const int bright = bins.bin_at(texel_uv(101, 20));
+  for (int b = 0; b < bins.size(); ++b) {
+    ASSERT_NEAR(integral[static_cast<std::size_t>(b)], 1.0, 1e-4) << "bin " << b;
+    if (b % 37 != 0 && b != bright) continue;  // a sample of the bins, and the bright one
+    constexpr int kN = 20000;
+    double inverse = 0.0;
+    int hits = 0;
+    for (int k = 0; k < kN; ++k) {
+      const Vec2f uv = bins.sample(b, {rng.next_float(), rng.next_float()});
+      ASSERT_EQ(bins.bin_at(uv), b);
+      const float d = bins.density(b, uv);
+      ASSERT_GT(d, 0.0f);
+      inverse += 1.0 / d;
+      hits += std::abs(static_cast<int>(uv.x * kW) - 101) <= 1 && static_cast<int>(uv.y * kH) == 20;
+    }
+    EXPECT_NEAR(inverse / kN, area[static_cast<std::size_t>(b)], 0.03 * area[static_cast<std::size_t>(b)]) << "bin " << b;
+    if (b == bright) EXPECT_GT(hits, kN / 2) << "the bright texel's share of its bin";
   }
 }
 

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <deque>
+#include <span>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -235,6 +236,37 @@ TEST(LightSampler, OneLightNeedsNoChoiceWithEitherSampler) {
     EXPECT_EQ(pmf, 1.0f);
     EXPECT_EQ(set.pmf(Vec3f(5, 0, 0), Vec3f(0, 1, 0), 0), 1.0f);
   }
+}
+
+// LightSet::each_lights (docs/path-tracing.md, "Every infinite light at every
+// vertex"): the lights next-event estimation samples each at every vertex are
+// a sun and a sky, or a few infinite lights; never where a finite light or one
+// light alone is there (one light, an area or point light beside the sky, five
+// suns), and lights without power are left out, with either sampler.
+TEST(LightSampler, EveryLightIsEstimatedOnlyWhereTheyAreAFewInfiniteOnes) {
+  const auto sun = [](float e) { return DirectionalLight{normalize(Vec3f(0.3f, -1, 0.2f)), RGB(e)}; };
+  const UniformEnvironment sky{RGB(0.3f, 0.35f, 0.45f)};
+  const auto each = [](std::vector<Light> l, LightSamplerType sampler) {
+    const LightSet set(std::move(l), 0, 4.0f, sampler);
+    const std::span<const int> e = set.each_lights();
+    return std::vector<int>(e.begin(), e.end());
+  };
+  for (const LightSamplerType sampler : {LightSamplerType::Bvh, LightSamplerType::Power}) {
+    // The set keeps delta lights first: the sun is light 0, the sky light 1.
+    EXPECT_EQ(each({sky, sun(3.0f)}, sampler), (std::vector<int>{0, 1}));
+    EXPECT_EQ(each({sun(3.0f), sun(1.0f), sky}, sampler), (std::vector<int>{0, 1, 2}));
+    EXPECT_EQ(each({sky, sun(3.0f), sun(0.0f)}, sampler), (std::vector<int>{0, 2})) << "a black sun is left out";
+    EXPECT_TRUE(each({sky}, sampler).empty()) << "one light: nothing to choose";
+    EXPECT_TRUE(each({sun(3.0f)}, sampler).empty());
+    EXPECT_TRUE(each({sky, sun(0.0f)}, sampler).empty()) << "one light with power";
+    EXPECT_TRUE(each({sun(1.0f), sun(2.0f), sun(3.0f), sun(4.0f), sky}, sampler).empty()) << "more than kMaxEachLights";
+    EXPECT_TRUE(each({sky, sun(3.0f), PointLight{Vec3f(0, 1, 0), RGB(1.0f), RGB(), true}}, sampler).empty())
+        << "a point light";
+    EXPECT_TRUE(each({sky, PointLight{Vec3f(0, 1, 0), RGB(1.0f), RGB(), false}}, sampler).empty())
+        << "a point light without falloff is unbounded, not infinite";
+  }
+  Lights area(LightSamplerType::Bvh);  // area, point and spot lights beside a sun and a sky
+  EXPECT_TRUE(area.set.each_lights().empty());
 }
 
 // A merged cone holds every direction of both cones it was made from.

@@ -316,6 +316,53 @@ TEST(PathAgreement, LightGuidingConvergesToThePlainImageWithSkyAlone) {
   EXPECT_TRUE(agree(estimate_guided(d, {}, AccelKind::Embree), estimate_guided(d, {.light = 8}, AccelKind::Embree)));
 }
 
+// ---------------------------------------------------------------- every infinite light
+// Where the lights are a sun and a sky (LightSet::each_lights), next-event
+// estimation samples both at every vertex (IntegratorSettings::estimate_each_light)
+// instead of choosing one: the image converges to the one-light estimator's
+// (same test as above: 16 seeds, every block within 5 combined standard
+// errors), plain and light-guided; and the estimator is used only there: with
+// a sky alone, or an area light beside the sky, the image is bit for bit the
+// one-light estimator's, and with a sun and a sky it is not.
+Image render_each(const SceneDescription& d, bool each, int light_guiding, int spp, uint64_t seed) {
+  IntegratorSettings s = test::path_settings(spp, 6, seed);
+  s.light_guiding = light_guiding;
+  s.estimate_each_light = each;
+  return test::render_path(d, s);
+}
+
+TEST(PathAgreement, EveryInfiniteLightAtEveryVertexConvergesToTheChosenOne) {
+  const SceneDescription d = test::courtyard_scene(true);
+  for (const int guiding : {0, 4}) {
+    const auto estimate_each = [&](bool each) {
+      return estimate([&](uint64_t seed) { return render_each(d, each, guiding, 16, seed); });
+    };
+    EXPECT_TRUE(agree(estimate_each(false), estimate_each(true))) << "light_guiding " << guiding;
+  }
+}
+
+TEST(PathAgreement, EveryInfiniteLightAtEveryVertexOnlyWithAFewInfiniteLights) {
+  const auto same = [](const Image& a, const Image& b) {
+    if (a.pixels.size() != b.pixels.size()) return false;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i)
+      for (int c = 0; c < 3; ++c)
+        if (a.pixels[i][c] != b.pixels[i][c]) return false;
+    return true;
+  };
+  const auto unchanged = [&](const SceneDescription& d, int guiding) {
+    return same(render_each(d, false, guiding, 4, 3), render_each(d, true, guiding, 4, 3));
+  };
+  EXPECT_TRUE(unchanged(mis_scene(), 0)) << "area lights and a sky";
+  EXPECT_TRUE(unchanged(test::courtyard_scene(false), 0)) << "a sky alone";
+  EXPECT_TRUE(unchanged(test::courtyard_scene(false), 4)) << "a sky alone, guided";
+  EXPECT_FALSE(unchanged(test::courtyard_scene(true), 0)) << "a sun and a sky";
+  auto cornell = load_file(std::string(PT_SCENES_DIR) + "/cornell-box.json");
+  ASSERT_TRUE(cornell);
+  cornell->film.width = 32;
+  cornell->film.height = 32;
+  EXPECT_TRUE(unchanged(*cornell, 0)) << "the Cornell box";
+}
+
 // ---------------------------------------------------------------- path guiding
 // render.path_guiding (render/guiding/path_guide.h) changes how bounce
 // directions are sampled (a mixture with the BSDF's sampling, used in MIS with

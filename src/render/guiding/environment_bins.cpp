@@ -8,6 +8,7 @@ namespace pt {
 namespace {
 
 constexpr int kMaxBinsX = 32, kMaxBinsY = 16;
+constexpr int kCellSlots = EnvironmentBins::kCells * EnvironmentBins::kCells;  // a bin's entries in cdf_
 
 // The first texel of each of `bins` bins over `texels` texels, and the end.
 std::vector<int> bin_starts(int texels, int bins) {
@@ -23,6 +24,12 @@ std::vector<int> texel_bins(const std::vector<int>& start) {
   return of;
 }
 
+std::vector<int> cells_per_bin(const std::vector<int>& start) {
+  std::vector<int> cells(start.size() - 1);
+  for (std::size_t b = 0; b + 1 < start.size(); ++b) cells[b] = std::min(EnvironmentBins::kCells, start[b + 1] - start[b]);
+  return cells;
+}
+
 }  // namespace
 
 EnvironmentBins::EnvironmentBins(const EnvironmentMap& map)
@@ -34,24 +41,52 @@ EnvironmentBins::EnvironmentBins(const EnvironmentMap& map)
   y0_ = bin_starts(height_, bins_y_);
   column_bin_ = texel_bins(x0_);
   row_bin_ = texel_bins(y0_);
-  std::vector<double> weight(static_cast<std::size_t>(size()), 0.0);
-  density_.assign(static_cast<std::size_t>(size()), 0.0f);
+  cells_x_ = cells_per_bin(x0_);
+  cells_y_ = cells_per_bin(y0_);
+  // Each cell's importance (the map's luminance x sin theta over its texels).
+  std::vector<double> cell(static_cast<std::size_t>(size()) * kCellSlots, 0.0);
   for (int y = 0; y < height_; ++y) {
     const double sin_theta = std::sin(kPi * (static_cast<float>(y) + 0.5f) / static_cast<float>(height_));
-    for (int x = 0; x < width_; ++x)
-      weight[static_cast<std::size_t>(row_bin_[static_cast<std::size_t>(y)] * bins_x_ +
-                                      column_bin_[static_cast<std::size_t>(x)])] +=
+    const int by = row_bin_[static_cast<std::size_t>(y)];
+    for (int x = 0; x < width_; ++x) {
+      const int b = by * bins_x_ + column_bin_[static_cast<std::size_t>(x)];
+      cell[static_cast<std::size_t>(b) * kCellSlots + static_cast<std::size_t>(cell_at(b, x, y))] +=
           std::max(0.0f, map.texel_radiance(x, y).luminance()) * sin_theta;
+    }
   }
+  std::vector<double> weight(static_cast<std::size_t>(size()), 0.0);
+  cdf_.assign(cell.size(), 0.0f);
   for (int b = 0; b < size(); ++b) {
     const int bx = b % bins_x_, by = b / bins_x_;
-    const float texels = static_cast<float>((x0_[bx + 1] - x0_[bx]) * (y0_[by + 1] - y0_[by]));
-    density_[static_cast<std::size_t>(b)] = static_cast<float>(width_) * static_cast<float>(height_) / texels;
+    double* w = &cell[static_cast<std::size_t>(b) * kCellSlots];
+    double bin = 0.0;
+    for (int i = 0; i < kCellSlots; ++i) bin += w[i];
+    weight[static_cast<std::size_t>(b)] = bin;
+    if (!(bin > 0.0)) {  // nothing to sample here by importance: by area (never chosen by the guide)
+      for (int cy = 0; cy < cells_y_[by]; ++cy)
+        for (int cx = 0; cx < cells_x_[bx]; ++cx)
+          w[cy * kCells + cx] = static_cast<double>(cell_x(bx, cx + 1) - cell_x(bx, cx)) * (cell_y(by, cy + 1) - cell_y(by, cy));
+      bin = static_cast<double>(x0_[bx + 1] - x0_[bx]) * (y0_[by + 1] - y0_[by]);
+    }
+    double sum = 0.0;
+    for (int i = 0; i < kCellSlots; ++i) {
+      sum += w[i];
+      cdf_[static_cast<std::size_t>(b) * kCellSlots + static_cast<std::size_t>(i)] = static_cast<float>(sum / bin);
+    }
   }
   double total = 0.0;
   for (double w : weight) total += w;
   share_.assign(weight.size(), 0.0f);
   for (std::size_t b = 0; b < weight.size(); ++b) share_[b] = total > 0.0 ? static_cast<float>(weight[b] / total) : 0.0f;
+}
+
+int EnvironmentBins::cell_at(int b, int x, int y) const {
+  const int bx = b % bins_x_, by = b / bins_x_;
+  // The last cell whose first texel is at most x: cell c starts at x0 + floor(c w / n).
+  const int w = x0_[bx + 1] - x0_[bx], h = y0_[by + 1] - y0_[by];
+  const int cx = std::clamp(((x - x0_[bx] + 1) * cells_x_[bx] - 1) / w, 0, cells_x_[bx] - 1);
+  const int cy = std::clamp(((y - y0_[by] + 1) * cells_y_[by] - 1) / h, 0, cells_y_[by] - 1);
+  return cy * kCells + cx;
 }
 
 int EnvironmentBins::bin_at(Vec2f uv) const {
@@ -62,10 +97,39 @@ int EnvironmentBins::bin_at(Vec2f uv) const {
 
 Vec2f EnvironmentBins::sample(int b, Vec2f u) const {
   const int bx = b % bins_x_, by = b / bins_x_;
-  const float x = static_cast<float>(x0_[bx]) + u.x * static_cast<float>(x0_[bx + 1] - x0_[bx]);
-  const float y = static_cast<float>(y0_[by]) + u.y * static_cast<float>(y0_[by + 1] - y0_[by]);
+  const float* cdf = &cdf_[static_cast<std::size_t>(b) * kCellSlots];
+  // The first cell whose cumulative probability passes u.x (a cell of probability 0 never is);
+  // rounding can leave u.x at or past the last sum: the last cell with a positive probability.
+  int i = static_cast<int>(std::upper_bound(cdf, cdf + kCellSlots, u.x) - cdf);
+  if (i == kCellSlots) {
+    i = kCellSlots - 1;
+    while (i > 0 && cdf[i] == cdf[i - 1]) --i;
+  }
+  const float lo = i > 0 ? cdf[i - 1] : 0.0f, p = cdf[i] - lo;
+  const float v = p > 0.0f ? std::clamp((u.x - lo) / p, 0.0f, kOneMinusEpsilon) : 0.5f;
+  const int cx = i % kCells, cy = i / kCells;
+  const int xa = cell_x(bx, cx), xb = cell_x(bx, cx + 1), ya = cell_y(by, cy), yb = cell_y(by, cy + 1);
+  const float x = static_cast<float>(xa) + v * static_cast<float>(xb - xa);
+  const float y = static_cast<float>(ya) + u.y * static_cast<float>(yb - ya);
   return {std::min(x / static_cast<float>(width_), kOneMinusEpsilon),
           std::min(y / static_cast<float>(height_), kOneMinusEpsilon)};
+}
+
+float EnvironmentBins::density(int b, Vec2f uv) const {
+  const int bx = b % bins_x_, by = b / bins_x_;
+  const int x = std::clamp(static_cast<int>(uv.x * static_cast<float>(width_)), 0, width_ - 1);
+  const int y = std::clamp(static_cast<int>(uv.y * static_cast<float>(height_)), 0, height_ - 1);
+  const int i = cell_at(b, x, y);
+  const float* cdf = &cdf_[static_cast<std::size_t>(b) * kCellSlots];
+  const float p = cdf[i] - (i > 0 ? cdf[i - 1] : 0.0f);
+  const int cx = i % kCells, cy = i / kCells;
+  const float texels = static_cast<float>((cell_x(bx, cx + 1) - cell_x(bx, cx)) * (cell_y(by, cy + 1) - cell_y(by, cy)));
+  return p * static_cast<float>(width_) * static_cast<float>(height_) / texels;
+}
+
+std::size_t EnvironmentBins::table_bytes() const {
+  return (cdf_.size() + share_.size()) * sizeof(float) +
+         (x0_.size() + y0_.size() + column_bin_.size() + row_bin_.size() + cells_x_.size() + cells_y_.size()) * sizeof(int);
 }
 
 }  // namespace pt

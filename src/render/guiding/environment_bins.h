@@ -2,8 +2,12 @@
 // most 32 x 16 of them, in image coordinates), each with its share of the
 // map's importance (luminance x sin theta, as EnvironmentMap's distribution):
 // what a light guide (light_guide.h) learns a distribution over. Within a bin
-// it samples uniformly in image coordinates (a sky is smooth over a bin; the
-// guide's mixture keeps the map's own sampling for its sharp features).
+// it samples a coarse importance grid of at most kCells x kCells cells of
+// whole texels (each cell in proportion to its share of the bin's importance,
+// then uniformly in the cell, in image coordinates): the bin's bright part (a
+// sun disc in the map, a bright horizon) gets the samples the map's own
+// distribution would give it, at a table of bins x kCells^2 floats for the
+// whole map (128 KiB at 32 x 16 bins), shared by every leaf of the guide.
 #pragma once
 
 #include <vector>
@@ -15,6 +19,8 @@ namespace pt {
 
 class EnvironmentBins {
  public:
+  static constexpr int kCells = 8;  // a bin's importance grid's most cells per side
+
   EnvironmentBins() = default;
   explicit EnvironmentBins(const EnvironmentMap& map);
 
@@ -24,16 +30,28 @@ class EnvironmentBins {
   // The probability that the map's own sampling lands in bin b: the bin's
   // share of the importance (0: nothing to sample there).
   float share(int b) const { return share_[static_cast<std::size_t>(b)]; }
-  // Image coordinates in bin b, uniformly, with density density(b) in [0, 1)^2.
+  // Image coordinates in bin b, from its importance grid, and their density
+  // in [0, 1)^2 (density(b, uv) for uv in bin b).
   Vec2f sample(int b, Vec2f u) const;
-  float density(int b) const { return density_[static_cast<std::size_t>(b)]; }
+  float density(int b, Vec2f uv) const;
+  // The bytes of the bins' tables (for the docs' figures and tests).
+  std::size_t table_bytes() const;
 
  private:
+  // Cell (cx, cy) of bin (bx, by): its first texel column (row), and the end.
+  int cell_x(int bx, int cx) const { return x0_[bx] + cx * (x0_[bx + 1] - x0_[bx]) / cells_x_[bx]; }
+  int cell_y(int by, int cy) const { return y0_[by] + cy * (y0_[by + 1] - y0_[by]) / cells_y_[by]; }
+  int cell_at(int b, int x, int y) const;  // the cell of texel (x, y) in bin b: cy * kCells + cx
+
   const EnvironmentMap* map_ = nullptr;
   int width_ = 0, height_ = 0, bins_x_ = 0, bins_y_ = 0;
   std::vector<int> x0_, y0_;       // first texel column (row) of each bin column (row), and the end
   std::vector<int> column_bin_, row_bin_;  // per texel column (row): its bin column (row)
-  std::vector<float> share_, density_;
+  std::vector<int> cells_x_, cells_y_;     // per bin column (row): cells per side, at most kCells
+  std::vector<float> share_;
+  // Per bin, kCells^2 entries (row-major, cy * kCells + cx; unused ones 0): the
+  // cumulative probability of the cells up to and including each.
+  std::vector<float> cdf_;
 };
 
 }  // namespace pt

@@ -182,7 +182,7 @@ float LightGuide::environment_pdf(const Leaf* l, Vec2f uv) const {
   const int b = bins_.bin_at(uv);
   const float sin_theta = std::sin(kPi * uv.y);
   if (!(sin_theta > 0.0f)) return kPlainEnvironment * plain;
-  const float guided = l->environment.pmf(static_cast<std::size_t>(b)) * bins_.density(b) / (2.0f * kPi * kPi * sin_theta);
+  const float guided = l->environment.pmf(static_cast<std::size_t>(b)) * bins_.density(b, uv) / (2.0f * kPi * kPi * sin_theta);
   return kPlainEnvironment * plain + (1.0f - kPlainEnvironment) * guided;
 }
 

@@ -15,8 +15,9 @@
 //  - the environment is sampled from the mixture kPlainEnvironment x the map's
 //    own distribution + (1 - kPlainEnvironment) x a distribution over bins in
 //    proportion to the bin's share of the map's importance times the fraction
-//    of the leaf's tests that arrived unoccluded there (within a bin,
-//    uniformly): directions the leaf's points see through an opening;
+//    of the leaf's tests that arrived unoccluded there (within a bin, by the
+//    bin's coarse importance grid, environment_bins.h): directions the leaf's
+//    points see through an opening;
 //  - when every light is infinite (sun and sky), the light is chosen with
 //    probability kPlainChoice x LightSet's + (1 - kPlainChoice) x the leaf's
 //    share of the learned contributions: shadowed regions sample the sky.

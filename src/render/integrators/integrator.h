@@ -65,6 +65,10 @@ struct IntegratorSettings {
   PixelFilterType filter = PixelFilterType::Box;  // the path integrator's pixel filter
   float clamp = 0.0f;   // path: largest channel of one sample's radiance; 0 = no clamp
   LightStrategy light_strategy = LightStrategy::Mis;
+  // path: where the scene's lights are a few infinite ones (LightSet::each_lights:
+  // a sun and a sky), next-event estimation samples each of them at every
+  // vertex; false: it chooses one, as for every other scene (tests compare the two).
+  bool estimate_each_light = true;
   // path: Russian roulette. From bounce `roulette_depth` on, a path whose
   // throughput (largest channel, times eta^2) t is below `roulette_threshold`
   // survives with probability t / roulette_threshold and is reweighted, so the

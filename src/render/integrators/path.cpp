@@ -2,8 +2,9 @@
 // importance sampling (docs/path-tracing.md).
 //
 // At every vertex: emission found by the ray is added with its MIS weight;
-// one light, chosen for the vertex (LightSet::choose), is sampled (next-event estimation) and combined
-// with BSDF sampling by the power heuristic, except delta lights (only NEE can
+// one light, chosen for the vertex (LightSet::choose), is sampled (next-event estimation), or,
+// where the lights are a few infinite ones (a sun and a sky, LightSet::each_lights), each of them
+// is, and combined with BSDF sampling by the power heuristic, except delta lights (only NEE can
 // find them) and delta lobes (only BSDF sampling can); then the BSDF picks the
 // next direction (or, with render.path_guiding, a mixture of the BSDF and the
 // learned path guide, render/guiding/path_guide.h). Russian roulette starts after `roulette_depth` bounces, with
@@ -13,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <span>
 
 #include "core/sampling.h"
 #include "geometry/shapes.h"
@@ -39,6 +41,7 @@ class PathTracer {
         max_depth_(std::max(0, settings.max_depth)),
         clamp_(settings.clamp),
         strategy_(settings.light_strategy),
+        each_(settings.estimate_each_light ? scene.lights.each_lights() : std::span<const int>()),
         roulette_depth_(std::max(1, settings.roulette_depth)),
         inv_roulette_threshold_(settings.roulette_threshold > 0.0f ? 1.0f / settings.roulette_threshold : 1.0f) {}
 
@@ -82,12 +85,7 @@ class PathTracer {
       if (rec.active() && depth == 0) rec.first_vertex(bsdf);
       const LightGuide::Site site = guide_.site(isect.geo.p);
       const PathGuide::Leaf* region = bsdf.delta_only() ? nullptr : path_guide_.leaf(isect.geo.p, bsdf.shading_normal());
-      if (!bsdf.delta_only() && !lights_.empty()) {
-        Vec3f wi_light;
-        const RGB term = beta * direct_light(isect, site, region, bsdf, wo, sampler, &wi_light);
-        L += term;
-        if (rec.active() && !term.is_black()) rec.light(depth, term, wo, wi_light);
-      }
+      if (!bsdf.delta_only()) L += next_event(isect, site, region, bsdf, wo, beta, depth, sampler, rec);
 
       BsdfSample bs;
       // A BSDF with one lobe has nothing to choose: no sample dimension for it.
@@ -130,7 +128,7 @@ class PathTracer {
     if (strategy_ == LightStrategy::LightOnly) return 0.0f;
     // An infinite light reads only the direction.
     const Vec3f none;
-    const float pdf = guide_.pmf(prev, prev_n, env) * guide_.pdf(env, prev, dir, none, none);
+    const float pdf = choice_pmf(prev, prev_n, env) * guide_.pdf(env, prev, dir, none, none);
     return power_heuristic(prev_pdf, pdf);
   }
 
@@ -141,11 +139,40 @@ class PathTracer {
     if (specular || index < 0 || strategy_ == LightStrategy::BsdfOnly) return 1.0f;
     if (strategy_ == LightStrategy::LightOnly) return 0.0f;
     const Light& light = lights_[static_cast<std::size_t>(index)];
-    const float pdf = guide_.pmf(prev, prev_n, index) * light_pdf(light, prev.p, dir, isect.geo.p, isect.geo.ng);
+    const float pdf = choice_pmf(prev, prev_n, index) * light_pdf(light, prev.p, dir, isect.geo.p, isect.geo.ng);
     return power_heuristic(prev_pdf, pdf);
   }
 
-  // Next-event estimation: one light, chosen for this point and normal, sampled at one point.
+  // Next-event estimation at a vertex reached with throughput beta: its
+  // contribution (each term also given to the AOV split).
+  RGB next_event(const Intersection& isect, const LightGuide::Site& site, const PathGuide::Leaf* region,
+                 const Bsdf& bsdf, Vec3f wo, RGB beta, int depth, Sampler& sampler, PathAovRecorder& rec) const {
+    RGB sum;
+    if (!each_.empty()) {
+      for (const int index : each_) {  // every light, each with its own sample and shadow ray
+        Vec3f wi_light;
+        const Vec2f u = sampler.get_2d();
+        const RGB term = beta * sample_one(isect, site, region, bsdf, wo, index, 1.0f, u, &wi_light);
+        sum += term;
+        if (rec.active() && !term.is_black()) rec.light(depth, term, wo, wi_light);
+      }
+    } else if (!lights_.empty()) {
+      Vec3f wi_light;
+      const RGB term = beta * direct_light(isect, site, region, bsdf, wo, sampler, &wi_light);
+      sum += term;
+      if (rec.active() && !term.is_black()) rec.light(depth, term, wo, wi_light);
+    }
+    return sum;
+  }
+
+  // The probability that next-event estimation at `at` samples `light`:
+  // 1 where every light is sampled at every vertex, else that of its choice.
+  float choice_pmf(const LightGuide::Site& at, Vec3f n, int light) const {
+    return each_.empty() ? guide_.pmf(at, n, light) : 1.0f;
+  }
+
+  // Next-event estimation: one light, chosen for this point and normal,
+  // sampled at one point; or, where each_ is not empty, each of those lights.
   // `wi_out`, when not null, receives the sampled light direction (for the AOV split).
   RGB direct_light(const Intersection& isect, const LightGuide::Site& site, const PathGuide::Leaf* region,
                    const Bsdf& bsdf, Vec3f wo, Sampler& sampler, Vec3f* wi_out = nullptr) const {
@@ -156,6 +183,12 @@ class PathTracer {
     float pmf = 0.0f;
     const int index = guide_.choose(site, isect.geo.ng, u_light, pmf);
     if (index < 0 || !(pmf > 0.0f)) return {};
+    return sample_one(isect, site, region, bsdf, wo, index, pmf, u, wi_out);
+  }
+
+  // The light `index`, sampled with u and weighed as chosen with probability pmf.
+  RGB sample_one(const Intersection& isect, const LightGuide::Site& site, const PathGuide::Leaf* region,
+                 const Bsdf& bsdf, Vec3f wo, int index, float pmf, Vec2f u, Vec3f* wi_out) const {
     LightSample ls;
     if (!guide_.sample(index, site, u, ls)) return {};
     if (ls.L.is_black() || !(ls.pdf > 0.0f)) return {};
@@ -179,6 +212,9 @@ class PathTracer {
   int max_depth_;
   float clamp_;
   LightStrategy strategy_;
+  // The lights estimated each at every vertex (LightSet::each_lights), or
+  // none: one is chosen per vertex.
+  std::span<const int> each_;
   int roulette_depth_;
   float inv_roulette_threshold_;
 };

@@ -79,6 +79,13 @@ LightSet::LightSet(std::vector<Light> lights, std::size_t shape_count, float sce
     }
   }
   if (positive != 1) only_ = -1;
+  bool all_infinite = true;
+  for (std::size_t i = 0; i < lights_.size(); ++i) {
+    if (!(power[i] > 0.0f)) continue;
+    all_infinite = all_infinite && std::visit([](const auto& l) { return KindOf<decltype(l)>::infinite; }, lights_[i]);
+    each_.push_back(static_cast<int>(i));
+  }
+  if (!all_infinite || each_.size() < 2 || each_.size() > kMaxEachLights) each_.clear();
 }
 
 int LightSet::instance_light(uint32_t shape, uint32_t instance) const {

@@ -2,7 +2,8 @@
 // lights, spot lights, area lights (every emissive shape), and the environment (an image
 // map, or the background colour as a uniform environment when it is not
 // black). The path integrator chooses one light per next-event estimate
-// (docs/path-tracing.md, "Choosing a light"): by default by its importance at
+// (docs/path-tracing.md, "Choosing a light"; where the lights are a few
+// infinite ones it samples each, each_lights()): by default by its importance at
 // the shading point (the bounded lights through a light BVH, light_bvh.h,
 // weighed against the infinite ones' irradiance estimates), or, with
 // render.light_sampler "power", in proportion to its power (an estimate for
@@ -79,6 +80,13 @@ class LightSet {
   // spends no sample dimension on the choice (so adding a powerless light to
   // a scene leaves its image bit for bit as it was).
   bool needs_choice() const { return lights_.size() > 1 && only_ < 0; }
+  // The lights the path integrator estimates each with its own sample at
+  // every vertex, instead of choosing one (docs/path-tracing.md, "Every
+  // infinite light at every vertex"): every light with positive power, when
+  // there are 2 to kMaxEachLights of them and all are infinite (a sun and a
+  // sky); else empty, and the integrator chooses one light per vertex.
+  static constexpr std::size_t kMaxEachLights = 4;
+  std::span<const int> each_lights() const { return each_; }
   // The probability that choose(p, n, ...) returns `light`: what a light found
   // by a BSDF ray from p is weighed with (multiple importance sampling).
   float pmf(Vec3f p, Vec3f n, int light) const;
@@ -123,6 +131,7 @@ class LightSet {
   int environment_ = -1;
   std::size_t delta_count_ = 0;
   int only_ = -1;  // the one light with positive power when exactly one has it, else -1
+  std::vector<int> each_;  // see each_lights()
 };
 
 }  // namespace pt

@@ -3,7 +3,9 @@
 docs/path-tracing.md, "Light guiding" and "Path guiding"): the same build, off against on, in one
 interleaved run; writes docs/bench/guiding.md (or --out; and the runs as JSON beside it).
 
-A variant is name=L (light guiding's pre-pass paths per pixel) or name=L/P (and path guiding's).
+A variant is name=L (light guiding's pre-pass paths per pixel) or name=L/P (and path guiding's),
+optionally followed by @EXE: that variant is rendered by another build's pathtracer (e.g. a copy of
+main's build/pathtracer with its pt_oiio.so beside it), to compare builds with the same settings.
 
 For each case: a reference (the case's committed one, or one rendered once here with guiding off
 at many samples, its own seed), then ROUNDS rounds of one render per variant at the case's sample
@@ -17,7 +19,8 @@ round (MSE falling as 1 / samples; the pre-pass is a fixed cost, so this holds a
 sample count, which is chosen near the error the peers comparison targets), median and min-max.
 
 Usage: guiding_ab.py [--build build] [--out docs/bench/guiding.md] [--rounds 3] [--case NAME]
-                     [--variants off=0,on=4 | off=0/0,light=16/0,path=0/16,both=16/16]
+                     [--variants off=0,on=4 | off=0/0,light=16/0,path=0/16,both=16/16
+                                 | before=16@/tmp/main/pathtracer,after=16]
 """
 import argparse
 import json
@@ -38,6 +41,8 @@ CASES = [
      "tools/peers/cycles/references/sponza-env-sun-32.exr", 0, 512),
     ("bunny outdoors, sky (48x48)", "tools/bench/render/bunny-env.json", 48, 48, None, 2048, 128),
     ("Cornell box (64x64)", "scenes/cornell-box.json", 64, 64, None, 1024, 64),
+    ("many lights, peer scene (36x24)", "tools/peers/cycles/scenes/many-lights-peer.json", None, None,
+     "tools/peers/cycles/references/many-lights-peer-36x24.exr", 0, 64),
 ]
 
 
@@ -50,20 +55,26 @@ def loadavg():
 
 
 def parse_variant(text):
-    """name=L or name=L/P -> (name, (L, P))."""
-    name, value = text.split("=")
+    """name=L, name=L/P, either with @EXE -> (name, (L, P, EXE or None))."""
+    name, value = text.split("=", 1)
+    exe = None
+    if "@" in value:
+        value, exe = value.split("@", 1)
     parts = [int(x) for x in value.split("/")]
-    return name, (parts[0], parts[1] if len(parts) > 1 else 0)
+    return name, (parts[0], parts[1] if len(parts) > 1 else 0, exe)
 
 
 def describe(guiding):
-    light, path = guiding
-    return "`light_guiding` %d" % light + (", `path_guiding` %d" % path if path else "")
+    light, path, exe = guiding
+    return "`light_guiding` %d" % light + (", `path_guiding` %d" % path if path else "") + (
+        ", build %s" % exe if exe else "")
 
 
 def render(exe, scene, width, height, spp, guiding, seed, out):
     report = out + ".report.json"
-    light, path = guiding
+    light, path = guiding[0], guiding[1]
+    if len(guiding) > 2 and guiding[2]:
+        exe = guiding[2]
     cmd = ["nice", "-n", "10", exe, os.path.join(ROOT, scene), "-o", out, "--spp", str(spp), "--seed", str(seed),
            "--threads", "2", "--quiet", "--report", report, "--set", "render.light_guiding=%d" % light]
     if path:
@@ -135,9 +146,11 @@ def main():
     all_loads = [l for c in cases for v in c["res"].values() for l in v["load"]]
     text = ["# Guiding: A/B", "", MARKER, "",
             "Written by `tools/bench/guiding/guiding_ab.py --variants %s --rounds %d` (how it measures: its "
-            "docstring). Same build, interleaved, 2 threads, the render phase's CPU time from the run record (the "
+            "docstring). %s, interleaved, 2 threads, the render phase's CPU time from the run record (the "
             "pre-pass included). 1-minute load average before each render: min %.1f, median %.1f, max %.1f." % (
-                args.variants, args.rounds, min(all_loads), statistics.median(all_loads), max(all_loads)), "",
+                args.variants, args.rounds,
+                "Two builds (a variant's @EXE, else this build)" if any(v[1][2] for v in variants) else "Same build",
+                min(all_loads), statistics.median(all_loads), max(all_loads)), "",
             table(cases, variants), "", "## Machine", "", "```", lscpu().strip(), "```", ""]
     # The hand-written part above MARKER (the steps and their verdicts) is kept.
     kept = ""
