@@ -126,7 +126,9 @@ TEST(LightGuide, EnvironmentBinsSampleTheirImportanceGrids) {
       hits += std::abs(static_cast<int>(uv.x * kW) - 101) <= 1 && static_cast<int>(uv.y * kH) == 20;
     }
     EXPECT_NEAR(inverse / kN, area[static_cast<std::size_t>(b)], 0.03 * area[static_cast<std::size_t>(b)]) << "bin " << b;
-    if (b == bright) EXPECT_GT(hits, kN / 2) << "the bright texel's share of its bin";
+    if (b == bright) {
+      EXPECT_GT(hits, kN / 2) << "the bright texel's share of its bin";
+    }
   }
 }
 
