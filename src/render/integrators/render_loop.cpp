@@ -76,6 +76,11 @@ void first_hit_aovs(const RenderScene& scene, const CameraRay& ray, AovSample& a
   aov.crypto_material = scene.names.material_ids[static_cast<std::size_t>(material)];
 }
 
+// One task per tile (simple_partitioner, grain 1), in row-major order: a
+// thread that runs out of work steals whole tiles, so the render's tail, the
+// time the last tile runs while the other threads have nothing left, is at
+// most one tile's time (auto_partitioner's ranges can leave several tiles to
+// one thread at the end; docs/bench/threads.md, session 13).
 void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, const IntegratorSettings& settings,
                     const Sampler& prototype, const PixelFilter& filter, SampleRadianceFn radiance) {
   const PixelRect crop = film.crop();
@@ -129,11 +134,6 @@ void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, cons
   };
 
   pool.run([&] {
-    // One task per tile (simple_partitioner, grain 1), in row-major order: a
-    // thread that runs out of work steals whole tiles, so the render's tail,
-    // the time the last tile runs while the other threads have nothing left,
-    // is at most one tile's time (auto_partitioner's ranges can leave several
-    // tiles to one thread at the end).
     tbb::parallel_for(
         tbb::blocked_range<int>(0, tiles_x * tiles_y, 1),
         [&](const tbb::blocked_range<int>& r) {
@@ -158,8 +158,7 @@ void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, cons
             const std::lock_guard<std::mutex> lock(report_mutex);
             report.merge(bad);
           }
-        },
-        tbb::simple_partitioner());
+        }, tbb::simple_partitioner());
   });
   film.add_non_finite(report);
 }
