@@ -12,6 +12,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "io/exr_bands.h"
+
 namespace pt {
 
 namespace {
@@ -136,16 +138,12 @@ void pack_rows(const LayeredImage& image, const std::vector<PackedChannel>& chan
   });
 }
 
-// About this many bytes of packed rows are written at a time.
-constexpr std::size_t kBandBytes = std::size_t{32} << 20;
-
 // Writes the pixels of a part holding `layers` (opened), band by band.
 bool write_part(OIIO::ImageOutput& out, const LayeredImage& image, const std::vector<const ImageLayer*>& layers) {
   std::size_t pixel_bytes = 0;
   const std::vector<PackedChannel> channels = packed_channels(layers, pixel_bytes);
   const std::size_t row_bytes = pixel_bytes * static_cast<std::size_t>(image.width);
-  // Whole blocks of 32 rows (zip's 16, piz's 32) keep OpenEXR's compression of a band's blocks parallel.
-  const int band = std::min(image.height, std::max(32, static_cast<int>(kBandBytes / row_bytes) / 32 * 32));
+  const int band = exr_band_rows(row_bytes, image.height);  // the memory pre-flight counts this band
   std::vector<unsigned char> buffer(static_cast<std::size_t>(band) * row_bytes);
   for (int y0 = 0; y0 < image.height; y0 += band) {
     const int y1 = std::min(image.height, y0 + band);
