@@ -69,9 +69,7 @@ void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, cons
                     const Sampler& prototype, const PixelFilter& filter, SampleRadianceFn radiance) {
   const PixelRect crop = film.crop();
   const int tile = std::max(1, settings.tile_size);
-  // Named, not a structured binding: render_pixel captures them, which clang 14 (the fuzz build) cannot.
-  const std::pair<int, int> range = sample_range(settings);
-  const int first = range.first, end = range.second;
+  const int first = sample_range(settings).first, end = sample_range(settings).second;  // clang 14 can't capture [a, b]
   const int tiles_x = (crop.width() + tile - 1) / tile;
   const int tiles_y = (crop.height() + tile - 1) / tile;
   const bool lens = scene.camera.has_lens();
