@@ -90,7 +90,10 @@ __attribute__((target("f16c"))) void pack_halves_f16c(const float* v, std::size_
                                                       unsigned char* o, std::size_t step) {
   for (std::size_t x = 0; x < n; ++x) {
     const float f = v[x * stride];
-    const uint16_t bits = std::isnan(f) ? Imath::half(f).bits() : _cvtss_sh(f, _MM_FROUND_TO_NEAREST_INT);
+    // _mm_cvtps_ph on one lane: _cvtss_sh is a macro with a compound literal in clang's header (-Wpedantic).
+    const uint16_t bits = std::isnan(f) ? Imath::half(f).bits()
+                                        : static_cast<uint16_t>(_mm_extract_epi16(
+                                              _mm_cvtps_ph(_mm_set_ss(f), _MM_FROUND_TO_NEAREST_INT), 0));
     std::memcpy(o + x * step, &bits, sizeof bits);
   }
 }

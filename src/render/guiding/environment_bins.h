@@ -29,7 +29,6 @@ class EnvironmentBins {
   float density(int b) const { return density_[static_cast<std::size_t>(b)]; }
 
  private:
-  const EnvironmentMap* map_ = nullptr;
   int width_ = 0, height_ = 0, bins_x_ = 0, bins_y_ = 0;
   std::vector<int> x0_, y0_;       // first texel column (row) of each bin column (row), and the end
   std::vector<int> column_bin_, row_bin_;  // per texel column (row): its bin column (row)
