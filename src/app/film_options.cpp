@@ -6,9 +6,11 @@
 #include <iomanip>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "app/options.h"
 #include "app/shard.h"
+#include "io/exr_bands.h"
 #include "io/image_io.h"
 
 namespace pt {
@@ -95,21 +97,47 @@ std::size_t film_bytes_per_pixel(const std::vector<AovRequest>& aovs) {
   return bytes;
 }
 
-std::size_t output_bytes_per_pixel(const std::vector<AovRequest>& aovs, const std::vector<std::string>& outputs) {
+std::size_t layer_bytes_per_pixel(const std::vector<AovRequest>& aovs) {
   std::size_t channels = 4;  // R, G, B, A
   for (const AovRequest& r : aovs) channels += static_cast<std::size_t>(aov_channel_count(r));
-  const std::size_t layers = channels * sizeof(float);
-  std::size_t largest = 0;
+  return channels * sizeof(float);
+}
+
+uint64_t writer_bytes(const std::vector<AovRequest>& aovs, ChannelType beauty, const std::vector<std::string>& outputs,
+                      const ExrSettings& exr, int width, int height) {
+  // The packed pixel of each EXR layer, as Film::layer_layout() makes them:
+  // the beauty's four channels, a layer per AOV, a Ranked AOV's channels in
+  // layers of four.
+  const auto bytes = [](ChannelType t) { return t == ChannelType::Half ? sizeof(uint16_t) : sizeof(float); };
+  std::vector<std::size_t> layers = {4 * bytes(beauty)};
+  for (const AovRequest& r : aovs) {
+    const auto channels = static_cast<std::size_t>(aov_channel_count(r));
+    const std::size_t per_layer = aov_info(r.type).accumulation == Accumulation::Ranked ? 4 : channels;
+    for (std::size_t c = 0; c < channels; c += per_layer) layers.push_back(per_layer * bytes(r.channel_type));
+  }
+  std::size_t part = 0, all = 0;  // the largest part's packed pixel; every part's
+  for (const std::size_t layer : layers) {
+    all += layer;
+    part = exr.multipart ? std::max(part, layer) : all;
+  }
+  const unsigned hardware = std::thread::hardware_concurrency();
+  const int threads = exr.threads > 0 ? exr.threads : static_cast<int>(std::max(1u, hardware));
+  const uint64_t exr_bytes =
+      exr_band_bytes(part, width, height) +
+      exr_line_buffer_bytes(all * static_cast<std::size_t>(std::max(0, width)), height,
+                            exr_block_rows(exr.compression), threads);
+  const uint64_t pixels = static_cast<uint64_t>(width) * static_cast<uint64_t>(height);
+  uint64_t largest = 0;
   for (const std::string& path : outputs) {
-    const std::size_t own = is_exr_path(path) ? channels * sizeof(float)                  // the interleaved buffer
-                                              : 3 * sizeof(float) + 3 * sizeof(uint8_t);  // RGB image, 8-bit codes
+    const uint64_t own = is_exr_path(path) ? exr_bytes : pixels * (3 * sizeof(float) + 3 * sizeof(uint8_t));  // RGB, codes
     largest = std::max(largest, own);
   }
-  return layers + largest;
+  return largest;
 }
 
 bool estimate_render_memory(const Options& o, const SceneDescription& scene, int width, int height,
-                            const std::vector<AovRequest>& aovs, MemoryEstimate& out, std::string& error) {
+                            const std::vector<AovRequest>& aovs, ChannelType beauty, MemoryEstimate& out,
+                            std::string& error) {
   PixelRect crop;
   if (!crop_window(o, width, height, crop, error)) return false;
   const uint64_t pixels = static_cast<uint64_t>(crop.width()) * static_cast<uint64_t>(crop.height());
@@ -117,8 +145,10 @@ bool estimate_render_memory(const Options& o, const SceneDescription& scene, int
   parse_accel_kind(o.accel, accel);  // CLI11 checked the name
   const uint64_t cache = o.texture_cache.empty() ? TextureCache::kDefaultBytes
                                                 : parse_byte_size(o.texture_cache).value_or(TextureCache::kDefaultBytes);
-  out = estimate_memory(scene, pixels, {film_bytes_per_pixel(aovs), output_bytes_per_pixel(aovs, o.outputs)},
-                        o.resume.empty() ? 1 : 2, accel, cache);
+  const PixelBytes buffers = {film_bytes_per_pixel(aovs), layer_bytes_per_pixel(aovs),
+                              writer_bytes(aovs, beauty, o.outputs, {o.exr_compression, o.multipart, o.threads},
+                                           crop.width(), crop.height())};
+  out = estimate_memory(scene, pixels, buffers, o.resume.empty() ? 1 : 2, accel, cache);
   out.baseline = resident_bytes();
   out.peak_so_far = peak_resident_bytes();
   out.reusable = std::min(free_heap_bytes(), out.baseline);

@@ -4,10 +4,12 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "app/memory_estimate.h"
+#include "io/exr_settings.h"
 #include "render/film/aov.h"
 #include "render/film/film.h"
 #include "render/integrators/integrator.h"
@@ -34,20 +36,27 @@ bool region_window(const Options& o, int width, int height, PixelRect& out, std:
 // Bytes the film stores per pixel for these AOVs (the memory pre-flight).
 std::size_t film_bytes_per_pixel(const std::vector<AovRequest>& aovs);
 
-// Bytes per pixel of the buffers that writing `outputs` takes at once (the
-// memory pre-flight): Film::layers() (a float per channel: R, G, B, A and every
-// AOV channel) and the largest output's own buffer, the interleaved float
-// buffer of every channel for EXR, the float RGB image and its 8-bit codes for
-// PNG, JPEG and PPM. (OpenImageIO's conversion and compression work in bounded
-// chunks and are not counted.)
-std::size_t output_bytes_per_pixel(const std::vector<AovRequest>& aovs, const std::vector<std::string>& outputs);
+// Bytes per pixel of Film::layers() (the memory pre-flight), which the
+// writers read: a float per channel, R, G, B, A and every AOV channel.
+std::size_t layer_bytes_per_pixel(const std::vector<AovRequest>& aovs);
+
+// Bytes the largest of `outputs`' writers holds beside Film::layers() for a
+// crop window of width x height pixels (the memory pre-flight): for EXR one
+// band of packed rows (io/exr_bands.h) of the largest part (every layer in one,
+// or with `exr.multipart` one per layer), 2 bytes a half channel and 4 a float,
+// and OpenEXR's line buffers (exr_line_buffer_bytes: blocks of `exr.compression`,
+// two per thread of `exr.threads`, 0 for every hardware thread); for PNG, JPEG
+// and PPM the float RGB image and its 8-bit codes, 15 bytes a pixel.
+uint64_t writer_bytes(const std::vector<AovRequest>& aovs, ChannelType beauty, const std::vector<std::string>& outputs,
+                      const ExrSettings& exr, int width, int height);
 
 // The pre-flight memory estimate of the render `o` asks for in a width x
 // height frame: the film and output buffers of its crop window (crop_window()),
 // a second film while --resume reads a checkpoint, the textures and the
 // geometry of `scene`. Returns false with `error` (a bad crop).
 bool estimate_render_memory(const Options& o, const SceneDescription& scene, int width, int height,
-                            const std::vector<AovRequest>& aovs, MemoryEstimate& out, std::string& error);
+                            const std::vector<AovRequest>& aovs, ChannelType beauty, MemoryEstimate& out,
+                            std::string& error);
 
 // How to replay the report's first offender: "; to replay the first, run this
 // command again with --pixel X,Y --sample N" (the same options give the same

@@ -127,7 +127,7 @@ bool check_job_memory(const Options& o, Job& job, Messages& m, int& status) {
     limit = *parsed;
   }
   const int width = job.settings.width, height = job.settings.height;
-  if (std::string error; !estimate_render_memory(o, job.desc, width, height, job.aovs, job.memory, error)) {
+  if (std::string error; !estimate_render_memory(o, job.desc, width, height, job.aovs, job.beauty_type, job.memory, error)) {
     m.error(error);  // a bad crop
     return false;
   }

@@ -178,7 +178,7 @@ MemoryEstimate estimate_memory(const SceneDescription& scene, uint64_t pixels, c
                                int films, AccelKind accel, uint64_t texture_cache_bytes) {
   MemoryEstimate e;
   e.film = pixels * per_pixel.film * static_cast<uint64_t>(films);
-  e.images = pixels * per_pixel.images;
+  e.images = saturating_add(saturating_mul(pixels, per_pixel.images), per_pixel.writer);
   e.textures = texture_bytes(scene, TextureLimits{}, texture_cache_bytes);
   e.geometry = geometry_bytes(scene, accel);
   e.runtime = kRuntimeBytes;

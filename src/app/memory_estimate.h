@@ -26,7 +26,7 @@ struct MemoryEstimate {
   // before the process grows.
   uint64_t reusable = 0;
   uint64_t film = 0;      // the film's sums over the crop window (+ a second film while --resume reads one)
-  uint64_t images = 0;    // the output buffers over the crop window: Film::layers() and the largest writer's
+  uint64_t images = 0;    // the output buffers: Film::layers() over the crop window and the largest writer's
   uint64_t textures = 0;  // textures materials use and the environment map, decoded, from their file headers
   uint64_t geometry = 0;  // the render scene's copy of the geometry and the acceleration structure with its build
   uint64_t runtime = 0;   // worker threads, the task scheduler, the image writers' buffers (a measured constant)
@@ -42,10 +42,12 @@ uint64_t peak_resident_bytes();
 // Bytes malloc holds free in its heaps (mallinfo2 fordblks), 0 where unknown.
 uint64_t free_heap_bytes();
 
-// What the render allocates per pixel of its crop window.
+// What the render allocates for its film and its outputs: per pixel of its
+// crop window, and the writer's buffer.
 struct PixelBytes {
-  uint64_t film = 0;    // film_bytes_per_pixel(): sizeof(PixelSum) and the AOVs' doubles
-  uint64_t images = 0;  // output_bytes_per_pixel(): the layers and the largest output conversion
+  uint64_t film = 0;    // per pixel, film_bytes_per_pixel(): sizeof(PixelSum) and the AOVs' sums
+  uint64_t images = 0;  // per pixel, layer_bytes_per_pixel(): Film::layers()
+  uint64_t writer = 0;  // in all, writer_bytes(): the largest output's own buffer (EXR: one band of rows)
 };
 
 // `pixels`: the pixels of the crop window (the frame without a crop);

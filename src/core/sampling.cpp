@@ -195,7 +195,7 @@ float Distribution1D::pdf(float x) const {
 }
 
 // ---------------------------------------------------------------- Distribution2D
-Distribution2D::Distribution2D(const std::vector<float>& f, int nu, int nv) : nu_(nu), nv_(nv) {
+Distribution2D::Distribution2D(const std::vector<float>& f, int nu, int nv) : nv_(nv) {
   conditional_.reserve(static_cast<std::size_t>(nv));
   std::vector<float> row(static_cast<std::size_t>(nu));
   std::vector<float> marginal(static_cast<std::size_t>(nv));

@@ -137,7 +137,7 @@ class Distribution2D {
  private:
   std::vector<Distribution1D> conditional_;
   Distribution1D marginal_;
-  int nu_ = 0, nv_ = 0;
+  int nv_ = 0;
 };
 
 }  // namespace pt

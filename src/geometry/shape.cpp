@@ -32,7 +32,7 @@ namespace {
 template <std::size_t... I>
 ShapeAreaSampler area_sampler(const Shape& s, std::index_sequence<I...>) {
   ShapeAreaSampler out;
-  ((s.index() == I ? (out.emplace<I>(make_area_sampler(*std::get_if<I>(&s))), true) : false) || ...);
+  (void)((s.index() == I ? (out.emplace<I>(make_area_sampler(*std::get_if<I>(&s))), true) : false) || ...);
   return out;
 }
 

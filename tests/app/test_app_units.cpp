@@ -21,6 +21,7 @@
 #include "accel/embree/compact.h"
 #include "app/memory_estimate.h"
 #include "app/mpi_launch.h"
+#include "io/exr_bands.h"
 #include "app/options.h"
 #include "app/progress.h"
 #include "app/render_driver.h"
@@ -472,6 +473,7 @@ TEST(MemoryEstimate, ScalesWithPixelsFilmBytesAndTriangles) {
   EXPECT_EQ(estimate_memory(scene, 100 * 100, {80, 32}).film, 2 * small.film);  // e.g. AOV layers
   EXPECT_EQ(estimate_memory(scene, 100 * 100, {40, 32}, 2).film, 2 * small.film);
   EXPECT_EQ(estimate_memory(scene, 50 * 100, {40, 32}).images, small.images / 2);  // a crop of half the frame
+  EXPECT_EQ(estimate_memory(scene, 100 * 100, {40, 32, 1000}).images, small.images + 1000u);  // the writer's buffer
   ShapeDesc mesh;
   TriangleMesh m;
   m.positions.resize(3000);
@@ -490,21 +492,56 @@ TEST(MemoryEstimate, ScalesWithPixelsFilmBytesAndTriangles) {
   EXPECT_NE(check_memory(e, 0, e.total() - 1).find("physical memory"), std::string::npos);
 }
 
-// The bytes per pixel the writers take: 4 per channel of Film::layers(), plus
-// the largest output's buffer.
+// The bytes the writers take: 4 per channel of Film::layers() per pixel, and
+// the largest output's own buffer: for EXR one band of packed rows (the
+// writer's, io/exr_bands.h) and OpenEXR's line buffers, for PNG, JPEG and PPM
+// the RGB image and its codes.
 TEST(MemoryEstimate, OutputBuffersCountEveryAovChannel) {
-  EXPECT_EQ(output_bytes_per_pixel({}, {}), 16u);                   // R, G, B, A (a replay writes nothing)
-  EXPECT_EQ(output_bytes_per_pixel({}, {"a.exr"}), 16u + 16u);      // and the interleaved EXR buffer
-  EXPECT_EQ(output_bytes_per_pixel({}, {"a.PNG", "b.ppm"}), 16u + 15u);  // float RGB image and 8-bit codes
+  EXPECT_EQ(layer_bytes_per_pixel({}), 16u);  // R, G, B, A
+  const ExrSettings zip{"zip", false, 2}, multipart{"zip", true, 2};
+  EXPECT_EQ(writer_bytes({}, ChannelType::Float, {}, zip, 64, 48), 0u);  // a replay writes nothing
+  // OpenEXR's line buffers: 2 per thread, no more than the blocks, 3 blocks' rows each.
+  EXPECT_EQ(exr_block_rows("zip"), 16);
+  EXPECT_EQ(exr_block_rows("dwaa:45"), 32);
+  EXPECT_EQ(exr_block_rows("none"), 1);
+  EXPECT_EQ(exr_line_buffer_bytes(100, 48, 16, 2), 3u * 3u * 16u * 100u);  // 3 blocks: 3 buffers
+  EXPECT_EQ(exr_line_buffer_bytes(100, 2160, 16, 2), 4u * 3u * 16u * 100u);
+  EXPECT_EQ(exr_line_buffer_bytes(100, 2160, 32, 8), 16u * 3u * 32u * 100u);
+  // A small EXR is one band: every row, 16 bytes a pixel; 8 with a half beauty.
+  EXPECT_EQ(writer_bytes({}, ChannelType::Float, {"a.exr"}, zip, 64, 48),
+            64u * 48u * 16u + exr_line_buffer_bytes(64 * 16, 48, 16, 2));
+  EXPECT_EQ(writer_bytes({}, ChannelType::Half, {"a.exr"}, zip, 64, 48),
+            64u * 48u * 8u + exr_line_buffer_bytes(64 * 8, 48, 16, 2));
+  EXPECT_EQ(writer_bytes({}, ChannelType::Float, {"a.PNG", "b.ppm"}, zip, 64, 48), 64u * 48u * 15u);
   std::vector<AovRequest> all;
-  std::size_t channels = 4;
+  std::size_t channels = 4, packed = 16;
   for (const AovInfo& info : aov_catalogue()) {
     const AovRequest r{info.type, info.default_type, info.accumulation == Accumulation::Ranked ? 6 : 0};
     all.push_back(r);
     channels += static_cast<std::size_t>(aov_channel_count(r));
+    packed += static_cast<std::size_t>(aov_channel_count(r)) * (r.channel_type == ChannelType::Half ? 2 : 4);
   }
   EXPECT_EQ(channels, 39u + 2 * 12u);  // Cryptomatte: 6 ranks are 3 layers of r, g, b, a
-  EXPECT_EQ(output_bytes_per_pixel(all, {"a.png", "a.exr"}), 2 * 63u * 4u);  // 504 bytes a pixel
+  EXPECT_EQ(packed, 63u * 4u - 7u * 2u);  // albedo, N and nonfinite are half
+  EXPECT_EQ(layer_bytes_per_pixel(all), 63u * 4u);  // 252 bytes a pixel
+  // 4K: a band is the 32-row blocks that fit 32 MiB (32 rows of 3840 pixels
+  // of 238 bytes are 28 MiB); one part per layer: the largest layer's band
+  // (the float beauty and the Cryptomatte layers: 16 bytes a pixel, 32 MiB / 60 KiB = 546 rows, 544 in
+  // whole blocks); with a half beauty too. OpenEXR's line buffers are those of every part.
+  const uint64_t lines = exr_line_buffer_bytes(3840 * packed, 2160, 16, 2);
+  EXPECT_EQ(writer_bytes(all, ChannelType::Float, {"a.exr"}, zip, 3840, 2160), 32u * 3840u * packed + lines);
+  EXPECT_EQ(writer_bytes(all, ChannelType::Float, {"a.exr"}, multipart, 3840, 2160), 544u * 3840u * 16u + lines);
+  EXPECT_EQ(writer_bytes(all, ChannelType::Half, {"a.exr"}, multipart, 3840, 2160),
+            544u * 3840u * 16u + exr_line_buffer_bytes(3840 * (packed - 8), 2160, 16, 2));
+  EXPECT_EQ(writer_bytes({}, ChannelType::Half, {"a.exr"}, multipart, 3840, 2160),
+            1088u * 3840u * 8u + exr_line_buffer_bytes(3840 * 8, 2160, 16, 2));
+  // The largest writer's: at 4K the EXR's (28 MiB of band, 167 of line buffers) against a PNG's RGB image
+  // and codes (119 MiB); without the AOVs the PNG's.
+  EXPECT_EQ(writer_bytes(all, ChannelType::Float, {"a.png", "a.exr"}, zip, 3840, 2160), 32u * 3840u * packed + lines);
+  EXPECT_EQ(writer_bytes({}, ChannelType::Float, {"a.png", "a.exr"}, zip, 3840, 2160), 3840u * 2160u * 15u);
+  EXPECT_EQ(exr_band_rows(3840 * packed, 2160), 32);
+  EXPECT_EQ(exr_band_rows(3840 * 12, 2160), 704);
+  EXPECT_EQ(exr_band_rows(3840 * 12, 300), 300);
   // The film: PixelSum (five 16-byte exact sums: r, g, b, weight, coverage;
   // and a count), then each AOV's exact sums and plain values (Cryptomatte:
   // two exact sums per rank, the id's bits and its weight).

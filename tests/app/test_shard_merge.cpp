@@ -529,7 +529,9 @@ bool band_merge(const std::vector<const Shard*>& shards, LayeredImage& out, std:
                 bool allow_partial = false, std::vector<std::string> states = {}) {
   ShardMerger merger(allow_partial);
   for (std::size_t i = 0; i < shards.size(); ++i) {
-    if (!merger.check("s" + std::to_string(i), shards[i]->info, error)) return false;
+    std::string name = "s";  // appended, not "s" + ...: that trips GCC 12's -Wrestrict (a false positive)
+    name += std::to_string(i);
+    if (!merger.check(name, shards[i]->info, error)) return false;
     if (states.size() < shards.size()) states.push_back(state_of_film(shards[i]->film));
   }
   const std::vector<std::string_view> views(states.begin(), states.end());

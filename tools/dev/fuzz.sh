@@ -64,11 +64,15 @@ for h in "${harnesses[@]}"; do
   # -max_len: scene files and meshes beyond 64 KiB add nothing but time.
   # -timeout: one input taking 10 s is a finding (time must stay bounded).
   # Under ASan, 64 bit: ASan's shadow memory needs -rss_limit_mb, not ulimit -v.
+  # A harness's dictionary (tests/fuzz/<harness>.dict), when it has one: libFuzzer
+  # refuses to start on a -dict that does not exist (the shard harness had none).
+  dict=()
+  [ -f "$repo/tests/fuzz/$h.dict" ] && dict=(-dict="$repo/tests/fuzz/$h.dict")
   set +e
   ASAN_OPTIONS="detect_leaks=1:allocator_may_return_null=0" UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
   LSAN_OPTIONS="suppressions=$repo/tools/dev/lsan-suppressions.txt:print_suppressions=0" \
     "$build/tests/fuzz/fuzz_$h" -max_total_time="$seconds" -rss_limit_mb=2048 -max_len=65536 -timeout=10 \
-    -dict="$repo/tests/fuzz/$h.dict" -print_final_stats=1 -artifact_prefix="$artifacts/" \
+    "${dict[@]}" -print_final_stats=1 -artifact_prefix="$artifacts/" \
     "$corpus" "$seeds" >"$build/fuzz-logs/$h.log" 2>&1
   status=$?
   set -e

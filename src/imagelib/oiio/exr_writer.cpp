@@ -13,6 +13,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "io/exr_bands.h"
+
 namespace pt {
 
 namespace {
@@ -90,7 +92,10 @@ __attribute__((target("f16c"))) void pack_halves_f16c(const float* v, std::size_
   for (std::size_t x = 0; x < n; ++x)
     for (std::size_t c = 0; c < channels; ++c) {
       const float f = v[x * channels + c];
-      const uint16_t bits = std::isnan(f) ? Imath::half(f).bits() : _cvtss_sh(f, _MM_FROUND_TO_NEAREST_INT);
+      // _mm_cvtps_ph on one lane: _cvtss_sh is a macro with a compound literal in clang's header (-Wpedantic).
+      const uint16_t bits = std::isnan(f) ? Imath::half(f).bits()
+                                          : static_cast<uint16_t>(_mm_extract_epi16(
+                                                _mm_cvtps_ph(_mm_set_ss(f), _MM_FROUND_TO_NEAREST_INT), 0));
       std::memcpy(o + x * step + c * sizeof bits, &bits, sizeof bits);
     }
 }
@@ -155,16 +160,12 @@ void pack_rows(const LayeredImage& image, const std::vector<PackedLayer>& layers
   });
 }
 
-// About this many bytes of packed rows are written at a time.
-constexpr std::size_t kBandBytes = std::size_t{32} << 20;
-
 // Writes the pixels of a part holding `layers` (opened), band by band.
 bool write_part(OIIO::ImageOutput& out, const LayeredImage& image, const std::vector<const ImageLayer*>& layers) {
   std::size_t pixel_bytes = 0;
   const std::vector<PackedLayer> packed = packed_layers(layers, pixel_bytes);
   const std::size_t row_bytes = pixel_bytes * static_cast<std::size_t>(image.width);
-  // Whole blocks of 32 rows (zip's 16, piz's 32) keep OpenEXR's compression of a band's blocks parallel.
-  const int band = std::min(image.height, std::max(32, static_cast<int>(kBandBytes / row_bytes) / 32 * 32));
+  const int band = exr_band_rows(row_bytes, image.height);  // the memory pre-flight counts this band
   std::vector<unsigned char> buffer(static_cast<std::size_t>(band) * row_bytes);
   for (int y0 = 0; y0 < image.height; y0 += band) {
     const int y1 = std::min(image.height, y0 + band);

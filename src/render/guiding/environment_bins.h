@@ -43,7 +43,6 @@ class EnvironmentBins {
   int cell_y(int by, int cy) const { return y0_[by] + cy * (y0_[by + 1] - y0_[by]) / cells_y_[by]; }
   int cell_at(int b, int x, int y) const;  // the cell of texel (x, y) in bin b: cy * kCells + cx
 
-  const EnvironmentMap* map_ = nullptr;
   int width_ = 0, height_ = 0, bins_x_ = 0, bins_y_ = 0;
   std::vector<int> x0_, y0_;       // first texel column (row) of each bin column (row), and the end
   std::vector<int> column_bin_, row_bin_;  // per texel column (row): its bin column (row)

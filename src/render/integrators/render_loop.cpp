@@ -85,7 +85,7 @@ void render_samples(const RenderScene& scene, Film& film, WorkerPool& pool, cons
                     const Sampler& prototype, const PixelFilter& filter, SampleRadianceFn radiance) {
   const PixelRect crop = film.crop();
   const int tile = scheduled_tile_size(settings.tile_size, crop.width(), crop.height(), pool.threads());
-  const auto [first, end] = sample_range(settings);
+  const int first = sample_range(settings).first, end = sample_range(settings).second;  // clang 14 can't capture [a, b]
   const int tiles_x = (crop.width() + tile - 1) / tile;
   const int tiles_y = (crop.height() + tile - 1) / tile;
   const bool lens = scene.camera.has_lens();

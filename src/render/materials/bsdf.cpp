@@ -11,13 +11,15 @@ static_assert(BsdfKindType<ClassicLobes> && BsdfKindType<DielectricBsdf> && Bsdf
 void Bsdf::set_kind(const Material& m, const TexCoord& tc, Vec3f wo) {
   switch (m.type) {
     case MaterialType::Glass:
-      emplace<DielectricBsdf>(m.ior, m.transmittance);
+      // DielectricBsdf{...}, not emplace's (m.ior, ...): an aggregate, which clang 14 (the fuzz and
+      // sanitizer builds) cannot initialise from parentheses.
+      emplace<DielectricBsdf>(DielectricBsdf{m.ior, m.transmittance});
       return;
     case MaterialType::Dielectric: {
       const Vec2f a = m.alpha_at(tc);
       // Index 1 passes light straight through however rough the interface is.
       if (TrowbridgeReitz::smooth(a.x, a.y) || m.ior == 1.0f) {
-        emplace<DielectricBsdf>(m.ior, m.transmittance);
+        emplace<DielectricBsdf>(DielectricBsdf{m.ior, m.transmittance});
       } else {
         emplace<RoughDielectricBsdf>(m.ior, a.x, a.y, m.transmittance);
       }

@@ -7,7 +7,11 @@ memory.estimate_bytes (what --max-memory checks) with memory.peak_rss_bytes (get
 Each scene is run --runs times, interleaved; the table shows the median peak.
 
   python3 tools/bench/memory/memory_bench.py [--exe build/pathtracer] [--shared ../shared]
-        [--runs 3] [--json docs/bench/memory.json] [--markdown docs/bench/memory.md]
+        [--runs 3] [--json docs/bench/memory.json] [--markdown docs/bench/memory.md] [--outputs]
+
+--outputs runs the film and output cases instead (the Cornell box at sizes up to 4K, with and without
+every AOV, one EXR part or one per layer, EXR with PNG): the film, Film::layers() and the EXR writer's
+band of packed rows (io/exr_bands.h), the parts of the estimate that grow with the pixels.
 
 Mesh scenes need ../shared (assets/meshes, assets/sponza, assets/env); without it they are skipped.
 The "per triangle" column is (peak - everything else the estimate counts) / triangles: what the
@@ -91,8 +95,24 @@ def scenes(shared, work):
     return out
 
 
+def output_cases():
+    """(name, scene file, extra arguments, accel backends): the film and output buffers at several sizes."""
+    cornell = os.path.join(REPO, "scenes", "cornell-box.json")
+    size = lambda w, h: ["--width", str(w), "--height", str(h)]
+    every = ["--aov", ALL_AOVS]
+    return [("1024x1024, EXR", cornell, size(1024, 1024), ["bvh"]),
+            ("1024x1024 every AOV, EXR", cornell, size(1024, 1024) + every, ["bvh"]),
+            ("1024x1024 every AOV, multi-part EXR", cornell, size(1024, 1024) + every + ["--multipart"], ["bvh"]),
+            ("1024x1024 every AOV, EXR piz", cornell, size(1024, 1024) + every + ["--exr-compression", "piz"], ["bvh"]),
+            ("2048x1024 every AOV, EXR", cornell, size(2048, 1024) + every, ["bvh"]),
+            ("1920x1080 every AOV, EXR and PNG", cornell, size(1920, 1080) + every + ["-o", "{work}/out.png"], ["bvh"]),
+            ("2048x2048, EXR", cornell, size(2048, 2048), ["bvh"]),
+            ("3840x2160, EXR", cornell, size(3840, 2160), ["bvh"])]
+
+
 def run_once(exe, scene, extra, accel, work):
     report = os.path.join(work, "run.json")
+    extra = [e.replace("{work}", work) for e in extra]
     cmd = [exe, scene, "-o", os.path.join(work, "out.exr"), "--spp", "1", "--threads", "2", "--quiet",
            "--accel", accel, "--report", report] + extra
     subprocess.run(cmd, check=True)
@@ -108,10 +128,12 @@ def main():
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--json")
     ap.add_argument("--markdown")
+    ap.add_argument("--outputs", action="store_true", help="the film and output cases instead of the scenes")
     a = ap.parse_args()
     rows = []
     with tempfile.TemporaryDirectory() as work:
-        cases = [(n, s, e, acc) for n, s, e, accs in scenes(a.shared, work) for acc in accs]
+        chosen = output_cases() if a.outputs else scenes(a.shared, work)
+        cases = [(n, s, e, acc) for n, s, e, accs in chosen for acc in accs]
         results = {i: [] for i in range(len(cases))}
         for _ in range(a.runs):  # interleaved: every case once per round
             for i, (name, scene, extra, accel) in enumerate(cases):
@@ -124,12 +146,22 @@ def main():
             parts = mem.get("estimate_parts", {})
             rows.append({"scene": name, "accel": accel, "estimate": est, "peak": peak, "peaks": peaks,
                          "ratio": est / peak, "parts": parts, "primitives": prims})
-    lines = ["| scene | accel | estimate (MiB) | measured peak RSS (MiB) | estimate / peak | of which baseline (MiB) |",
-             "|---|---|---|---|---|---|"]
-    for r in rows:
-        lines.append("| %s | %s | %.1f | %.1f | %.2f | %.1f |" % (
-            r["scene"], r["accel"], r["estimate"] / 2**20, r["peak"] / 2**20, r["ratio"],
-            r["parts"].get("baseline", 0) / 2**20))
+    if a.outputs:  # the parts that grow with the pixels, and the spread of the peaks
+        lines = ["| case | estimate (MiB) | measured peak RSS (MiB), median [min, max] | estimate / peak | "
+                 "film (MiB) | images: layers and writer (MiB) | baseline (MiB) |", "|---|---|---|---|---|---|---|"]
+        for r in rows:
+            p = r["parts"]
+            lines.append("| %s | %.1f | %.1f [%.1f, %.1f] | %.3f | %.1f | %.1f | %.1f |" % (
+                r["scene"], r["estimate"] / 2**20, r["peak"] / 2**20, min(r["peaks"]) / 2**20,
+                max(r["peaks"]) / 2**20, r["ratio"], p.get("film", 0) / 2**20, p.get("images", 0) / 2**20,
+                p.get("baseline", 0) / 2**20))
+    else:
+        lines = ["| scene | accel | estimate (MiB) | measured peak RSS (MiB) | estimate / peak | of which baseline (MiB) |",
+                 "|---|---|---|---|---|---|"]
+        for r in rows:
+            lines.append("| %s | %s | %.1f | %.1f | %.2f | %.1f |" % (
+                r["scene"], r["accel"], r["estimate"] / 2**20, r["peak"] / 2**20, r["ratio"],
+                r["parts"].get("baseline", 0) / 2**20))
     table = "\n".join(lines)
     print(table)
     worst = max(abs(r["ratio"] - 1) for r in rows)
