@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <memory>
 
@@ -224,6 +225,23 @@ bool write_image_with_alpha(const std::string& path, const Image& image, const s
       error);
 }
 
+// An EXR of `image`'s size, written by `write` through the image module into a
+// temporary file that replaces `path` only once it is complete.
+bool write_exr_file(const std::string& path, const LayeredImage& image, std::string& error,
+                    const std::function<bool(const ImageLibrary&, const std::string&, std::string&)>& write) {
+  if (image.width <= 0 || image.height <= 0) {
+    error = "cannot write '" + path + "': the image is empty";
+    return false;
+  }
+  return write_atomically(
+      path,
+      [&](const std::string& tmp, std::string& why) {
+        const ImageLibrary* lib = library(why);
+        return lib != nullptr && write(*lib, tmp, why);
+      },
+      error);
+}
+
 }  // namespace
 
 bool write_image(const std::string& path, const Image& image, const DisplaySettings& settings, std::string& error,
@@ -244,34 +262,18 @@ bool write_layered_image(const std::string& path, const LayeredImage& image, con
     if (with_alpha) unpremultiply(rgb, alpha);
     return write_image_with_alpha(path, rgb, alpha, settings, error, metadata);
   }
-  if (image.width <= 0 || image.height <= 0) {
-    error = "cannot write '" + path + "': the image is empty";
-    return false;
-  }
-  return write_atomically(
-      path,
-      [&](const std::string& tmp, std::string& why) {
-        const ImageLibrary* lib = library(why);
-        return lib != nullptr && lib->write_exr(tmp, image, metadata, exr, why);
-      },
-      error);
+  return write_exr_file(path, image, error, [&](const ImageLibrary& lib, const std::string& tmp, std::string& why) {
+    return lib.write_exr(tmp, image, metadata, exr, why);
+  });
 }
 
 bool write_exr_bands(const std::string& path, const LayeredImage& layout, const ImageMetadata& metadata,
                      const ExrSettings& exr, const std::function<bool(ExrBandWriter&, std::string&)>& write,
                      std::string& error) {
-  if (layout.width <= 0 || layout.height <= 0) {
-    error = "cannot write '" + path + "': the image is empty";
-    return false;
-  }
-  return write_atomically(
-      path,
-      [&](const std::string& tmp, std::string& why) {
-        const ImageLibrary* lib = library(why);
-        const std::unique_ptr<ExrBandWriter> writer = lib != nullptr ? lib->open_exr(tmp, layout, metadata, exr, why) : nullptr;
-        return writer != nullptr && write(*writer, why) && writer->close(why);
-      },
-      error);
+  return write_exr_file(path, layout, error, [&](const ImageLibrary& lib, const std::string& tmp, std::string& why) {
+    const std::unique_ptr<ExrBandWriter> writer = lib.open_exr(tmp, layout, metadata, exr, why);
+    return writer != nullptr && write(*writer, why) && writer->close(why);
+  });
 }
 
 bool read_image(const std::string& path, Image& out, std::string& error) {
