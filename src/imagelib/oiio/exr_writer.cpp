@@ -192,6 +192,13 @@ bool check_layers(const LayeredImage& image, std::string& error) {
   return true;
 }
 
+// Every layer of `image`, in order: the layers of its one part.
+std::vector<const ImageLayer*> every_layer(const LayeredImage& image) {
+  std::vector<const ImageLayer*> layers;
+  for (const ImageLayer& layer : image.layers) layers.push_back(&layer);
+  return layers;
+}
+
 // The one part of an EXR written band by band (ImageLibrary::open_exr).
 class OiioExrBandWriter final : public ExrBandWriter {
  public:
@@ -201,10 +208,8 @@ class OiioExrBandWriter final : public ExrBandWriter {
   std::size_t row_bytes() const override { return row_bytes_; }
 
   void pack(const LayeredImage& band, unsigned char* out) const override {
-    std::vector<const ImageLayer*> layers;
-    for (const ImageLayer& layer : band.layers) layers.push_back(&layer);
     std::size_t pixel_bytes = 0;
-    const std::vector<PackedLayer> packed = packed_layers(layers, pixel_bytes);
+    const std::vector<PackedLayer> packed = packed_layers(every_layer(band), pixel_bytes);
     pack_rows(band, packed, pixel_bytes, 0, band.height, out);
   }
 
@@ -279,8 +284,7 @@ std::unique_ptr<ExrBandWriter> open_exr_bands(const std::string& path, const Lay
     return nullptr;
   }
   OIIO::attribute("exr_threads", exr.threads > 0 ? exr.threads : 0);  // as write_exr_layers
-  std::vector<const ImageLayer*> layers;
-  for (const ImageLayer& layer : layout.layers) layers.push_back(&layer);
+  const std::vector<const ImageLayer*> layers = every_layer(layout);
   ExrSettings one_part = exr;
   one_part.multipart = false;
   const OIIO::ImageSpec spec = part_spec(layout, layers, metadata, one_part);
@@ -293,9 +297,8 @@ std::unique_ptr<ExrBandWriter> open_exr_bands(const std::string& path, const Lay
     error = out->geterror();
     return nullptr;
   }
-  std::size_t pixel_bytes = 0;  // as packed_layers counts them (the layout holds no values to point at)
-  for (const ImageLayer& layer : layout.layers)
-    pixel_bytes += layer.channels.size() * (layer.type == ChannelType::Half ? sizeof(uint16_t) : sizeof(float));
+  std::size_t pixel_bytes = 0;  // the layout's layers hold no values: only the sizes are read
+  packed_layers(layers, pixel_bytes);
   return std::make_unique<OiioExrBandWriter>(std::move(out), pixel_bytes * static_cast<std::size_t>(layout.width));
 }
 
