@@ -71,20 +71,14 @@ LightSet::LightSet(std::vector<Light> lights, std::size_t shape_count, float sce
   } else {
     build_bvh(power, scene_radius);
   }
-  int positive = 0;
-  for (std::size_t i = 0; i < power.size(); ++i) {
-    if (power[i] > 0.0f) {
-      ++positive;
-      only_ = static_cast<int>(i);
-    }
-  }
-  if (positive != 1) only_ = -1;
+  // The lights with positive power: the one (only_), or a few infinite ones (each_).
   bool all_infinite = true;
   for (std::size_t i = 0; i < lights_.size(); ++i) {
     if (!(power[i] > 0.0f)) continue;
     all_infinite = all_infinite && std::visit([](const auto& l) { return KindOf<decltype(l)>::infinite; }, lights_[i]);
     each_.push_back(static_cast<int>(i));
   }
+  only_ = each_.size() == 1 ? each_.front() : -1;
   if (!all_infinite || each_.size() < 2 || each_.size() > kMaxEachLights) each_.clear();
 }
 
