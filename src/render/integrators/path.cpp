@@ -147,20 +147,23 @@ class PathTracer {
   // contribution (each term also given to the AOV split).
   RGB next_event(const Intersection& isect, const LightGuide::Site& site, const PathGuide::Leaf* region,
                  const Bsdf& bsdf, Vec3f wo, RGB beta, int depth, Sampler& sampler, PathAovRecorder& rec) const {
+    // One light's estimate, weighted by beta and given to the AOV split.
+    const auto term = [&](RGB estimate, Vec3f wi_light) {
+      const RGB t = beta * estimate;
+      if (rec.active() && !t.is_black()) rec.light(depth, t, wo, wi_light);
+      return t;
+    };
+    Vec3f wi_light;
+    if (each_.empty()) {
+      if (lights_.empty()) return {};
+      const RGB estimate = direct_light(isect, site, region, bsdf, wo, sampler, &wi_light);
+      return term(estimate, wi_light);
+    }
     RGB sum;
-    if (!each_.empty()) {
-      for (const int index : each_) {  // every light, each with its own sample and shadow ray
-        Vec3f wi_light;
-        const Vec2f u = sampler.get_2d();
-        const RGB term = beta * sample_one(isect, site, region, bsdf, wo, index, 1.0f, u, &wi_light);
-        sum += term;
-        if (rec.active() && !term.is_black()) rec.light(depth, term, wo, wi_light);
-      }
-    } else if (!lights_.empty()) {
-      Vec3f wi_light;
-      const RGB term = beta * direct_light(isect, site, region, bsdf, wo, sampler, &wi_light);
-      sum += term;
-      if (rec.active() && !term.is_black()) rec.light(depth, term, wo, wi_light);
+    for (const int index : each_) {  // every light, each with its own sample and shadow ray
+      const Vec2f u = sampler.get_2d();
+      const RGB estimate = sample_one(isect, site, region, bsdf, wo, index, 1.0f, u, &wi_light);
+      sum += term(estimate, wi_light);
     }
     return sum;
   }
