@@ -105,20 +105,14 @@ std::size_t layer_bytes_per_pixel(const std::vector<AovRequest>& aovs) {
 
 uint64_t writer_bytes(const std::vector<AovRequest>& aovs, ChannelType beauty, const std::vector<std::string>& outputs,
                       const ExrSettings& exr, int width, int height) {
-  // The packed pixel of each EXR layer, as Film::layer_layout() makes them:
-  // the beauty's four channels, a layer per AOV, a Ranked AOV's channels in
-  // layers of four.
-  const auto bytes = [](ChannelType t) { return t == ChannelType::Half ? sizeof(uint16_t) : sizeof(float); };
-  std::vector<std::size_t> layers = {4 * bytes(beauty)};
-  for (const AovRequest& r : aovs) {
-    const auto channels = static_cast<std::size_t>(aov_channel_count(r));
-    const std::size_t per_layer = aov_info(r.type).accumulation == Accumulation::Ranked ? 4 : channels;
-    for (std::size_t c = 0; c < channels; c += per_layer) layers.push_back(per_layer * bytes(r.channel_type));
-  }
+  // The EXR's layers as the film lays them out (a film of no pixels: the
+  // layers' channels and types, no values), each layer's packed pixel.
+  const LayeredImage shape = Film(0, 0, PixelRect{}, aovs).layer_layout(beauty, PixelRect{});
   std::size_t part = 0, all = 0;  // the largest part's packed pixel; every part's
-  for (const std::size_t layer : layers) {
-    all += layer;
-    part = exr.multipart ? std::max(part, layer) : all;
+  for (const ImageLayer& layer : shape.layers) {
+    const std::size_t bytes = layer.channels.size() * (layer.type == ChannelType::Half ? sizeof(uint16_t) : sizeof(float));
+    all += bytes;
+    part = exr.multipart ? std::max(part, bytes) : all;
   }
   const unsigned hardware = std::thread::hardware_concurrency();
   const int threads = exr.threads > 0 ? exr.threads : static_cast<int>(std::max(1u, hardware));
