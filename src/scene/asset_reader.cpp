@@ -15,6 +15,7 @@
 #include <system_error>
 
 #include "core/file_access.h"
+#include "core/heap.h"
 #include "scene/asset_internal.h"
 #include "scene/gltf_json.h"
 #include "scene/mtl.h"
@@ -120,6 +121,10 @@ bool read_with_assimp(const std::string& written, const SourceLocation& where, I
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_USE_COLLADA_NAMES, true);
   auto* io = new RecordingIOSystem;  // owned by the importer
   importer.SetIOHandler(io);
+  // The peak of an import is Assimp's scene beside the file's buffers (in
+  // ReadFile), then beside our meshes (convert): the pages that start-up and
+  // the importer's set-up touched, then those the reading ran, leave first.
+  release_importer_pages();
   // Triangles only (points and lines sorted into meshes of their own and
   // counted); uvs with v downwards from the image's top, as our textures.
   // Identical vertices are joined for COLLADA, whose reader makes one vertex
@@ -134,6 +139,7 @@ bool read_with_assimp(const std::string& written, const SourceLocation& where, I
     diag.error(where, "cannot read '" + written + "' (" + asset_format_name(out.format) + "): " + reason);
     return false;
   }
+  release_importer_pages();
   if (!convert(*scene, where, out, diag)) return false;
   opened = io->opened;
   return true;
@@ -154,6 +160,8 @@ void finish(ImportedAsset& out, Diagnostics& diag, std::vector<std::string> open
 }
 
 }  // namespace
+
+void release_importer_pages() { release_library_pages({"libassimp.so", "libdraco.so"}); }
 
 SourceLocation file_location(const std::string& path) {
   SourceLocation loc;

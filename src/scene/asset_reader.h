@@ -27,6 +27,15 @@ inline constexpr std::uintmax_t kMaxAssetFileBytes = std::uintmax_t{2} << 30;  /
 bool read_asset(const std::string& resolved, const std::string& written, const SourceLocation& where,
                 ImportedAsset& out, Diagnostics& diag);
 
+// Returns the pages of Assimp's code and constants (libassimp, libdraco) to
+// the system (release_library_pages, core/heap.h). Every run touches about
+// 2 MiB of them at start-up and a glTF import 3 MiB more; the scene loader
+// calls this once loading is done (nothing after it runs them), and
+// read_asset before Assimp reads a file and again before its scene is
+// converted, so that they do not sit under the import's own peak either
+// (docs/bench/scale.md).
+void release_importer_pages();
+
 // A location naming only `path` (for problems with no line in a binary file
 // or one Assimp read).
 SourceLocation file_location(const std::string& path);

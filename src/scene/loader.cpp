@@ -6,7 +6,6 @@
 #include <system_error>
 
 #include "core/file_access.h"
-#include "core/heap.h"
 #include "scene/asset_reader.h"
 #include "scene/detect.h"
 #include "scene/import_asset.h"
@@ -126,11 +125,10 @@ std::optional<SceneDescription> load_text(const std::string& path, std::string t
     case SceneFormat::PathOfLight: import_path_of_light(ctx); break;
     case SceneFormat::Cgr: import_cgr(ctx); break;
   }
-  // The model importer's code and constants (Assimp's, which every run maps
-  // and the loader touches at start-up; a glTF import touches 3 MiB more)
-  // leave the resident set: nothing after loading runs them, and they would
-  // sit under the acceleration structure's build (core/heap.h).
-  release_library_pages({"libassimp.so", "libdraco.so"});
+  // The model importer's code and constants leave the resident set: nothing
+  // after loading runs them, and they would sit under the acceleration
+  // structure's build (asset_reader.h).
+  release_importer_pages();
   validate_scene(scene, options, diag);
   if (diag.error_count() > errors_before) return std::nullopt;
   return scene;
