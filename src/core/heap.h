@@ -20,11 +20,12 @@ void release_free_heap();
 // written (their code and constants: the PT_LOAD segments without write
 // permission, less the RELRO range; a library with text relocations is
 // left alone). They are clean pages of the file, read again from the page
-// cache if the library runs again. The scene loader releases Assimp's once
-// loading is done: about 2 MiB touched at every start-up and 3 MiB more by a
-// glTF import, clean but counted by peak RSS, would otherwise stay under the
-// acceleration structure's build (docs/bench/scale.md). Returns the bytes
-// advised (0 off Linux).
+// cache if the library runs again. Assimp's are released by
+// release_importer_pages (scene/asset_reader.h): before and after each import
+// and once loading is done, so that about 2 MiB touched at every start-up and
+// 3 MiB more by a glTF import, clean but counted by peak RSS, sit neither
+// under the import's peak nor under the acceleration structure's build
+// (docs/bench/scale.md). Returns the bytes advised (0 off Linux).
 std::size_t release_library_pages(std::initializer_list<std::string_view> names);
 
 }  // namespace pt
