@@ -14,6 +14,7 @@
 
 #include "app/shard_merge.h"
 #include "imagelib/image_library.h"
+#include "io/exr_pack.h"
 
 namespace pt {
 namespace {
@@ -25,6 +26,17 @@ constexpr std::size_t kBandBytes = std::size_t{1} << 20;
 // a time, in whole blocks of 32 rows (zip's 16, piz's 32), so that
 // OpenEXR compresses a chunk's blocks in parallel.
 constexpr std::size_t kChunkBytes = std::size_t{8} << 20;
+
+// Every row of a band film resolved (a row at a time into `row`, its
+// resolved channels) and packed as the file stores them into `out`.
+void pack_band(const Film& band, const PackedLayout& packed, std::vector<float>& row, unsigned char* out) {
+  const auto width = static_cast<std::size_t>(band.crop().width());
+  for (int y = 0; y < band.crop().height(); ++y) {
+    const std::size_t first = static_cast<std::size_t>(y) * width;
+    band.resolve_channels(first, width, row.data());
+    pack_pixels(packed, row.data(), width, out + first * packed.pixel_bytes);
+  }
+}
 
 void lower(std::atomic<std::size_t>& lowest, std::size_t value) {
   std::size_t seen = lowest.load();
@@ -141,8 +153,14 @@ bool ShardMerger::merge_streamed(ExrBandWriter& writer, std::string& error, bool
                        32 * 32);
   const PixelRect first_band{w.x0, w.y0, w.x1, std::min(w.y1, w.y0 + b.rows)};
   tbb::enumerable_thread_specific<Film> bands([&] { return Film(merged_.width, merged_.height, first_band, b.aovs); });
-  // A band's resolved layers (the layout over a band film's rows), then packed into its chunk.
-  tbb::enumerable_thread_specific<LayeredImage> resolved([&] { return b.shape.layer_layout(b.beauty, first_band); });
+  // A row's resolved channels, then packed into its chunk as the file stores them.
+  const PackedLayout packed = packed_layout(layout());
+  if (packed.pixel_bytes * static_cast<std::size_t>(w.width()) != row_bytes) {
+    error = "the EXR writer's rows are not the merge's";  // both from packed_layout: not expected
+    return false;
+  }
+  tbb::enumerable_thread_specific<std::vector<float>> resolved(
+      [&] { return std::vector<float>(packed.channels * static_cast<std::size_t>(w.width())); });
   // Chunks of packed rows, reused: as many as the pipeline holds at once.
   struct Chunk {
     int y0 = 0, y1 = 0;
@@ -179,11 +197,7 @@ bool ShardMerger::merge_streamed(ExrBandWriter& writer, std::string& error, bool
                                              tbb::parallel_for(tbb::blocked_range<int>(c->y0, c->y1, b.rows), [&](const tbb::blocked_range<int>& r) {
                                                Film& band = bands.local();
                                                add_band(b, band, r.begin(), r.end());
-                                               LayeredImage& image = resolved.local();
-                                               image.y = r.begin();
-                                               image.height = static_cast<int>(r.size());
-                                               band.resolve_into(image);
-                                               writer.pack(image, c->packed.get() + static_cast<std::size_t>(r.begin() - c->y0) * row_bytes);
+                                               pack_band(band, packed, resolved.local(), c->packed.get() + static_cast<std::size_t>(r.begin() - c->y0) * row_bytes);
                                              }, tbb::simple_partitioner());
                                              return c;
                                            }) &
