@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <iomanip>
 #include <iostream>
 #include <thread>
@@ -133,6 +134,31 @@ bool streams(const MergeOptions& m) {
   return m.shard_out.empty() && m.outputs.size() == 1 && is_exr_path(m.outputs.front()) && !m.exr.multipart;
 }
 
+// The file of the streamed merge, opened on a thread of its own (the image
+// module loads there, ~0.2 s) while the first bands are merged: `opened`
+// gets its writer (nullptr if it cannot be opened, `error` then says why);
+// the file is finished once `merged` says the merge wrote every row, and
+// discarded if not (`merge_error` then says why, set before `merged`).
+bool write_streamed(const MergeOptions& m, const ShardMerger& merger, OutputStamps& stamps,
+                    std::promise<ExrBandWriter*>& opened, std::future<bool> merged, const std::string& merge_error,
+                    std::string& error) {
+  bool handed = false;
+  const bool ok = write_guarded(
+      m.outputs.front(), stamps,
+      [&](const std::string& path, std::string& e) {
+        return write_exr_bands(path, merger.layout(), merger.metadata(), m.exr, [&](ExrBandWriter& writer, std::string& why) {
+          handed = true;
+          opened.set_value(&writer);
+          if (merged.get()) return true;
+          why = merge_error;
+          return false;
+        }, e);
+      },
+      error);
+  if (!handed) opened.set_value(nullptr);
+  return ok;
+}
+
 bool merge_streamed(const MergeOptions& m, const std::vector<Input>& inputs, ShardMerger& merger,
                     OutputStamps& stamps, std::string& error) {
   std::vector<std::optional<MappedFile>> files(inputs.size());
@@ -142,20 +168,25 @@ bool merge_streamed(const MergeOptions& m, const std::vector<Input>& inputs, Sha
     if (!map_shard(inputs[i], files[i], again, states[i], error)) return false;
   }
   if (!merger.view_states(states, error) || !merger.finish(error)) return false;
-  std::string refusal;
-  const bool ok = write_guarded(
-      m.outputs.front(), stamps,
-      [&](const std::string& path, std::string& e) {
-        return write_exr_bands(path, merger.layout(), merger.metadata(), m.exr, [&](ExrBandWriter& writer, std::string& why) {
-          bool refused = false;
-          if (merger.merge_streamed(writer, why, refused)) return true;
-          if (refused) refusal = why;
-          return false;
-        }, e);
-      },
-      error);
-  if (!refusal.empty()) error = refusal;  // the merge's message, as the band merge gives it
-  return ok;
+  std::promise<ExrBandWriter*> opened;
+  std::promise<bool> merged;
+  std::string merge_error, file_error;
+  bool written = false, refused = false;
+  std::thread file([&, done = merged.get_future()]() mutable {
+    written = write_streamed(m, merger, stamps, opened, std::move(done), merge_error, file_error);
+  });
+  bool ok = false;
+  try {
+    ok = merger.merge_streamed(opened.get_future().share(), merge_error, refused);
+  } catch (...) {
+    merged.set_value(false);
+    file.join();
+    throw;
+  }
+  merged.set_value(ok);
+  file.join();
+  error = refused ? merge_error : file_error;  // a refusal: the merge's message, as the band merge gives it
+  return ok && written;
 }
 
 // Every output checked before any shard is read (as a render's: app/output_checks.h),
@@ -197,6 +228,13 @@ bool merge_and_write(const MergeOptions& m, const std::vector<Input>& inputs, Sh
                      OutputStamps& stamps, std::string& phase, double times[4], std::string& error) {
   const auto t0 = Clock::now();
   const double cpu0 = process_cpu_seconds();
+  if (streams(m)) {  // the file (and the image module) opened while the first bands are merged
+    phase = "read, add, resolve and write";
+    const bool ok = merge_streamed(m, inputs, merger, stamps, error);
+    times[0] = seconds_since(t0);
+    times[1] = process_cpu_seconds() - cpu0;
+    return ok;
+  }
   // The image module (OpenImageIO: ~260 libraries to bind, ~0.2 s) loads
   // while the shards are added, instead of at the first write. A failure is
   // reported by the write, which asks again (image_library: the same answer).
@@ -204,14 +242,6 @@ bool merge_and_write(const MergeOptions& m, const std::vector<Input>& inputs, Sh
     std::string ignored;
     if (!m.outputs.empty()) image_library(ignored);
   });
-  if (streams(m)) {
-    phase = "read, add, resolve and write";
-    const bool ok = merge_streamed(m, inputs, merger, stamps, error);
-    preload.join();
-    times[0] = seconds_since(t0);
-    times[1] = process_cpu_seconds() - cpu0;
-    return ok;
-  }
   LayeredImage layers;
   const bool bands = m.shard_out.empty();
   phase = bands ? "read, add and resolve" : "read and add";

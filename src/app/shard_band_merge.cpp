@@ -2,6 +2,7 @@
 // `pathtracer merge` (docs/distributed.md, "The merge").
 #include <algorithm>
 #include <atomic>
+#include <future>
 #include <cstdint>
 #include <memory>
 
@@ -14,6 +15,7 @@
 
 #include "app/shard_merge.h"
 #include "imagelib/image_library.h"
+#include "io/exr_pack.h"
 
 namespace pt {
 namespace {
@@ -25,6 +27,34 @@ constexpr std::size_t kBandBytes = std::size_t{1} << 20;
 // a time, in whole blocks of 32 rows (zip's 16, piz's 32), so that
 // OpenEXR compresses a chunk's blocks in parallel.
 constexpr std::size_t kChunkBytes = std::size_t{8} << 20;
+// Chunks the pipeline may make ahead of the file while it is opened.
+constexpr int kAheadChunks = 4;
+
+// Every row of a band film resolved (a row at a time into `row`, its
+// resolved channels) and packed as the file stores them into `out`.
+void pack_band(const Film& band, const PackedLayout& packed, std::vector<float>& row, unsigned char* out) {
+  const auto width = static_cast<std::size_t>(band.crop().width());
+  for (int y = 0; y < band.crop().height(); ++y) {
+    const std::size_t first = static_cast<std::size_t>(y) * width;
+    band.resolve_channels(first, width, row.data());
+    pack_pixels(packed, row.data(), width, out + first * packed.pixel_bytes);
+  }
+}
+
+// Writes packed rows [y0, y1) to the file once it is open (waiting for it):
+// false when it could not be opened (`error` empty: its opener has the
+// message) or the write fails.
+bool write_chunk(const std::shared_future<ExrBandWriter*>& file, int y0, int y1, const unsigned char* packed,
+                 std::size_t row_bytes, std::string& error) {
+  ExrBandWriter* writer = file.get();
+  if (writer == nullptr) return false;
+  if (writer->row_bytes() != row_bytes) {  // both from packed_layout: not expected
+    error = "the EXR writer's rows are " + std::to_string(writer->row_bytes()) + " bytes, the merge's " +
+            std::to_string(row_bytes);
+    return false;
+  }
+  return writer->write(y0, y1, packed, error);
+}
 
 void lower(std::atomic<std::size_t>& lowest, std::size_t value) {
   std::size_t seen = lowest.load();
@@ -127,12 +157,16 @@ bool ShardMerger::merge_layers(const std::vector<std::string_view>& states, Laye
   return !refused(b, error);
 }
 
-bool ShardMerger::merge_streamed(ExrBandWriter& writer, std::string& error, bool& refusal) {
+bool ShardMerger::merge_streamed(const std::shared_future<ExrBandWriter*>& file, std::string& error, bool& refusal) {
   refusal = false;
   Bands& b = *bands_;
   const PixelRect& w = merged_.window;
-  const std::size_t row_bytes = writer.row_bytes();
-  const int tokens = std::max(2, 2 * tbb::this_task_arena::max_concurrency());
+  // A row's resolved channels, then packed into its chunk as the file stores them.
+  const PackedLayout packed = packed_layout(layout());
+  const std::size_t row_bytes = packed.pixel_bytes * static_cast<std::size_t>(w.width());
+  // Chunks in flight: two per thread, and a few more made while the file is
+  // opened (the image module's load), before the first write.
+  const int tokens = std::max(2, 2 * tbb::this_task_arena::max_concurrency()) + kAheadChunks;
   // A chunk: about kChunkBytes, and no more than a tokens-th of the window (so
   // that the pipeline overlaps), in whole blocks of 32 rows.
   const int chunk_rows =
@@ -141,8 +175,8 @@ bool ShardMerger::merge_streamed(ExrBandWriter& writer, std::string& error, bool
                        32 * 32);
   const PixelRect first_band{w.x0, w.y0, w.x1, std::min(w.y1, w.y0 + b.rows)};
   tbb::enumerable_thread_specific<Film> bands([&] { return Film(merged_.width, merged_.height, first_band, b.aovs); });
-  // A band's resolved layers (the layout over a band film's rows), then packed into its chunk.
-  tbb::enumerable_thread_specific<LayeredImage> resolved([&] { return b.shape.layer_layout(b.beauty, first_band); });
+  tbb::enumerable_thread_specific<std::vector<float>> resolved(
+      [&] { return std::vector<float>(packed.channels * static_cast<std::size_t>(w.width())); });
   // Chunks of packed rows, reused: as many as the pipeline holds at once.
   struct Chunk {
     int y0 = 0, y1 = 0;
@@ -179,18 +213,14 @@ bool ShardMerger::merge_streamed(ExrBandWriter& writer, std::string& error, bool
                                              tbb::parallel_for(tbb::blocked_range<int>(c->y0, c->y1, b.rows), [&](const tbb::blocked_range<int>& r) {
                                                Film& band = bands.local();
                                                add_band(b, band, r.begin(), r.end());
-                                               LayeredImage& image = resolved.local();
-                                               image.y = r.begin();
-                                               image.height = static_cast<int>(r.size());
-                                               band.resolve_into(image);
-                                               writer.pack(image, c->packed.get() + static_cast<std::size_t>(r.begin() - c->y0) * row_bytes);
+                                               pack_band(band, packed, resolved.local(), c->packed.get() + static_cast<std::size_t>(r.begin() - c->y0) * row_bytes);
                                              }, tbb::simple_partitioner());
                                              return c;
                                            }) &
           tbb::make_filter<Chunk*, void>(tbb::filter_mode::serial_in_order,
                                          [&](Chunk* c) {
                                            const bool any_refused = std::any_of(b.bad.begin(), b.bad.end(), [](const auto& x) { return x != SIZE_MAX; });
-                                           if (!any_refused && !write_failed) write_failed = !writer.write(c->y0, c->y1, c->packed.get(), why);
+                                           if (!any_refused && !write_failed) write_failed = !write_chunk(file, c->y0, c->y1, c->packed.get(), row_bytes, why);
                                            spare.push(c);
                                          }),
       context);

@@ -9,6 +9,7 @@
 // The file merge still adds in a fixed order (tile, then first sample).
 #pragma once
 
+#include <future>
 #include <map>
 #include <memory>
 #include <optional>
@@ -65,14 +66,17 @@ class ShardMerger {
   LayeredImage layout() const;
   // After view_states: merge_layers' bands written as they are made. Every
   // band of rows is added and resolved as merge_layers does, packed for the
-  // file and handed to `writer` (one part: io/image_io.h, write_exr_bands)
-  // in order, while the next bands are merged (a TBB pipeline), so that the
-  // write overlaps the merge and the whole image's layers are never held.
-  // The same bytes as write_exr of merge_layers' image. False with `error`:
-  // `refused` says whether a state was refused (the message merge_layers
-  // gives, naming the shard; nothing is written after the refused band) or
-  // the writer failed (its message).
-  bool merge_streamed(ExrBandWriter& writer, std::string& error, bool& refused);
+  // file (io/exr_pack.h) and handed to the writer `file` gives (one part:
+  // io/image_io.h, write_exr_bands) in order, while the next bands are
+  // merged (a TBB pipeline), so that the write overlaps the merge and the
+  // whole image's layers are never held. The first bands are merged while
+  // the file is opened (the image module's load); the first write waits for
+  // it (nullptr: it could not be opened). The same bytes as write_exr of
+  // merge_layers' image. False with `error`: `refused` says whether a state
+  // was refused (the message merge_layers gives, naming the shard; nothing
+  // is written after the refused band) or the writer failed (its message;
+  // empty if the file could not be opened).
+  bool merge_streamed(const std::shared_future<ExrBandWriter*>& file, std::string& error, bool& refused);
   // The merged beauty's half/float type.
   ChannelType beauty_type() const;
   // After the last shard: every tile of the window and every sample of the

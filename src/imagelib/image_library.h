@@ -34,7 +34,7 @@
 
 namespace pt {
 
-inline constexpr int kImageLibraryAbi = 3;
+inline constexpr int kImageLibraryAbi = 4;
 
 // What an image file's header says.
 struct ImageHeader {
@@ -102,12 +102,9 @@ class ExrBandWriter {
  public:
   virtual ~ExrBandWriter() = default;
   // The bytes of one packed row: every channel of a pixel in its file type
-  // (half or float), interleaved, as the file stores them.
+  // (half or float), interleaved, as the file stores them (io/exr_pack.h,
+  // packed_layout of the layout's layers).
   virtual std::size_t row_bytes() const = 0;
-  // Packs every row of `band` (the layout's layers over rows
-  // [band.y, band.y + band.height) of the window; values as LayeredImage
-  // holds them) into `out` (band.height * row_bytes() bytes). Thread-safe.
-  virtual void pack(const LayeredImage& band, unsigned char* out) const = 0;
   // Writes packed rows [y0, y1) (frame coordinates); each call's rows follow
   // the last call's. False with `error`.
   virtual bool write(int y0, int y1, const unsigned char* packed, std::string& error) = 0;

@@ -378,26 +378,40 @@ LayeredImage Film::layer_layout(ChannelType beauty_type, const PixelRect& window
   return out;
 }
 
+std::size_t Film::resolved_channels() const {
+  std::size_t n = 4;
+  for (const int c : channel_count_) n += static_cast<std::size_t>(c);
+  return n;
+}
+
+void Film::resolve_pixel(std::size_t pixel, float* out) const {
+  const RGB v = pixels_[pixel].value();
+  out[0] = v.r;
+  out[1] = v.g;
+  out[2] = v.b;
+  out[3] = pixels_[pixel].alpha();
+  out += 4;
+  // Each AOV's channels follow the beauty in request order, as its layers do (layer_layout).
+  for (std::size_t l = 0; l < aovs_.size(); ++l) {
+    aov_values(l, pixel, out);
+    out += channel_count_[l];
+  }
+}
+
+void Film::resolve_channels(std::size_t first, std::size_t count, float* out) const {
+  const std::size_t n = resolved_channels();
+  for (std::size_t i = 0; i < count; ++i) resolve_pixel(first + i, out + i * n);
+}
+
 void Film::resolve_pixels(LayeredImage& out, std::size_t first, std::size_t count, std::size_t at) const {
-  std::vector<float> values;
+  std::vector<float> values(resolved_channels());
   for (std::size_t i = first; i < first + count; ++i, ++at) {
-    const RGB v = pixels_[i].value();
-    float* p = &out.layers[0].values[at * 4];
-    p[0] = v.r;
-    p[1] = v.g;
-    p[2] = v.b;
-    p[3] = pixels_[i].alpha();
-    std::size_t layer = 1;  // each AOV's layers follow the beauty in request order (layer_layout)
-    for (std::size_t l = 0; l < aovs_.size(); ++l) {
-      const auto nc = static_cast<std::size_t>(channel_count_[l]);
-      values.resize(std::max(values.size(), nc));
-      aov_values(l, i, values.data());
-      for (std::size_t c = 0; c < nc; ++layer) {
-        ImageLayer& to = out.layers[layer];
-        const std::size_t per_layer = to.channels.size();
-        std::copy_n(&values[c], per_layer, &to.values[at * per_layer]);
-        c += per_layer;
-      }
+    resolve_pixel(i, values.data());
+    const float* v = values.data();
+    for (ImageLayer& layer : out.layers) {
+      const std::size_t n = layer.channels.size();
+      std::copy_n(v, n, &layer.values[at * n]);
+      v += n;
     }
   }
 }

@@ -206,6 +206,12 @@ class Film {
   // Resolves this film's pixels into `out` (a layer_layout of a film of the
   // same AOVs whose window holds this crop as whole rows): a band of it.
   void resolve_into(LayeredImage& out) const;
+  // The channels of a pixel of layer_layout(): the beauty's 4, then each AOV's.
+  std::size_t resolved_channels() const;
+  // Resolves pixels [first, first + count) of the crop (row-major) into
+  // `out`: every channel of layer_layout()'s layers of a pixel, one after
+  // another (resolved_channels() floats a pixel), the values of resolve_into.
+  void resolve_channels(std::size_t first, std::size_t count, float* out) const;
 
   // The film's complete state (every pixel's sums and counts, the AOV sums,
   // the non-finite report), for checkpoints: written and read back bit for
@@ -291,6 +297,8 @@ class Film {
   // Resolves pixels [first, first + count) of the crop into `out`'s pixels
   // from `at` on (layers laid out by layer_layout).
   void resolve_pixels(LayeredImage& out, std::size_t first, std::size_t count, std::size_t at) const;
+  // Every channel of pixel number `pixel` into `out` (resolved_channels() floats).
+  void resolve_pixel(std::size_t pixel, float* out) const;
   // The final values of AOV number `layer` of pixel number `pixel` (in the crop, row-major) into `out`.
   void aov_values(std::size_t layer, std::size_t pixel, float* out) const;
   std::size_t index(int x, int y) const {

@@ -1,0 +1,113 @@
+#include "io/exr_pack.h"
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+#include <Imath/half.h>
+#include <cpuid.h>
+#include <immintrin.h>
+
+namespace pt {
+
+namespace {
+
+// Halves rounded to nearest even: Imath's conversion (OpenImageIO's), in
+// software since the build targets plain x86-64, or the CPU's F16C one, which
+// rounds the same way (finite values, infinities, subnormals; NaNs, whose
+// payloads the two treat differently, go through Imath).
+void pack_halves_soft(const float* v, std::size_t in_step, std::size_t channels, std::size_t n, unsigned char* o,
+                      std::size_t out_step) {
+  for (std::size_t x = 0; x < n; ++x)
+    for (std::size_t c = 0; c < channels; ++c) {
+      const uint16_t bits = Imath::half(v[x * in_step + c]).bits();
+      std::memcpy(o + x * out_step + c * sizeof bits, &bits, sizeof bits);
+    }
+}
+
+__attribute__((target("f16c"))) void pack_halves_f16c(const float* v, std::size_t in_step, std::size_t channels,
+                                                      std::size_t n, unsigned char* o, std::size_t out_step) {
+  for (std::size_t x = 0; x < n; ++x)
+    for (std::size_t c = 0; c < channels; ++c) {
+      const float f = v[x * in_step + c];
+      // _mm_cvtps_ph on one lane: _cvtss_sh is a macro with a compound literal in clang's header (-Wpedantic).
+      const uint16_t bits = std::isnan(f) ? Imath::half(f).bits()
+                                          : static_cast<uint16_t>(_mm_extract_epi16(
+                                                _mm_cvtps_ph(_mm_set_ss(f), _MM_FROUND_TO_NEAREST_INT), 0));
+      std::memcpy(o + x * out_step + c * sizeof bits, &bits, sizeof bits);
+    }
+}
+
+// F16C: its CPUID bit, and the AVX state the OS must save for VEX code
+// (__builtin_cpu_supports("avx") checks both the CPU and the OS). Asked of
+// CPUID because clang 14 (the fuzz and sanitizer builds) does not know
+// __builtin_cpu_supports("f16c").
+bool cpu_has_f16c() {
+  unsigned eax = 0, ebx = 0, ecx = 0, edx = 0;
+  return __builtin_cpu_supports("avx") && __get_cpuid(1, &eax, &ebx, &ecx, &edx) != 0 && (ecx & bit_F16C) != 0;
+}
+
+// The usual counts with a copy of a fixed size (inlined).
+template <std::size_t kChannels>
+void copy_pixels(const float* v, std::size_t in_step, std::size_t n, unsigned char* o, std::size_t out_step) {
+  for (std::size_t x = 0; x < n; ++x) std::memcpy(o + x * out_step, v + x * in_step, kChannels * sizeof(float));
+}
+
+}  // namespace
+
+PackedLayout packed_layout(const std::vector<const ImageLayer*>& layers) {
+  PackedLayout packed;
+  for (const ImageLayer* layer : layers) {
+    const bool half = layer->type == ChannelType::Half;
+    packed.layers.push_back({layer->channels.size(), packed.pixel_bytes, half});
+    packed.pixel_bytes += layer->channels.size() * (half ? sizeof(uint16_t) : sizeof(float));
+    packed.channels += layer->channels.size();
+  }
+  return packed;
+}
+
+PackedLayout packed_layout(const LayeredImage& image) {
+  std::vector<const ImageLayer*> layers;
+  for (const ImageLayer& layer : image.layers) layers.push_back(&layer);
+  return packed_layout(layers);
+}
+
+void pack_halves(const float* v, std::size_t in_step, std::size_t channels, std::size_t n, unsigned char* out,
+                 std::size_t out_step) {
+  static const bool f16c = cpu_has_f16c();  // a property of the CPU: asked once
+  if (f16c) {
+    pack_halves_f16c(v, in_step, channels, n, out, out_step);
+  } else {
+    pack_halves_soft(v, in_step, channels, n, out, out_step);
+  }
+}
+
+void pack_floats(const float* v, std::size_t in_step, std::size_t channels, std::size_t n, unsigned char* out,
+                 std::size_t out_step) {
+  switch (channels) {
+    case 1: return copy_pixels<1>(v, in_step, n, out, out_step);
+    case 3: return copy_pixels<3>(v, in_step, n, out, out_step);
+    case 4: return copy_pixels<4>(v, in_step, n, out, out_step);
+    default:
+      for (std::size_t x = 0; x < n; ++x) std::memcpy(out + x * out_step, v + x * in_step, channels * sizeof(float));
+  }
+}
+
+void pack_pixels(const PackedLayout& layout, const float* values, std::size_t n, unsigned char* out) {
+  std::size_t first = 0;  // the run's first channel in a pixel's values
+  for (std::size_t i = 0; i < layout.layers.size();) {
+    // Adjacent layers of one type are one run: their channels follow each other on both sides.
+    const PackedLayer& l = layout.layers[i];
+    std::size_t channels = 0;
+    for (; i < layout.layers.size() && layout.layers[i].half == l.half; ++i) channels += layout.layers[i].channels;
+    if (!l.half && channels == layout.channels) {  // floats only: the values are the packed bytes
+      std::memcpy(out, values, n * layout.pixel_bytes);
+      return;
+    }
+    (l.half ? pack_halves : pack_floats)(values + first, layout.channels, channels, n, out + l.offset,
+                                         layout.pixel_bytes);
+    first += channels;
+  }
+}
+
+}  // namespace pt
