@@ -186,12 +186,13 @@ bool ShardMerger::merge_streamed(const std::shared_future<ExrBandWriter*>& file,
   tbb::concurrent_queue<Chunk*> spare;
   for (Chunk& c : chunks) spare.push(&c);
   int next = w.y0;
-  bool write_failed = false;
+  std::atomic<bool> write_failed = false;  // then no more chunks are made
   std::string why;
   // As merge_layers: each pixel added and resolved by one task, with the
   // caller's floating-point settings. Every band is merged even after a
   // refusal (nothing more is written), so that the refusal reported is
-  // merge_layers' (the first shard's first refused pixel).
+  // merge_layers' (the first shard's first refused pixel). A file that could
+  // not be opened or written stops it: its message is the one reported.
   tbb::task_group_context context;
   context.capture_fp_settings();
   tbb::parallel_pipeline(
@@ -199,7 +200,7 @@ bool ShardMerger::merge_streamed(const std::shared_future<ExrBandWriter*>& file,
       tbb::make_filter<void, Chunk*>(tbb::filter_mode::serial_in_order,
                                      [&](tbb::flow_control& fc) -> Chunk* {
                                        Chunk* c = nullptr;
-                                       if (next >= w.y1 || !spare.try_pop(c)) {
+                                       if (next >= w.y1 || write_failed || !spare.try_pop(c)) {
                                          fc.stop();
                                          return nullptr;
                                        }
