@@ -15,7 +15,6 @@
 #include <cmath>
 #include <memory>
 #include <span>
-#include <cstdlib>
 
 #include "core/sampling.h"
 #include "geometry/shapes.h"
@@ -44,14 +43,7 @@ class PathTracer {
         strategy_(settings.light_strategy),
         each_(settings.estimate_each_light ? scene.lights.each_lights() : std::span<const int>()),
         roulette_depth_(std::max(1, settings.roulette_depth)),
-        inv_roulette_threshold_(settings.roulette_threshold > 0.0f ? 1.0f / settings.roulette_threshold : 1.0f) {
-    // EXPERIMENT (docs/bench/splitting.md; reverted by the next commit): knobs read from the
-    // environment so that one build can be measured in several variants.
-    if (const char* e = std::getenv("PT_EACH_DEPTH")) each_depth_ = std::atoi(e);
-    if (const char* e = std::getenv("PT_SKY_SPLIT")) sky_split_ = std::atoi(e);
-    if (const char* e = std::getenv("PT_SPLIT_DEPTH")) split_depth_ = std::atoi(e);
-    if (const char* e = std::getenv("PT_SKY_NEE_DEPTH")) sky_nee_depth_ = std::atoi(e);
-  }
+        inv_roulette_threshold_(settings.roulette_threshold > 0.0f ? 1.0f / settings.roulette_threshold : 1.0f) {}
 
   // `aov`, when not null, receives the lighting split (path_aov.h).
   CameraEstimate radiance(const CameraRay& camera_ray, Sampler& sampler, AovSample* aov = nullptr) const {
@@ -69,7 +61,7 @@ class PathTracer {
       if (!scene_.intersect(ray, isect, depth == 0 ? camera_ray.differential_or_null() : nullptr)) {
         const RGB le = depth == 0 ? scene_.camera_ray_escaped(ray) : scene_.escaped_radiance(ray.dir);
         if (!le.is_black()) {
-          const RGB term = beta * le * escape_weight(ray.dir, specular, prev_pdf, prev_site, prev_n, depth - 1);
+          const RGB term = beta * le * escape_weight(ray.dir, specular, prev_pdf, prev_site, prev_n);
           L += term;
           if (rec.active()) rec.found(depth, term);
         }
@@ -81,7 +73,7 @@ class PathTracer {
       if (m.emits()) {
         const RGB le = m.emitted(isect.geo.ng, wo, tex_coord(isect.geo));
         if (!le.is_black()) {
-          const RGB term = beta * le * emitter_weight(isect, ray.dir, specular, prev_pdf, prev_site, prev_n, depth - 1);
+          const RGB term = beta * le * emitter_weight(isect, ray.dir, specular, prev_pdf, prev_site, prev_n);
           L += term;
           if (rec.active()) rec.found(depth, term);
         }
@@ -130,24 +122,24 @@ class PathTracer {
  private:
   // MIS weight of an environment seen through a BSDF-sampled direction.
   // The light choice's probability is the one at the previous vertex (prev_p, prev_n).
-  float escape_weight(Vec3f dir, bool specular, float prev_pdf, const LightGuide::Site& prev, Vec3f prev_n, int pd) const {
+  float escape_weight(Vec3f dir, bool specular, float prev_pdf, const LightGuide::Site& prev, Vec3f prev_n) const {
     const int env = lights_.environment();
     if (specular || env < 0 || strategy_ == LightStrategy::BsdfOnly) return 1.0f;
     if (strategy_ == LightStrategy::LightOnly) return 0.0f;
     // An infinite light reads only the direction.
     const Vec3f none;
-    const float pdf = choice_pmf(prev, prev_n, env, pd) * guide_.pdf(env, prev, dir, none, none);
+    const float pdf = choice_pmf(prev, prev_n, env) * guide_.pdf(env, prev, dir, none, none);
     return power_heuristic(prev_pdf, pdf);
   }
 
   // MIS weight of an emitter hit through a BSDF-sampled direction.
   float emitter_weight(const Intersection& isect, Vec3f dir, bool specular, float prev_pdf,
-                       const LightGuide::Site& prev, Vec3f prev_n, int pd) const {
+                       const LightGuide::Site& prev, Vec3f prev_n) const {
     const int index = lights_.shape_light(isect.hit.shape, isect.hit.instance);
     if (specular || index < 0 || strategy_ == LightStrategy::BsdfOnly) return 1.0f;
     if (strategy_ == LightStrategy::LightOnly) return 0.0f;
     const Light& light = lights_[static_cast<std::size_t>(index)];
-    const float pdf = choice_pmf(prev, prev_n, index, pd) * light_pdf(light, prev.p, dir, isect.geo.p, isect.geo.ng);
+    const float pdf = choice_pmf(prev, prev_n, index) * light_pdf(light, prev.p, dir, isect.geo.p, isect.geo.ng);
     return power_heuristic(prev_pdf, pdf);
   }
 
@@ -162,30 +154,24 @@ class PathTracer {
       return t;
     };
     Vec3f wi_light;
-    if (each_.empty() || depth >= each_depth_) {
+    if (each_.empty()) {
       if (lights_.empty()) return {};
       const RGB estimate = direct_light(isect, site, region, bsdf, wo, sampler, &wi_light);
       return term(estimate, wi_light);
     }
     RGB sum;
     for (const int index : each_) {  // every light, each with its own sample and shadow ray
-      const bool sky = index == lights_.environment();
-      const int n = sky && depth >= sky_nee_depth_ ? 0 : (depth < split_depth_ && sky) ? sky_split_ : 1;
-      for (int j = 0; j < n; ++j) {
-        const Vec2f u = sampler.get_2d();
-        const RGB estimate = sample_one(isect, site, region, bsdf, wo, index, 1.0f, u, &wi_light, float(n));
-        sum += term(estimate * (1.0f / float(n)), wi_light);
-      }
+      const Vec2f u = sampler.get_2d();
+      const RGB estimate = sample_one(isect, site, region, bsdf, wo, index, 1.0f, u, &wi_light);
+      sum += term(estimate, wi_light);
     }
     return sum;
   }
 
   // The probability that next-event estimation at `at` samples `light`:
   // 1 where every light is sampled at every vertex, else that of its choice.
-  float choice_pmf(const LightGuide::Site& at, Vec3f n, int light, int pd) const {
-    if (each_.empty() || pd >= each_depth_) return guide_.pmf(at, n, light);
-    const bool sky = light == lights_.environment();
-    return sky && pd >= sky_nee_depth_ ? 0.0f : (pd < split_depth_ && sky) ? float(sky_split_) : 1.0f;
+  float choice_pmf(const LightGuide::Site& at, Vec3f n, int light) const {
+    return each_.empty() ? guide_.pmf(at, n, light) : 1.0f;
   }
 
   // Next-event estimation: one light, chosen for this point and normal,
@@ -205,7 +191,7 @@ class PathTracer {
 
   // The light `index`, sampled with u and weighed as chosen with probability pmf.
   RGB sample_one(const Intersection& isect, const LightGuide::Site& site, const PathGuide::Leaf* region,
-                 const Bsdf& bsdf, Vec3f wo, int index, float pmf, Vec2f u, Vec3f* wi_out, float count = 1.0f) const {
+                 const Bsdf& bsdf, Vec3f wo, int index, float pmf, Vec2f u, Vec3f* wi_out) const {
     LightSample ls;
     if (!guide_.sample(index, site, u, ls)) return {};
     if (ls.L.is_black() || !(ls.pdf > 0.0f)) return {};
@@ -217,7 +203,7 @@ class PathTracer {
     const float light_pdf = pmf * ls.pdf;
     const float w = (ls.delta || strategy_ == LightStrategy::LightOnly)
                         ? 1.0f
-                        : power_heuristic(count * light_pdf, PathGuide::bounce_pdf(bsdf, region, wo, ls.wi));
+                        : power_heuristic(light_pdf, PathGuide::bounce_pdf(bsdf, region, wo, ls.wi));
     const float cos_i = std::fabs(dot(ls.wi, bsdf.shading_normal()));
     return f * ls.L * (cos_i * w / light_pdf);
   }
@@ -234,10 +220,6 @@ class PathTracer {
   std::span<const int> each_;
   int roulette_depth_;
   float inv_roulette_threshold_;
-  int each_depth_ = 1 << 30;
-  int sky_split_ = 1;
-  int split_depth_ = 1;
-  int sky_nee_depth_ = 1 << 30;
 };
 
 class PathIntegrator final : public Integrator {
