@@ -13,8 +13,8 @@ The first variant is the base. @VAR=VALUE,... sets environment variables for
 that variant's renders (an experimental build's knobs). Round r renders every
 variant once with seed r + 1, the order rotated by one each round. Variance of a
 render: the mean over all pairs of seeds (i, j) of pt-imgerr's MSE between the
-two renders, halved (which equals the unbiased per-pixel sample variance, mean
-over pixels and channels); unlike an MSE against a reference it holds no bias
+two renders, halved (which equals the unbiased per-pixel sample variance,
+summed over R, G, B as pt-imgerr's MSE is, and averaged over pixels); unlike an MSE against a reference it holds no bias
 and no reference noise, and 6 seeds of 1024 pixels x 3 channels resolve it to a
 few percent. CPU time: the run record's `performance.render_cpu_seconds`
 (every thread, so that other jobs on a shared machine count less), as a ratio
@@ -86,7 +86,7 @@ def section(a, variants, res, argv):
         "from the run record; variance of one render at %d spp from all pairs of seeds. 1-minute load average before "
         "each render: min %.1f, median %.1f, max %.1f." % (" ".join(argv), a.rounds, a.rounds, a.spp, min(loads),
                                                            statistics.median(loads), max(loads)), "",
-        "| variant | variance | variance / base | rays per sample | CPU / base per round, median (min-max) "
+        "| variant | variance (R+G+B) | variance / base | rays per sample | CPU / base per round, median (min-max) "
         "| time to equal error / base |",
         "|---|---|---|---|---|---|",
     ]
