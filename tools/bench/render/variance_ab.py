@@ -7,7 +7,7 @@ judged by time to equal error; writes a section of docs/bench/splitting.md
 
     python3 tools/bench/render/variance_ab.py --title TITLE NAME=EXE[@VAR=VALUE,...] NAME=... \
         [--scene tools/peers/cycles/scenes/sponza-env-sun.json] [--spp 128] [--rounds 6] [--threads 2]
-        [--out docs/bench/splitting.md]
+        [--out docs/bench/splitting.md] [--set key=value ...]
 
 The first variant is the base. @VAR=VALUE,... sets environment variables for
 that variant's renders (an experimental build's knobs). Round r renders every
@@ -51,6 +51,8 @@ def render(a, exe, env, seed, out):
     report = out + ".report.json"
     cmd = ["nice", "-n", "10", exe, os.path.join(ROOT, a.scene), "-o", out, "--spp", str(a.spp), "--seed", str(seed),
            "--threads", str(a.threads), "--quiet", "--report", report]
+    for kv in a.set:
+        cmd += ["--set", kv]
     r = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ, **env))
     if r.returncode != 0:
         raise RuntimeError("%s: %s" % (" ".join(cmd), r.stderr.strip()))
@@ -113,7 +115,7 @@ def write(a, text, res):
         f.write(head + MARKER + "\n\n" + "\n\n".join(kept + [text.strip(), machine]) + "\n")
     runs = os.path.splitext(a.out)[0] + ".json"
     data = json.load(open(runs)) if os.path.exists(runs) else {}
-    data[a.title] = {"scene": a.scene, "spp": a.spp, "threads": a.threads, "runs": res}
+    data[a.title] = {"scene": a.scene, "spp": a.spp, "threads": a.threads, "set": a.set, "runs": res}
     with open(runs, "w") as f:
         json.dump(data, f, indent=1)
 
@@ -126,6 +128,7 @@ def main():
     ap.add_argument("--spp", type=int, default=128)
     ap.add_argument("--rounds", type=int, default=6)
     ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--set", action="append", default=[], help="a --set key=value for every variant")
     ap.add_argument("--imgerr", default=os.path.join(ROOT, "build", "tools", "imgerr", "pt-imgerr"))
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "bench", "splitting.md"))
     a = ap.parse_args()
