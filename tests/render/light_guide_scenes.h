@@ -36,12 +36,29 @@ inline std::string guide_test_environment(bool uniform) {
   return path.string();
 }
 
+// A larger map of the same sky with a small, very bright disc (a sun in the
+// map): the bins' coarse grid would smear it (EnvironmentBins::coarse_chi2 >
+// LightGuide::kMaxCoarseChi2), so the guide keeps the map's own sampling.
+inline std::string guide_test_sun_environment() {
+  const auto path = std::filesystem::temp_directory_path() / "pt_test_light_guide_sun_in_map.exr";
+  Image img(512, 256);  // bins of 16 x 16 texels, cells of 2 x 2
+  for (int y = 0; y < 256; ++y)
+    for (int x = 0; x < 512; ++x)
+      img.at(x, y) = RGB(0.2f + (y < 96 ? 1.5f : 0.1f) + 0.02f * static_cast<float>(x % 7), 0.4f, y < 128 ? 1.2f : 0.2f);
+  for (int y = 61; y < 64; ++y)  // 3 x 3 texels across cell borders
+    for (int x = 281; x < 284; ++x) img.at(x, y) = RGB(5000.0f);
+  std::string error;
+  EXPECT_TRUE(write_image(path.string(), img, DisplaySettings{}, error)) << error;
+  return path.string();
+}
+
 // A floor, four walls 3 high around it and a roof with a square opening in
 // the middle, a camera inside: most of the sky is hidden from most points.
-inline SceneDescription courtyard_scene(bool sun) {
+// `sun_in_map`: under guide_test_sun_environment() instead.
+inline SceneDescription courtyard_scene(bool sun, bool sun_in_map = false) {
   SceneDescription d = empty_scene(32, 32, {0.2f, 0.6f, 1.6f}, {-0.3f, 0.9f, -1.0f}, {0, 1, 0}, 70);
   EnvironmentDesc env;
-  env.resolved = guide_test_environment(false);
+  env.resolved = sun_in_map ? guide_test_sun_environment() : guide_test_environment(false);
   d.environment = env;
   if (sun) {
     DirectionalLightDesc s;

@@ -132,6 +132,26 @@ TEST(LightGuide, EnvironmentBinsSampleTheirImportanceGrids) {
   }
 }
 
+// The coarse grid's chi-square divergence from the map's own distribution
+// (EnvironmentBins::coarse_chi2) is about 0 for a uniform or smooth sky, whose
+// plain sampling the guide then takes from the bins, and above
+// LightGuide::kMaxCoarseChi2 for a sky with a sun disc, which keeps the map's.
+TEST(LightGuide, CoarsePlainSamplingOnlyForASmoothSky) {
+  std::string error;
+  const auto chi2 = [&](const std::string& file) {
+    EnvironmentDesc desc;
+    desc.resolved = file;
+    const std::unique_ptr<EnvironmentMap> map = EnvironmentMap::load(desc, error);
+    EXPECT_TRUE(map) << error;
+    return map ? EnvironmentBins(*map).coarse_chi2() : -1.0f;
+  };
+  EXPECT_NEAR(chi2(test::guide_test_environment(true)), 0.0f, 1e-3f);
+  EXPECT_NEAR(chi2(test::guide_test_environment(false)), 0.0f, 1e-3f);  // 2 x 2 texels a bin: cells are texels
+  const float sun = chi2(test::guide_test_sun_environment());
+  EXPECT_GT(sun, LightGuide::kMaxCoarseChi2);
+  EXPECT_LT(sun, 100.0f);
+}
+
 TEST(LightGuide, ChoiceProbabilitiesSumToOneAndMatchChoose) {
   const Learned l = learn(test::courtyard_scene(true), 2);
   ASSERT_TRUE(l.guide && l.guide->active());

@@ -316,6 +316,13 @@ TEST(PathAgreement, LightGuidingConvergesToThePlainImageWithSkyAlone) {
   EXPECT_TRUE(agree(estimate_guided(d, {}, AccelKind::Embree), estimate_guided(d, {.light = 8}, AccelKind::Embree)));
 }
 
+// The tests above' skies are smooth: the guide draws the plain part of its mixture from
+// the bins' coarse grid. Here the sky holds a sun disc: the map's own sampling.
+TEST(PathAgreement, LightGuidingConvergesToThePlainImageWithASunInTheMap) {
+  const SceneDescription d = test::courtyard_scene(false, true);
+  EXPECT_TRUE(agree(estimate_guided(d, {}, AccelKind::Embree), estimate_guided(d, {.light = 8}, AccelKind::Embree)));
+}
+
 // ---------------------------------------------------------------- every infinite light
 // Where the lights are a sun and a sky (LightSet::each_lights), next-event
 // estimation samples both at every vertex (IntegratorSettings::estimate_each_light)

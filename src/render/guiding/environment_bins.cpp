@@ -78,6 +78,27 @@ EnvironmentBins::EnvironmentBins(const EnvironmentMap& map)
   for (double w : weight) total += w;
   share_.assign(weight.size(), 0.0f);
   for (std::size_t b = 0; b < weight.size(); ++b) share_[b] = total > 0.0 ? static_cast<float>(weight[b] / total) : 0.0f;
+  coarse_chi2_ = total > 0.0 ? chi2_from_map(map, cell, total) : 0.0f;
+}
+
+// Sum over texels of p^2 / q - 1, p the texel's share of the map's importance, q
+// the coarse distribution's probability of the texel (its cell's share over the
+// cell's texel count); `cell` is each cell's importance, `total` the map's.
+float EnvironmentBins::chi2_from_map(const EnvironmentMap& map, const std::vector<double>& cell, double total) const {
+  double sum = 0.0;
+  for (int y = 0; y < height_; ++y) {
+    const double sin_theta = std::sin(kPi * (static_cast<float>(y) + 0.5f) / static_cast<float>(height_));
+    const int by = row_bin_[static_cast<std::size_t>(y)];
+    for (int x = 0; x < width_; ++x) {
+      const double t = std::max(0.0f, map.texel_radiance(x, y).luminance()) * sin_theta;
+      if (!(t > 0.0)) continue;
+      const int bx = column_bin_[static_cast<std::size_t>(x)], b = by * bins_x_ + bx, i = cell_at(b, x, y);
+      const int cx = i % kCells, cy = i / kCells;
+      const double texels = static_cast<double>(cell_x(bx, cx + 1) - cell_x(bx, cx)) * (cell_y(by, cy + 1) - cell_y(by, cy));
+      sum += t * t * texels / cell[static_cast<std::size_t>(b) * kCellSlots + static_cast<std::size_t>(i)];
+    }
+  }
+  return static_cast<float>(sum / total - 1.0);
 }
 
 int EnvironmentBins::cell_at(int b, int x, int y) const {

@@ -36,12 +36,19 @@ class EnvironmentBins {
   float density(int b, Vec2f uv) const;
   // The bytes of the bins' tables (for the docs' figures and tests).
   std::size_t table_bytes() const;
+  // The chi-square divergence of the coarse distribution (a bin by its share,
+  // then its grid) from the map's own: the relative variance its samples add
+  // to an unoccluded estimate of the map's power, where the map's own
+  // sampling adds none. Near 0 for a smooth sky; large where a sun disc or
+  // other small bright texels sit in cells of dim ones.
+  float coarse_chi2() const { return coarse_chi2_; }
 
  private:
   // Cell (cx, cy) of bin (bx, by): its first texel column (row), and the end.
   int cell_x(int bx, int cx) const { return x0_[bx] + cx * (x0_[bx + 1] - x0_[bx]) / cells_x_[bx]; }
   int cell_y(int by, int cy) const { return y0_[by] + cy * (y0_[by + 1] - y0_[by]) / cells_y_[by]; }
   int cell_at(int b, int x, int y) const;  // the cell of texel (x, y) in bin b: cy * kCells + cx
+  float chi2_from_map(const EnvironmentMap& map, const std::vector<double>& cell, double total) const;
 
   int width_ = 0, height_ = 0, bins_x_ = 0, bins_y_ = 0;
   std::vector<int> x0_, y0_;       // first texel column (row) of each bin column (row), and the end
@@ -51,6 +58,7 @@ class EnvironmentBins {
   // Per bin, kCells^2 entries (row-major, cy * kCells + cx; unused ones 0): the
   // cumulative probability of the cells up to and including each.
   std::vector<float> cdf_;
+  float coarse_chi2_ = 0.0f;
 };
 
 }  // namespace pt

@@ -91,7 +91,10 @@ LightGuide LightGuide::learn(const RenderScene& scene, WorkerPool& pool, int pat
   }
   guide.guide_choice_ = all_infinite && lights.needs_choice();
   if (guide.map_ == nullptr && !guide.guide_choice_) return guide;
-  if (guide.map_ != nullptr) guide.bins_ = EnvironmentBins(*guide.map_);
+  if (guide.map_ != nullptr) {
+    guide.bins_ = EnvironmentBins(*guide.map_);
+    guide.coarse_plain_ = guide.bins_.coarse_chi2() <= kMaxCoarseChi2;
+  }
   if (guide.guide_choice_) {
     for (std::size_t i = 0; i < lights.size(); ++i)
       guide.plain_choice_.push_back(lights.pmf(Vec3f(), Vec3f(), static_cast<int>(i)));
@@ -140,8 +143,17 @@ void LightGuide::learn_leaf(Leaf& leaf, const Record* first, std::size_t count) 
   if (!(all_seen > 0.0)) return;
   const float mean = static_cast<float>(all_seen / all_tests);
   std::vector<float> weight(bins);
-  for (std::size_t b = 0; b < bins; ++b)
+  double sum = 0.0;
+  for (std::size_t b = 0; b < bins; ++b) {
     weight[b] = bins_.share(static_cast<int>(b)) * (seen[b] + kPriorTests * mean) / (tests[b] + kPriorTests);
+    sum += weight[b];
+  }
+  // A coarse plain part joins the mixture here: the bins' shares of the map's importance.
+  if (coarse_plain_) {
+    for (std::size_t b = 0; b < bins; ++b)
+      weight[b] = kPlainEnvironment * bins_.share(static_cast<int>(b)) +
+                  (1.0f - kPlainEnvironment) * static_cast<float>(weight[b] / sum);
+  }
   leaf.environment = Distribution1D(weight);
 }
 
@@ -174,16 +186,17 @@ float LightGuide::pmf(const Site& at, Vec3f n, int light) const {
   return l->choice[static_cast<std::size_t>(light)];
 }
 
-// The mixture's density: the map's own, and the leaf's bin probability times
-// the bin's uniform density in image coordinates, per solid angle.
+// The mixture's density: the leaf's bin probability times the bin's density in
+// image coordinates, per solid angle, plus (unless the plain part is coarse and
+// already in the leaf's bins) the map's own; the map's alone where the leaf guides nothing.
 float LightGuide::environment_pdf(const Leaf* l, Vec2f uv) const {
-  const float plain = map_->pdf_at(uv);
-  if (l == nullptr || l->environment.size() == 0) return plain;
+  if (l == nullptr || l->environment.size() == 0) return map_->pdf_at(uv);
+  const float plain = coarse_plain_ ? 0.0f : map_->pdf_at(uv);
   const int b = bins_.bin_at(uv);
   const float sin_theta = std::sin(kPi * uv.y);
   if (!(sin_theta > 0.0f)) return kPlainEnvironment * plain;
   const float guided = l->environment.pmf(static_cast<std::size_t>(b)) * bins_.density(b, uv) / (2.0f * kPi * kPi * sin_theta);
-  return kPlainEnvironment * plain + (1.0f - kPlainEnvironment) * guided;
+  return coarse_plain_ ? guided : kPlainEnvironment * plain + (1.0f - kPlainEnvironment) * guided;
 }
 
 bool LightGuide::sample(int light, const Site& at, Vec2f u, LightSample& s) const {
@@ -193,20 +206,26 @@ bool LightGuide::sample(int light, const Site& at, Vec2f u, LightSample& s) cons
   if (lf == nullptr || lf->environment.size() == 0) return sample_light(l, at.p, u, s);
   s.delta = false;
   s.infinite = true;
-  // One sample of the mixture: u.x chooses the component and is reused, rescaled.
-  if (u.x < kPlainEnvironment) {
-    if (!map_->sample(Vec2f(std::min(u.x / kPlainEnvironment, kOneMinusEpsilon), u.y), s)) return false;
-  } else {
-    const float v = std::min((u.x - kPlainEnvironment) / (1.0f - kPlainEnvironment), kOneMinusEpsilon);
-    // The bin, and v's place inside the bin's step of the cdf as the first image coordinate's number.
-    float density = 0.0f;
-    std::size_t b = 0;
-    const float x = lf->environment.sample_continuous(v, &density, &b);
-    const float w = std::clamp(x * static_cast<float>(lf->environment.size()) - static_cast<float>(b), 0.0f,
-                               kOneMinusEpsilon);
-    s.wi = map_->uv_to_direction(bins_.sample(static_cast<int>(b), Vec2f(w, u.y)));
+  // A fine plain part: one sample of the mixture, u.x choosing the component and reused, rescaled.
+  float v = u.x;
+  if (!coarse_plain_) {
+    if (u.x < kPlainEnvironment)
+      return map_->sample(Vec2f(std::min(u.x / kPlainEnvironment, kOneMinusEpsilon), u.y), s) &&
+             finish_environment_sample(lf, s);
+    v = std::min((u.x - kPlainEnvironment) / (1.0f - kPlainEnvironment), kOneMinusEpsilon);
   }
-  // Radiance and density from the direction, as pdf() gives them to a BSDF-sampled ray.
+  // The bin, and v's place inside the bin's step of the cdf as the first image coordinate's number.
+  float density = 0.0f;
+  std::size_t b = 0;
+  const float x = lf->environment.sample_continuous(v, &density, &b);
+  const float w = std::clamp(x * static_cast<float>(lf->environment.size()) - static_cast<float>(b), 0.0f,
+                             kOneMinusEpsilon);
+  s.wi = map_->uv_to_direction(bins_.sample(static_cast<int>(b), Vec2f(w, u.y)));
+  return finish_environment_sample(lf, s);
+}
+
+// Radiance and density from the sampled direction, as pdf() gives them to a BSDF-sampled ray.
+bool LightGuide::finish_environment_sample(const Leaf* lf, LightSample& s) const {
   const Vec2f uv = map_->direction_to_uv(s.wi);
   s.L = map_->radiance_at(uv);
   s.pdf = environment_pdf(lf, uv);

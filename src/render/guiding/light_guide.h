@@ -13,7 +13,10 @@
 // over space splits the records' bounds at the middle of the longest axis
 // until a leaf holds at most kLeafRecords; then, per leaf:
 //  - the environment is sampled from the mixture kPlainEnvironment x the map's
-//    own distribution + (1 - kPlainEnvironment) x a distribution over bins in
+//    own distribution (for a smooth sky, kMaxCoarseChi2: the bins' coarse
+//    version of it, folded into the leaf's distribution over bins, so that a
+//    sample and a density read no table of the map's size) +
+//    (1 - kPlainEnvironment) x a distribution over bins in
 //    proportion to the bin's share of the map's importance times the fraction
 //    of the leaf's tests that arrived unoccluded there (within a bin, by the
 //    bin's coarse importance grid, environment_bins.h): directions the leaf's
@@ -48,6 +51,10 @@ class LightGuide {
   static constexpr int kLeafRecords = 2048;     // a leaf's most records
   static constexpr int kMinLeafRecords = 64;    // fewer: the leaf guides nothing
   static constexpr float kPlainEnvironment = 0.25f;
+  // The plain part is drawn from the bins' coarse grid, not the map's own
+  // tables, where that adds at most this relative variance to an unoccluded
+  // estimate of the sky (EnvironmentBins::coarse_chi2): a smooth sky.
+  static constexpr float kMaxCoarseChi2 = 0.05f;
   static constexpr float kPlainChoice = 0.1f;
   static constexpr float kPriorTests = 2.0f;  // pseudo-tests per bin at the leaf's mean visibility
   static constexpr int64_t kMaxPrepassPaths = int64_t{1} << 18;
@@ -96,10 +103,12 @@ class LightGuide {
   void learn_leaf(Leaf& leaf, const Record* first, std::size_t count) const;
   const Leaf* leaf(Vec3f p) const;
   float environment_pdf(const Leaf* l, Vec2f uv) const;
+  bool finish_environment_sample(const Leaf* lf, LightSample& s) const;
 
   const LightSet* lights_;
   const EnvironmentMap* map_ = nullptr;
   EnvironmentBins bins_;
+  bool coarse_plain_ = false;  // the plain part from the bins (bins_.coarse_chi2() <= kMaxCoarseChi2)
   bool guide_choice_ = false;
   std::vector<float> plain_choice_;  // per light: LightSet's probability (all lights infinite)
   SpatialTree tree_;
