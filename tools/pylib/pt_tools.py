@@ -1,6 +1,6 @@
 """What the Python tools in tools/ share: matplotlib (or how to get it), the
-machine's description (lscpu), and the error of an image against a reference
-(pt-imgerr, docs/samplers.md). Imported by tools/compare/pathtracer_compare.py,
+machine's description (lscpu), the error of an image against a reference
+(pt-imgerr, docs/samplers.md), and a benchmark page's sections (write_section). Imported by tools/compare/pathtracer_compare.py,
 tools/study/samplers/run_study.py and tools/study/compare_samplers/compare_samplers.py.
 """
 import json
@@ -43,3 +43,24 @@ def image_error(imgerr_exe, test, reference, rect=None):
     if r.returncode != 0:
         raise RuntimeError((r.stderr or r.stdout).strip())
     return json.loads(r.stdout)
+
+
+def write_section(doc_path, marker, title, text, runs_entry, heading="# Results"):
+    """Writes `text` (a section starting "## TITLE") into the markdown page
+    `doc_path` below `marker` (the page starts with `heading` if new): a rerun
+    replaces its own section, the machine's lscpu goes last; and `runs_entry`
+    under `title` into the page's JSON record beside it (same name, .json)."""
+    doc = open(doc_path).read() if os.path.exists(doc_path) else heading + "\n\n" + marker + "\n"
+    if marker not in doc:
+        doc += "\n" + marker + "\n"
+    head, tail = doc.split(marker, 1)
+    parts = [p for p in ("\n" + tail).split("\n## ") if p.strip()]
+    kept = ["## " + p.strip() for p in parts if not p.startswith(title + "\n") and not p.startswith("Machine")]
+    machine = "## Machine\n\n```\n" + lscpu().strip() + "\n```"
+    with open(doc_path, "w") as f:
+        f.write(head + marker + "\n\n" + "\n\n".join(kept + [text.strip(), machine]) + "\n")
+    runs = os.path.splitext(doc_path)[0] + ".json"
+    data = json.load(open(runs)) if os.path.exists(runs) else {}
+    data[title] = runs_entry
+    with open(runs, "w") as f:
+        json.dump(data, f, indent=1)

@@ -36,7 +36,7 @@ import tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", "..", ".."))
 sys.path.insert(0, os.path.join(ROOT, "tools", "pylib"))
-from pt_tools import image_error, lscpu  # noqa: E402
+from pt_tools import image_error, write_section  # noqa: E402
 
 MARKER = "<!-- ab_sample_cost.py writes the sections below this line -->"
 
@@ -122,22 +122,8 @@ def section(a, res, same):
 
 
 def write(a, text, res, same):
-    doc = open(a.out).read() if os.path.exists(a.out) else "# Cost of a sample\n\n" + MARKER + "\n"
-    if MARKER not in doc:
-        doc += "\n" + MARKER + "\n"
-    head, tail = doc.split(MARKER, 1)
-    # One section per title: a rerun replaces its own; the machine goes last.
-    parts = [p for p in ("\n" + tail).split("\n## ") if p.strip()]
-    kept = ["## " + p.strip() for p in parts if not p.startswith(a.title + "\n") and not p.startswith("Machine")]
-    machine = "## Machine\n\n```\n" + lscpu().strip() + "\n```"
-    with open(a.out, "w") as f:
-        f.write(head + MARKER + "\n\n" + "\n\n".join(kept + [text.strip(), machine]) + "\n")
-    runs = os.path.splitext(a.out)[0] + ".json"
-    data = json.load(open(runs)) if os.path.exists(runs) else {}
-    data[a.title] = {"scene": a.scene, "spp": a.spp, "threads": a.threads, "set": a.set, "runs": res,
-                     "identical": same}
-    with open(runs, "w") as f:
-        json.dump(data, f, indent=1)
+    entry = {"scene": a.scene, "spp": a.spp, "threads": a.threads, "set": a.set, "runs": res, "identical": same}
+    write_section(a.out, MARKER, a.title, text, entry, heading="# Cost of a sample")
 
 
 def main():
