@@ -246,7 +246,9 @@ std::string to_markdown(const Report& report) {
        << (s.tree.bottom_levels == 1 ? "" : "s") << ", " << thousands(t.nodes) << " nodes ("
        << fmt("%.2f", t.nodes ? static_cast<double>(t.child_slots_used) / static_cast<double>(t.nodes) : 0.0)
        << " children per node on average), " << thousands(t.leaves) << " leaves in " << thousands(t.blocks)
-       << " blocks, depth " << t.depth << ", SAH cost " << fmt("%.1f", t.sah_cost)
+       << " blocks ("
+       << fmt("%.2f", t.blocks ? static_cast<double>(t.prims) / static_cast<double>(t.blocks) : 0.0)
+       << " primitives per block: 4 fills a triangle block), depth " << t.depth << ", SAH cost " << fmt("%.1f", t.sah_cost)
        << " (node tests + leaf-block tests expected per ray through the root box)";
     if (s.tree.top.nodes > 0) md << "; top level: " << s.tree.top.nodes << " nodes, depth " << s.tree.top.depth;
     md << ". Work per ray (`intersect_counted`): camera " << fmt("%.1f", s.bvh_camera_work.nodes) << " nodes and "
