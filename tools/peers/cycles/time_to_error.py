@@ -118,7 +118,13 @@ def image_mean(path):
 
 
 def make_reference(a, scene):
-    """Makes a.reference if missing (see the docstring, 1.) and returns what is known of it."""
+    """Makes a.reference if missing (see the docstring, 1.) and returns what is known of it: for a
+    reference that exists, what the scene's record (--json) says of that file, if it names it (the
+    flags of this run may not be those that made it)."""
+    if os.path.exists(a.reference) and os.path.exists(a.json):
+        rec = json.load(open(a.json))
+        if rec.get("reference") == os.path.relpath(a.reference, REPO) and "reference_info" in rec:
+            return rec["reference_info"]
     base = os.path.splitext(a.reference)[0]
     ours, cycles = base + "-ours.exr", base + "-cycles.exr"
     info = {"kind": "ours", "ours_spp": a.ref_spp}
