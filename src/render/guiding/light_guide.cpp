@@ -79,7 +79,7 @@ void trace_path(const Prepass& pp, Rng& rng, std::vector<LightGuide::Record>& ou
 }  // namespace
 
 LightGuide LightGuide::learn(const RenderScene& scene, WorkerPool& pool, int paths_per_pixel, int max_depth,
-                             uint64_t seed) {
+                             uint64_t seed, bool choose_light) {
   LightGuide guide(scene.lights);
   const LightSet& lights = scene.lights;
   if (paths_per_pixel <= 0 || max_depth <= 0 || lights.empty()) return guide;
@@ -89,7 +89,7 @@ LightGuide LightGuide::learn(const RenderScene& scene, WorkerPool& pool, int pat
   if (env >= 0) {
     if (const auto* e = std::get_if<EnvironmentLight>(&lights[static_cast<std::size_t>(env)])) guide.map_ = e->map;
   }
-  guide.guide_choice_ = all_infinite && lights.needs_choice();
+  guide.guide_choice_ = choose_light && all_infinite && lights.needs_choice();
   if (guide.map_ == nullptr && !guide.guide_choice_) return guide;
   if (guide.map_ != nullptr) {
     guide.bins_ = EnvironmentBins(*guide.map_);

@@ -63,8 +63,11 @@ class LightGuide {
   explicit LightGuide(const LightSet& lights) : lights_(&lights) {}
   // Learns from a pre-pass of `paths_per_pixel` x width x height camera paths
   // (at most kMaxPrepassPaths) of at most `max_depth` bounces, run in `pool`.
+  // `choose_light`: whether the integrator chooses one light per vertex (it
+  // does not where it estimates each of a few infinite lights,
+  // LightSet::each_lights): only then is a choice among them learned.
   static LightGuide learn(const RenderScene& scene, WorkerPool& pool, int paths_per_pixel, int max_depth,
-                          uint64_t seed);
+                          uint64_t seed, bool choose_light = true);
 
   bool active() const { return !tree_.empty(); }
   int leaves() const { return static_cast<int>(leaves_.size()); }

@@ -30,6 +30,12 @@ namespace pt {
 
 namespace {
 
+// The lights that next-event estimation samples each at every vertex (none:
+// it chooses one light per vertex).
+std::span<const int> lights_estimated_each(const RenderScene& scene, const IntegratorSettings& settings) {
+  return settings.estimate_each_light ? scene.lights.each_lights() : std::span<const int>();
+}
+
 class PathTracer {
  public:
   PathTracer(const RenderScene& scene, const IntegratorSettings& settings, const LightGuide& guide,
@@ -41,7 +47,7 @@ class PathTracer {
         max_depth_(std::max(0, settings.max_depth)),
         clamp_(settings.clamp),
         strategy_(settings.light_strategy),
-        each_(settings.estimate_each_light ? scene.lights.each_lights() : std::span<const int>()),
+        each_(lights_estimated_each(scene, settings)),
         roulette_depth_(std::max(1, settings.roulette_depth)),
         inv_roulette_threshold_(settings.roulette_threshold > 0.0f ? 1.0f / settings.roulette_threshold : 1.0f) {}
 
@@ -247,7 +253,8 @@ class PathIntegrator final : public Integrator {
       return std::static_pointer_cast<const Guides>(settings_.cache->slot);
     const IntegratorSettings& s = settings_;
     auto guides = std::make_shared<const Guides>(Guides{
-        s.light_guiding > 0 ? LightGuide::learn(scene, pool, s.light_guiding, s.max_depth, s.seed)
+        s.light_guiding > 0 ? LightGuide::learn(scene, pool, s.light_guiding, s.max_depth, s.seed,
+                                                lights_estimated_each(scene, s).empty())
                             : LightGuide(scene.lights),
         s.path_guiding > 0 ? PathGuide::learn(scene, pool, s.path_guiding, s.max_depth, s.seed) : PathGuide()});
     if (settings_.cache != nullptr) settings_.cache->slot = guides;
