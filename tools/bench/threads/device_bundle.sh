@@ -65,5 +65,6 @@ json.dump(s, open(sys.argv[2], "w"), indent=1)
 EOP
 cp "$REPO/tools/bench/threads/device_scaling.py" "$REPO/tools/bench/threads/device_perf.py" \
    "$REPO/tools/bench/threads/perf_summary.py" "$REPO/scenes/cornell-box.json" "$B/"
+chmod 755 "$B"   # mktemp's 700 would travel as the unpacked folder's mode
 tar -C "$B" -cJf "$OUT/bundle.tar.xz" .
 ls -la "$OUT/bundle.tar.xz"

@@ -14,9 +14,9 @@
 # the timings still run. Everything goes to $OUT (or /tmp/dp-out): perf-device.json (rewritten
 # after every run, so a run cut short keeps what it measured), the raw perf stat CSVs and reports,
 # and summary.txt from perf_summary.py, which is also printed.
-#   python3 device_perf.py                      # on the lent machine: T = nproc, N = 64 (~4-6 min)
+#   python3 device_perf.py                      # on the lent machine: T = nproc, N = 64 (~5-7 min)
 #   python3 device_perf.py --threads 2 --spp 4 --rounds 1 --profile-seconds 3   # a try-out
-import argparse, json, os, re, resource, shutil, subprocess, time
+import argparse, json, os, re, resource, shutil, subprocess, tempfile, time
 D = os.path.dirname(os.path.abspath(__file__))
 ap = argparse.ArgumentParser()
 ap.add_argument("--scene", default="sponza-sky-sun.json")
@@ -25,15 +25,16 @@ ap.add_argument("--perf", default=None, help="default: ./perf of the bundle, els
 ap.add_argument("--threads", type=int, default=os.cpu_count())
 ap.add_argument("--spp", type=int, default=64, help="a's and each c copy's; b gets spp*threads")
 ap.add_argument("--base-spp", type=int, default=1)
-ap.add_argument("--rounds", type=int, default=2)
+ap.add_argument("--rounds", type=int, default=3)
 ap.add_argument("--profile-seconds", type=float, default=10, help="0: no perf record")
-ap.add_argument("--freq", type=int, default=999, help="perf record sampling frequency (Hz)")
-ap.add_argument("--budget-s", type=float, default=480, help="skip runs that would end after this")
+ap.add_argument("--freq", type=int, default=499, help="perf record sampling frequency (Hz)")
+ap.add_argument("--budget-s", type=float, default=420,
+                help="skip runs that would end after this (the stat rounds leave the profiles their time)")
 ap.add_argument("--out", default=os.environ.get("OUT") or "/tmp/dp-out")
 a = ap.parse_args()
 os.makedirs(a.out, exist_ok=True)
 T0 = time.monotonic()
-TMP = "/tmp/dp-work"; os.makedirs(TMP, exist_ok=True)
+TMP = tempfile.mkdtemp(prefix="dp-work-")   # renders' images and logs, perf.data (not copied back)
 PERF = a.perf or (os.path.join(D, "perf") if os.path.exists(os.path.join(D, "perf")) else shutil.which("perf"))
 
 # counters: name -> what it separates (perf_summary.py prints them per sample)
@@ -46,7 +47,11 @@ EVENTS = SOFTWARE + [
           "mem_load_l3_hit_retired.xsnp_fwd", "machine_clears.memory_ordering"]
 
 def sh(cmd, **kw):
-    return subprocess.run(cmd, capture_output=True, text=True, **kw)
+    try: return subprocess.run(cmd, capture_output=True, text=True, **kw)
+    except OSError as e: return subprocess.CompletedProcess(cmd, 127, "", f"cannot run {cmd[0]}: {e}")
+    except subprocess.TimeoutExpired as e:
+        return subprocess.CompletedProcess(cmd, 124, (e.stdout or b"").decode(errors="replace"),
+                                           f"timed out after {e.timeout} s")
 
 def read(path):
     try: return open(path).read().strip()
@@ -180,24 +185,25 @@ def expected(cfg):
     w = [r["wall_s"] for r in info["runs"] if r["cfg"] == cfg and r["kind"] == "stat"]
     return max(w) if w else None
 
-def fits(cfg, est):
+def fits(cfg, est, reserve=0.0):
     e = est if est is not None else 0
-    if time.monotonic() - T0 + e > a.budget_s:
+    if time.monotonic() - T0 + e + reserve > a.budget_s:
         log(f"SKIPPED {cfg}: would end after --budget-s {a.budget_s:.0f} s"); return False
     return True
 
 for cfg in "abc":
     run(cfg, "base", spp_of(cfg, a.base_spp), 0, "stat")
 order = list("abc")
+PROFILES_S = 3 * (a.profile_seconds + 12) if PERF and a.profile_seconds > 0 else 0
 for rnd in range(a.rounds):
     for cfg in order[rnd % 3:] + order[:rnd % 3]:
-        if fits(cfg, expected(cfg)): run(cfg, "stat", spp_of(cfg, N), rnd, "stat")
+        if fits(cfg, expected(cfg), PROFILES_S): run(cfg, "stat", spp_of(cfg, N), rnd, "stat")
 
 # --- profiles ---
 def report(cfg, data):
     txt = os.path.join(a.out, f"perf-report-{cfg}.txt")
     p = sh([PERF, "report", "-f", "-i", data, "--stdio", "--no-children", "-g", "none",
-            "--sort", "dso,sym", "-n", "--percent-limit", "0.2"])
+            "--sort", "dso,sym", "-n", "--percent-limit", "0.2"], timeout=120)
     open(txt, "w").write(p.stdout + ("\n# stderr:\n" + p.stderr[-2000:] if p.returncode else ""))
     prof = {"report": os.path.basename(txt), "rc": p.returncode, "top": []}
     m = re.search(r"# Samples: (\S+)\s+of event '([^']+)'", p.stdout)
@@ -209,7 +215,7 @@ def report(cfg, data):
         if m: prof["top"].append([float(m.group(1)), int(m.group(2)), m.group(3), m.group(5)])
     # the callers of the hottest entries, for reading by hand (frame-pointer chains: may be short)
     g = sh([PERF, "report", "-f", "-i", data, "--stdio", "--no-children", "--sort", "dso,sym",
-            "-g", "caller,2,callee", "--percent-limit", "2"])
+            "-g", "caller,2,callee", "--percent-limit", "2"], timeout=60)
     open(os.path.join(a.out, f"perf-report-{cfg}-callers.txt"), "w").write(g.stdout[:400000])
     return prof
 

@@ -56,10 +56,12 @@ for c in "abc":
     occ = []
     for r in stat[c]:
         b, rs = base.get(c), [x["render_s"] for x in r["render"] if x["render_s"]]
-        cpu = r.get("counters", {}).get("task-clock")
-        if isinstance(cpu, float) and b and isinstance(b.get("counters", {}).get("task-clock"), float) and rs:
-            occ.append((cpu - b["counters"]["task-clock"]) / 1e3 / (max(rs) - max(x["render_s"] or 0 for x in b["render"])) / T
-                       if c != "a" else (cpu - b["counters"]["task-clock"]) / 1e3 / (rs[0] - b["render"][0]["render_s"]))
+        def cpu_s(x):   # the process's CPU: perf's task-clock (ms), else getrusage
+            v = x.get("counters", {}).get("task-clock")
+            return v / 1e3 if isinstance(v, float) else x["user_s"] + x["sys_s"]
+        if b and rs:
+            wall = max(rs) - max(x["render_s"] or 0 for x in b["render"])
+            occ.append((cpu_s(r) - cpu_s(b)) / wall / (1 if c == "a" else T))
     extra = f"  speed-up over a {fmt(med([e * T for e in eff]))}" if c == "b" else ""
     print(f"  {c} {NAMES[c]:28s} {fmt(med(s), 4):>28s}   eff {fmt(med(eff))}  occupancy {fmt(med(occ))}{extra}")
 
