@@ -44,7 +44,9 @@ EVENTS = SOFTWARE + [
           "dTLB-load-misses",
           # Sapphire Rapids' own names (perf knows them only where the guest has a PMU)
           "l2_rqsts.miss", "dtlb_load_misses.walk_completed", "dtlb_load_misses.walk_active",
-          "mem_load_l3_hit_retired.xsnp_fwd", "machine_clears.memory_ordering"]
+          "mem_load_l3_hit_retired.xsnp_fwd", "machine_clears.memory_ordering",
+          # the effective clock (aperf/mperf: the host's share of the core), where the msr PMU has them
+          "msr/aperf/", "msr/mperf/"]
 
 def sh(cmd, **kw):
     try: return subprocess.run(cmd, capture_output=True, text=True, **kw)

@@ -87,6 +87,7 @@ ROWS = [  # label, event, scale, (derived: numerator, denominator)
     ("% cycles in page walks", ("dtlb_load_misses.walk_active", "cycles"), 100),
     ("HITM snoops /1k smp", "mem_load_l3_hit_retired.xsnp_fwd", 1e3),
     ("mem-order clears /1k", "machine_clears.memory_ordering", 1e3),
+    ("clock aperf/mperf", ("msr/aperf/", "msr/mperf/"), None),
     ("context switches /1M", "context-switches", 1e6), ("cpu-migrations /1M", "cpu-migrations", 1e6),
     ("page faults /1M smp", "page-faults", 1e6)]
 print("\nper camera sample, render phase (median over rounds [smallest, largest])")
@@ -139,5 +140,6 @@ reading: b/a well above c/a in CPU ns is the cost of sharing one address space. 
   dTLB misses / walk cycles up in b, not in c  -> TLB: huge pages for more arrays (THP above)
   context switches / migrations up in b        -> TBB scheduling / thread placement (affinity)
   sys CPU or page faults up in b               -> kernel: allocator (mmap, page faults on one mm)
+  aperf/mperf lower in b than in c             -> the host's clock, not our threads
   same counters, IPC down in b                 -> look at the profile: which symbols gained ns in b-a
   a symbol of libtbb / malloc / futex gaining   -> scheduler spinning, allocator, locks""")
