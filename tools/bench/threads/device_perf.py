@@ -173,12 +173,16 @@ def run(cfg, kind, spp, rnd=0, wrap=None):
     if pre:
         row["counters"] = {k: v[0] for k, v in parse_csv(read(csv)).items()}
         row["counter_pct_enabled"] = {k: v[1] for k, v in parse_csv(read(csv)).items()}
-    if p.returncode != 0: row["err"] = (p.stderr or "")[-600:]
+    if p.returncode != 0: row["err"] = " ".join((p.stderr or "")[-600:].split())
+    if pre and all(x["render_s"] is None for x in rr):   # perf stat itself failed: the timing still
+        log(f"{cfg} {kind} r{rnd}: perf stat FAILED ({row.get('err', '')[-200:]}); again without it")
+        info["stat_events"] = []                          # no counters from here on
+        return run(cfg, kind, spp, rnd, None)
     info["runs"].append(row); save()
-    sps = [x["sps"] for x in rr]
+    sps = sorted(x["sps"] for x in rr if x["sps"]) or [None]
     log(f"{cfg} {kind} r{rnd}: {threads} thr x {copies} proc, {spp} spp, wall {wall:.1f} s, "
         f"render {[x['render_s'] for x in rr][:3]}{'...' if copies > 3 else ''} s, "
-        f"samples/s {sps[0] if copies == 1 else sorted(sps)[len(sps) // 2]}{' (median copy)' if copies > 1 else ''}"
+        f"samples/s {sps[len(sps) // 2]}{' (median copy)' if copies > 1 else ''}"
         + (f", rc {p.returncode}: {row.get('err', '')[-200:]}" if p.returncode else ""))
     return row
 
@@ -236,7 +240,8 @@ if PERF and a.profile_seconds > 0:
                "-o", data, "--"]
         row = run(cfg, "profile", spp, 0, rec)
         if not os.path.exists(data) or os.path.getsize(data) == 0:
-            info["profiles"][cfg] = {"error": "perf record wrote nothing: " + row.get("err", "")[-300:]}
+            why = row.get("err") or " ".join(row["render"][0].get("err", "").split())
+            info["profiles"][cfg] = {"error": "perf record wrote nothing: " + why[-300:]}
             log(f"profile {cfg}: UNAVAILABLE ({info['profiles'][cfg]['error'][:200]})"); save(); continue
         info["profiles"][cfg] = report(cfg, data); info["profiles"][cfg]["delay_ms"] = delay_ms
         log(f"profile {cfg}: {info['profiles'][cfg].get('samples')} samples, report rc {info['profiles'][cfg]['rc']}")
