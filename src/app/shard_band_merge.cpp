@@ -118,13 +118,27 @@ LayeredImage ShardMerger::layout() const {
 }
 
 void ShardMerger::add_band(Bands& b, Film& band, int y0, int y1) const {
-  band.recrop({merged_.window.x0, y0, merged_.window.x1, y1});
+  const PixelRect& w = merged_.window;
+  // The first state with pixels in the band, when it covers the whole band
+  // (a share, or a tile as wide as the window), sets the band instead of
+  // being added to a cleared one: the same bits (Film::set_state_rows).
+  bool cleared = false;
   for (std::size_t i = 0; i < b.views.size(); ++i) {
-    const int from = std::max(y0, b.views[i].crop.y0), to = std::min(y1, b.views[i].crop.y1);
+    const PixelRect& c = b.views[i].crop;
+    const int from = std::max(y0, c.y0), to = std::min(y1, c.y1);
     if (from >= to) continue;
-    const std::size_t refused = band.add_state_rows(b.views[i], rules(infos_[i], b.orders[i], from, to), from, to);
+    const StateRules r = rules(infos_[i], b.orders[i], from, to);
+    std::size_t refused = SIZE_MAX;
+    if (!cleared && c.x0 == w.x0 && c.x1 == w.x1 && from == y0 && to == y1) {
+      refused = band.set_state_rows(b.views[i], r, from, to);
+    } else {
+      if (!cleared) band.recrop({w.x0, y0, w.x1, y1});
+      refused = band.add_state_rows(b.views[i], r, from, to);
+    }
+    cleared = true;
     if (refused != SIZE_MAX) lower(b.bad[i], refused);
   }
+  if (!cleared) band.recrop({w.x0, y0, w.x1, y1});
 }
 
 bool ShardMerger::refused(const Bands& b, std::string& error) const {

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <random>
 #include <sstream>
@@ -321,6 +322,67 @@ TEST(FilmMerge, StatesInMemoryAddInParallelToTheSameBits) {
   std::stringstream in(bad);
   EXPECT_FALSE(Film(w, h, {0, 0, w, h}, all_aovs()).add_state(in, rules(false, 3), error));
   EXPECT_EQ(error, "corrupt film state (Cryptomatte slots of pixel (127, 79))");  // the stream says the same
+}
+
+// The band merge sets a band from the first state that covers it instead of
+// adding that state to a cleared band (Film::set_state_rows): the same bits,
+// also for values that 0 + x would change (a maximum of -0.0, NaN or below
+// 0; first-sample values whose flag is -0.0, NaN or 0), over a band film
+// that held other rows, and after a refusal.
+TEST(FilmMerge, SettingRowsGivesTheBitsOfAddingThemToAClearedFilm) {
+  constexpr int w = 6, h = 5, y0 = 1, y1 = 4;
+  Film a(w, h, {0, 0, w, h}, all_aovs()), other(w, h, {0, 0, w, h}, all_aovs());
+  render(a, a.crop(), {0, 3});
+  render(other, other.crop(), {3, 7});
+  std::string bytes = state(a);
+  const std::size_t records = records_at(bytes, all_aovs().size()), record = a.state_record_bytes();
+  std::size_t values = 0, max_at = 0;  // a pixel's plain values; NonFinite's among them
+  std::vector<std::pair<std::size_t, int>> first;  // first-sample layers: their first value, channels
+  for (const AovRequest& r : a.aovs()) {
+    const AovInfo& info = aov_info(r.type);
+    if (info.accumulation == Accumulation::Max) max_at = values;
+    if (info.accumulation == Accumulation::FirstSample) first.emplace_back(values, info.channels);
+    values += static_cast<std::size_t>(info.values);
+  }
+  ASSERT_EQ(first.size(), 4u);
+  const auto value_at = [&](std::size_t pixel, std::size_t k) { return records + (pixel + 1) * record - (values - k) * 4; };
+  const auto put = [&](std::size_t pixel, std::size_t k, float v) { std::memcpy(&bytes[value_at(pixel, k)], &v, 4); };
+  const float odd[] = {-0.0f, std::nanf(""), -1.5f, std::numeric_limits<float>::infinity(), 0.25f, 0.0f};
+  for (std::size_t p = 0; p < static_cast<std::size_t>(w * h); ++p) {
+    const float v = odd[p % 6];
+    put(p, max_at, v);
+    for (const auto& [at, channels] : first) {  // a flag of v, and values that are not 0
+      for (int c = 0; c < channels; ++c) put(p, at + static_cast<std::size_t>(c), c == 0 ? -0.0f : 2.0f);
+      put(p, at + static_cast<std::size_t>(channels), v);
+    }
+  }
+  for (uint64_t most : {uint64_t{3}, uint64_t{2}}) {  // 2: pixel 7 refused (it holds 3 samples)
+    for (uint8_t other_first : {0, 1}) {
+      const std::size_t n = static_cast<std::size_t>(w * (y1 - y0));
+      StateRules rules{a.crop(), std::vector<uint8_t>(n, other_first), std::vector<uint64_t>(n, 3), y0 * w};
+      if (most == 2) rules.max_samples[7 - w] = 2;
+      StateView view;
+      std::string error;
+      ASSERT_TRUE(a.view_state(bytes, a.crop(), a.crop(), view, error)) << error;
+      Film added(w, h, {0, 0, w, h}, all_aovs()), set(w, h, {0, 0, w, h}, all_aovs());
+      ASSERT_TRUE(set.add_film(other, other.crop(), true, error)) << error;  // storage that holds other pixels
+      added.recrop({0, y0, w, y1});
+      const std::size_t refused = added.add_state_rows(view, rules, y0, y1);
+      EXPECT_EQ(set.set_state_rows(view, rules, y0, y1), refused);
+      EXPECT_EQ(refused, most == 2 ? std::size_t{7} : SIZE_MAX);
+      EXPECT_EQ(set.crop(), added.crop());
+      const std::string want = state(added);
+      EXPECT_EQ(state(set), want) << "most samples " << most << ", other first " << int(other_first);
+      // Not vacuous: the maximum of -0.0 at pixel 6 (y0 * w) was made +0.0,
+      // its first-sample values (flag -0.0) zeros.
+      const std::size_t at = records_at(want, all_aovs().size()) + record - (values - max_at) * 4;
+      uint32_t bits = 1;
+      std::memcpy(&bits, &want[at], 4);
+      EXPECT_EQ(bits, 0u);
+      std::memcpy(&bits, &bytes[value_at(6, max_at)], 4);
+      EXPECT_EQ(bits, 0x80000000u);
+    }
+  }
 }
 
 // ---------------------------------------------------------------- shares and tiles

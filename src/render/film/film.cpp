@@ -435,11 +435,16 @@ LayeredImage Film::layers(ChannelType beauty_type) const {
 }
 
 void Film::recrop(const PixelRect& crop) {
+  move_to(crop);
+  clear();
+}
+
+void Film::move_to(const PixelRect& crop) {
   crop_ = clip(crop, width_, height_);
   const std::size_t n = static_cast<std::size_t>(crop_.width()) * static_cast<std::size_t>(crop_.height());
-  pixels_.assign(n, PixelSum{});  // within the capacity of a film of that size or larger: no allocation
-  aov_sums_.assign(n * static_cast<std::size_t>(sum_stride_), ExactSum{});
-  aov_values_.assign(n * static_cast<std::size_t>(value_stride_), 0.0);
+  pixels_.resize(n);  // within the capacity of a film of that size or larger: no allocation
+  aov_sums_.resize(n * static_cast<std::size_t>(sum_stride_));
+  aov_values_.resize(n * static_cast<std::size_t>(value_stride_));
   non_finite_ = {};
 }
 

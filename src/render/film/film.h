@@ -245,6 +245,13 @@ class Film {
   // pixel). One thread. The first pixel (of the state's crop) that breaks the
   // rules, or SIZE_MAX; the pixels before it are added.
   std::size_t add_state_rows(const StateView& view, const StateRules& rules, int y0, int y1);
+  // Moves this film to rows [y0, y1) of the state's columns and sets it to
+  // those rows of a viewed state: bit for bit what recrop() then
+  // add_state_rows() leave (values as add_values makes them from zeros:
+  // max(0, v), first-sample values kept only when flagged), without clearing
+  // first. The same return; after a refusal the pixels from the refused one
+  // on are cleared, as add_state_rows leaves them in a cleared film.
+  std::size_t set_state_rows(const StateView& view, const StateRules& rules, int y0, int y1);
   // The message for a pixel add_state_rows refused.
   std::string refusal(const StateView& view, std::size_t pixel, const StateRules& rules) const;
   // The bytes of one pixel's record in a film state of this film's AOVs
@@ -255,6 +262,9 @@ class Film {
   void recrop(const PixelRect& crop);
 
  private:
+  // Moves this film to `crop` keeping what its storage holds (recrop's
+  // move, without the clear): set_state_rows then sets every pixel.
+  void move_to(const PixelRect& crop);
   // Adds another film's (or a scratch's) AOV sums `s` to pixel number `pixel`:
   // exact sums add, Cryptomatte slots merge (add_ranked).
   void add_sums(std::size_t pixel, const ExactSum* s);
@@ -291,6 +301,14 @@ class Film {
   // written), or SIZE_MAX. The pixels before it are added.
   std::size_t add_records(const char* records, std::size_t first, std::size_t count,
                           const std::vector<StateException>& exceptions, const StateRules& rules);
+  // set_state_rows' work: pixels [first, first + count) of the state
+  // decoded straight into this film's pixels 0, 1, ... (the film's crop is
+  // their rows); the first refused pixel or SIZE_MAX.
+  std::size_t set_records(const char* records, std::size_t first, std::size_t count,
+                          const std::vector<StateException>& exceptions, const StateRules& rules);
+  // A pixel's plain AOV values `v`, decoded from a state, made what
+  // add_values makes of them in a cleared pixel.
+  void first_values(double* v) const;
   static std::string too_many_samples(std::size_t pixel, uint64_t samples, const StateRules& rules);
   // refusal() of the pixel whose record is at `record`.
   std::string refusal(const char* record, const StateView& view, std::size_t pixel, const StateRules& rules) const;

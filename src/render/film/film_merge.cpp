@@ -61,4 +61,21 @@ void Film::add_values(std::size_t pixel, const double* s, bool other_first) {
   }
 }
 
+void Film::first_values(double* v) const {
+  for (std::size_t a = 0; a < aovs_.size(); ++a) {
+    const AovInfo& info = aov_info(aovs_[a].type);
+    double* d = v + value_offset_[a];
+    const auto n = static_cast<std::size_t>(info.values);
+    // add_values into zeros: std::max(0.0, x), so -0.0 and NaN give +0.0
+    // (and negatives 0); first-sample values copied only when flagged (the
+    // flag != 0.0: -0.0 is not, NaN is); nothing else is added.
+    if (info.accumulation == Accumulation::Max) {
+      d[0] = std::max(0.0, d[0]);
+      if (n > 1) std::fill(d + 1, d + n, 0.0);
+    } else if (info.accumulation != Accumulation::FirstSample || !(d[info.channels] != 0.0)) {
+      std::fill(d, d + n, 0.0);
+    }
+  }
+}
+
 }  // namespace pt

@@ -339,6 +339,27 @@ std::size_t Film::add_records(const char* records, std::size_t first, std::size_
   return SIZE_MAX;
 }
 
+std::size_t Film::set_records(const char* records, std::size_t first, std::size_t count,
+                              const std::vector<StateException>& exceptions, const StateRules& rules) {
+  const auto stride = static_cast<std::size_t>(sum_stride_), vstride = static_cast<std::size_t>(value_stride_);
+  const StateException* ex = exceptions_from(exceptions, first);
+  for (std::size_t i = first; i < first + count; ++i, records += record_bytes_) {
+    const StateException* end = exceptions_end(exceptions, ex, i);
+    const std::size_t to = i - first;
+    ExactSum* sums = aov_sums_.data() + to * stride;
+    double* values = aov_values_.data() + to * vstride;
+    // Integer sums: 0 + x is x, and valid Cryptomatte slots (ids increasing,
+    // free slots last and empty) are what add_ranked makes of them from
+    // empty slots. The plain values are not: first_values.
+    if (!decode_record(records, ex, end, pixels_[to], sums, values) ||
+        pixels_[to].samples > rules.max_samples[i - rules.first] || !valid_ranked(sums))
+      return i;
+    ex = end;
+    first_values(values);
+  }
+  return SIZE_MAX;
+}
+
 std::string Film::too_many_samples(std::size_t pixel, uint64_t samples, const StateRules& rules) {
   const auto width = static_cast<std::size_t>(rules.crop.width());
   return "its film state holds " + std::to_string(samples) + " samples in pixel (" +
@@ -428,6 +449,21 @@ std::size_t Film::add_state_rows(const StateView& view, const StateRules& rules,
   const std::size_t first = static_cast<std::size_t>(y0 - view.crop.y0) * width;
   const std::size_t count = static_cast<std::size_t>(y1 - y0) * width;
   return add_records(view.records + first * record_bytes_, first, count, view.exceptions, rules);
+}
+
+std::size_t Film::set_state_rows(const StateView& view, const StateRules& rules, int y0, int y1) {
+  move_to({view.crop.x0, y0, view.crop.x1, y1});
+  const auto width = static_cast<std::size_t>(view.crop.width());
+  const std::size_t first = static_cast<std::size_t>(y0 - view.crop.y0) * width;
+  const std::size_t count = static_cast<std::size_t>(y1 - y0) * width;
+  const std::size_t bad = set_records(view.records + first * record_bytes_, first, count, view.exceptions, rules);
+  if (bad != SIZE_MAX) {  // the pixels from the refused one on: as in a cleared film
+    const auto from = static_cast<std::ptrdiff_t>(bad - first);
+    std::fill(pixels_.begin() + from, pixels_.end(), PixelSum{});
+    std::fill(aov_sums_.begin() + from * sum_stride_, aov_sums_.end(), ExactSum{});
+    std::fill(aov_values_.begin() + from * value_stride_, aov_values_.end(), 0.0);
+  }
+  return bad;
 }
 
 bool Film::add_state(std::string_view state, const StateRules& rules, std::string& error) {
