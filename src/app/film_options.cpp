@@ -11,6 +11,7 @@
 #include "app/options.h"
 #include "app/shard.h"
 #include "io/exr_bands.h"
+#include "io/exr_pack.h"
 #include "io/image_io.h"
 
 namespace pt {
@@ -110,7 +111,7 @@ uint64_t writer_bytes(const std::vector<AovRequest>& aovs, ChannelType beauty, c
   const LayeredImage shape = Film(0, 0, PixelRect{}, aovs).layer_layout(beauty, PixelRect{});
   std::size_t part = 0, all = 0;  // the largest part's packed pixel; every part's
   for (const ImageLayer& layer : shape.layers) {
-    const std::size_t bytes = layer.channels.size() * (layer.type == ChannelType::Half ? sizeof(uint16_t) : sizeof(float));
+    const std::size_t bytes = packed_pixel_bytes(layer);
     all += bytes;
     part = exr.multipart ? std::max(part, bytes) : all;
   }

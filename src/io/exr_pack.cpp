@@ -55,22 +55,27 @@ void copy_pixels(const float* v, std::size_t in_step, std::size_t n, unsigned ch
 
 }  // namespace
 
+std::vector<const ImageLayer*> every_layer(const LayeredImage& image) {
+  std::vector<const ImageLayer*> layers;
+  for (const ImageLayer& layer : image.layers) layers.push_back(&layer);
+  return layers;
+}
+
+std::size_t packed_pixel_bytes(const ImageLayer& layer) {
+  return layer.channels.size() * (layer.type == ChannelType::Half ? sizeof(uint16_t) : sizeof(float));
+}
+
 PackedLayout packed_layout(const std::vector<const ImageLayer*>& layers) {
   PackedLayout packed;
   for (const ImageLayer* layer : layers) {
-    const bool half = layer->type == ChannelType::Half;
-    packed.layers.push_back({layer->channels.size(), packed.pixel_bytes, half});
-    packed.pixel_bytes += layer->channels.size() * (half ? sizeof(uint16_t) : sizeof(float));
+    packed.layers.push_back({layer->channels.size(), packed.pixel_bytes, layer->type == ChannelType::Half});
+    packed.pixel_bytes += packed_pixel_bytes(*layer);
     packed.channels += layer->channels.size();
   }
   return packed;
 }
 
-PackedLayout packed_layout(const LayeredImage& image) {
-  std::vector<const ImageLayer*> layers;
-  for (const ImageLayer& layer : image.layers) layers.push_back(&layer);
-  return packed_layout(layers);
-}
+PackedLayout packed_layout(const LayeredImage& image) { return packed_layout(every_layer(image)); }
 
 void pack_halves(const float* v, std::size_t in_step, std::size_t channels, std::size_t n, unsigned char* out,
                  std::size_t out_step) {

@@ -27,6 +27,11 @@ struct PackedLayout {
   std::size_t pixel_bytes = 0, channels = 0;
 };
 
+// Every layer of `image`, in order (a part holding them all).
+std::vector<const ImageLayer*> every_layer(const LayeredImage& image);
+// The bytes of one pixel of `layer` packed: its channels in its file type.
+std::size_t packed_pixel_bytes(const ImageLayer& layer);
+
 // The layout of a part holding `layers` (in order); only their channels and types are read.
 PackedLayout packed_layout(const std::vector<const ImageLayer*>& layers);
 // The layout of a part holding every layer of `image`.

@@ -99,13 +99,6 @@ bool check_layers(const LayeredImage& image, std::string& error) {
   return true;
 }
 
-// Every layer of `image`, in order: the layers of its one part.
-std::vector<const ImageLayer*> every_layer(const LayeredImage& image) {
-  std::vector<const ImageLayer*> layers;
-  for (const ImageLayer& layer : image.layers) layers.push_back(&layer);
-  return layers;
-}
-
 // The one part of an EXR written band by band (ImageLibrary::open_exr).
 class OiioExrBandWriter final : public ExrBandWriter {
  public:
