@@ -1,5 +1,6 @@
-// The path guide (render/guiding/path_guide.h): its direction grid's bins are
-// what it samples, a leaf's density integrates to one and its samples follow
+// The path guide (render/guiding/path_guide.h): its direction tree's square
+// map is equal-area, the tree's density integrates to one and its samples
+// follow it, a leaf's density integrates to one and its samples follow
 // it, the mixture's bounces are an unbiased L/pdf estimator of the BSDF's
 // albedo, it is a function of the seed alone (the same for any thread count),
 // and a closed box that both emits and reflects renders its closed-form
@@ -32,21 +33,121 @@ using test::courtyard_point;
 Vec3f floor_point(Rng& rng) { return Vec3f(rng.next_float() * 3.8f - 1.9f, 0.001f, rng.next_float() * 3.8f - 1.9f); }
 const Vec3f kUp(0, 1, 0);
 
-TEST(DirectionGrid, SamplesStayInTheirBinAndCoverTheSphere) {
+// The probability of each of the k x k equal cells of DirectionTree's square
+// under `density` (a direction's density per solid angle), exactly for a
+// tree: its finest cells are 1/2^kMaxDepth of the square on a side, and the
+// density is constant over each.
+template <class Density>
+std::vector<double> cell_probabilities(int k, const Density& density) {
+  constexpr int kFine = 1 << DirectionTree::kMaxDepth;
+  std::vector<double> p(static_cast<std::size_t>(k * k), 0.0);
+  const double area = 4.0 * kPi / (static_cast<double>(kFine) * kFine);
+  for (int i = 0; i < kFine; ++i)
+    for (int j = 0; j < kFine; ++j) {
+      const Vec2f s((static_cast<float>(i) + 0.5f) / kFine, (static_cast<float>(j) + 0.5f) / kFine);
+      p[static_cast<std::size_t>(i * k / kFine * k + j * k / kFine)] += density(DirectionTree::from_square(s)) * area;
+    }
+  return p;
+}
+
+int cell_of(Vec3f w, int k) {
+  const Vec2f s = DirectionTree::to_square(w);
+  return static_cast<int>(s.x * static_cast<float>(k)) * k + static_cast<int>(s.y * static_cast<float>(k));
+}
+
+// A tree from points clustered around two directions (and a few spread):
+// deep where the value is.
+DirectionTree clustered_tree(Rng& rng) {
+  std::vector<DirectionTree::Point> points;
+  for (int i = 0; i < 20000; ++i) {
+    const float r = rng.next_float();
+    Vec2f s(rng.next_float(), rng.next_float());
+    float value = 0.1f;
+    if (r < 0.5f) {
+      s = Vec2f(0.8f + 0.01f * rng.next_float(), 0.3f + 0.02f * rng.next_float());
+      value = 2.0f;
+    } else if (r < 0.8f) {
+      s = Vec2f(0.55f + 0.1f * rng.next_float(), 0.7f + 0.05f * rng.next_float());
+      value = 1.0f;
+    }
+    points.push_back({s, value});
+  }
+  DirectionTree tree;
+  tree.build(points.data(), points.size(), 0.01f, 16);
+  return tree;
+}
+
+TEST(DirectionTree, TheSquareMapIsEqualAreaAndInvertible) {
   Rng rng(3);
   for (int k = 0; k < 20000; ++k) {
-    const int b = static_cast<int>(rng.next_float() * DirectionGrid::kBins) % DirectionGrid::kBins;
-    const Vec3f w = DirectionGrid::sample(b, {rng.next_float(), rng.next_float()});
-    ASSERT_NEAR(length(w), 1.0f, 1e-5f);
-    ASSERT_EQ(DirectionGrid::bin(w), b) << k;
+    const Vec3f w = sample_uniform_sphere({rng.next_float(), rng.next_float()});
+    const Vec2f s = DirectionTree::to_square(w);
+    ASSERT_GE(s.x, 0.0f);
+    ASSERT_LT(s.x, 1.0f);
+    ASSERT_GE(s.y, 0.0f);
+    ASSERT_LT(s.y, 1.0f);
+    const Vec3f back = DirectionTree::from_square(s);
+    ASSERT_NEAR(length(back - w), 0.0f, 1e-3f) << k;
   }
-  // Equal solid angle: uniform directions fall into every bin equally often
-  // (binomial, 5 standard deviations).
-  std::vector<int> count(DirectionGrid::kBins, 0);
+  // Uniform directions fall into the square's 8 x 8 cells equally often (5 standard deviations).
+  constexpr int k = 8;
+  std::vector<int> count(k * k, 0);
   const int n = 200000;
-  for (int k = 0; k < n; ++k) ++count[static_cast<std::size_t>(DirectionGrid::bin(sample_uniform_sphere({rng.next_float(), rng.next_float()})))];
-  const double expect = static_cast<double>(n) / DirectionGrid::kBins;
+  for (int i = 0; i < n; ++i) ++count[static_cast<std::size_t>(cell_of(sample_uniform_sphere({rng.next_float(), rng.next_float()}), k))];
+  const double expect = static_cast<double>(n) / (k * k);
   for (int c : count) ASSERT_NEAR(c, expect, 5.0 * std::sqrt(expect));
+}
+
+TEST(DirectionTree, RefinesWhereTheValueIsAndItsDensityIntegratesToOne) {
+  Rng rng(5);
+  const DirectionTree tree = clustered_tree(rng);
+  ASSERT_FALSE(tree.empty());
+  EXPECT_GT(tree.cells(), 40);
+  // Exactly (the density is constant over the finest cells).
+  double sum = 0.0;
+  for (double p : cell_probabilities(1, [&](Vec3f w) { return tree.pdf(w); })) sum += p;
+  EXPECT_NEAR(sum, 1.0, 1e-4);
+  // The clusters are dense, the rest is not empty (the prior).
+  EXPECT_GT(tree.pdf(DirectionTree::from_square({0.805f, 0.31f})), 100.0f / (4.0f * kPi));
+  EXPECT_GT(tree.pdf(DirectionTree::from_square({0.1f, 0.1f})), 0.0f);
+  EXPECT_LT(tree.pdf(DirectionTree::from_square({0.1f, 0.1f})), 1.0f / (4.0f * kPi));
+  // An empty or valueless set of points: no tree.
+  DirectionTree none;
+  DirectionTree::Point zero{{0.5f, 0.5f}, 0.0f};
+  none.build(&zero, 1, 0.01f, 1);
+  EXPECT_TRUE(none.empty());
+}
+
+// Samples come with the density pdf() gives, and fall into the square's
+// 16 x 16 cells as often as the density integrates to over them: 5 standard
+// deviations per cell, and a chi-square over the cells.
+TEST(DirectionTree, SamplesFollowItsDensity) {
+  Rng rng(7);
+  const DirectionTree tree = clustered_tree(rng);
+  constexpr int k = 16;
+  const std::vector<double> p = cell_probabilities(k, [&](Vec3f w) { return tree.pdf(w); });
+  constexpr int kN = 400000;
+  std::vector<int> count(k * k, 0);
+  for (int i = 0; i < kN; ++i) {
+    float pdf = 0.0f;
+    const Vec3f w = tree.sample({rng.next_float(), rng.next_float()}, pdf);
+    ASSERT_NEAR(length(w), 1.0f, 1e-4f);
+    ASSERT_GT(pdf, 0.0f);
+    ASSERT_EQ(pdf, tree.pdf(w));
+    ++count[static_cast<std::size_t>(cell_of(w, k))];
+  }
+  double chi2 = 0.0;
+  int cells = 0;
+  for (std::size_t c = 0; c < p.size(); ++c) {
+    const double e = kN * p[c];
+    ASSERT_NEAR(count[c], e, 5.0 * std::sqrt(e * (1.0 - p[c])) + 1.0) << "cell " << c;
+    if (e > 5.0) {
+      chi2 += (count[c] - e) * (count[c] - e) / e;
+      ++cells;
+    }
+  }
+  // Chi-square with cells - 1 degrees of freedom: mean cells - 1, sd sqrt(2 (cells - 1)); 5 sd.
+  EXPECT_LT(chi2, (cells - 1) + 5.0 * std::sqrt(2.0 * (cells - 1))) << cells << " cells";
 }
 
 // The courtyard under a sky and a sun: the floor and walls are lit mostly by
@@ -61,11 +162,12 @@ TEST(PathGuide, LearnsLeavesAndItsDensityIntegratesToOne) {
     const PathGuide::Leaf* leaf = l.guide->leaf(floor_point(rng), kUp);
     if (leaf == nullptr) continue;
     ++guided;
-    // The density is constant over a bin: one direction per bin integrates it exactly.
-    double sum = 0.0;
-    for (int b = 0; b < DirectionGrid::kBins; ++b)
-      sum += PathGuide::pdf(*leaf, DirectionGrid::sample(b, {0.5f, 0.5f}), Vec3f()) / DirectionGrid::kBinDensity;
-    EXPECT_NEAR(sum, 1.0, 1e-4) << "point " << point;
+    // Exactly (the density is constant over the direction tree's finest cells).
+    if (point < 4) {
+      double sum = 0.0;
+      for (double p : cell_probabilities(1, [&](Vec3f w) { return PathGuide::pdf(*leaf, w, Vec3f()); })) sum += p;
+      EXPECT_NEAR(sum, 1.0, 1e-4) << "point " << point;
+    }
     // And by Monte Carlo over uniform directions (pdf 1 / 4 pi), folded about
     // the floor's normal or not: within 5 standard errors.
     for (const Vec3f n : {Vec3f(), kUp}) {
@@ -83,28 +185,33 @@ TEST(PathGuide, LearnsLeavesAndItsDensityIntegratesToOne) {
   EXPECT_GT(guided, 30);
 }
 
-// Sampled bins come out as often as their probability says (5 standard
-// deviations per bin), with the density pdf() gives.
+// Sampled directions come out as often as their density says, over the
+// square's 8 x 8 cells (5 standard deviations per cell), folded about the
+// floor's normal or not, with the density pdf() gives.
 TEST(PathGuide, SamplesFollowItsDensity) {
   const Learned l = learn(test::courtyard_scene(true), 2);
   ASSERT_TRUE(l.guide && l.guide->active());
   Rng rng(11);
+  int tested = 0;
   for (int point = 0; point < 6; ++point) {
     const PathGuide::Leaf* leaf = l.guide->leaf(floor_point(rng), kUp);
     if (leaf == nullptr) continue;
+    ++tested;
+    const Vec3f n = point % 2 == 0 ? Vec3f() : kUp;
+    constexpr int k = 8;
+    const std::vector<double> p = cell_probabilities(k, [&](Vec3f w) { return PathGuide::pdf(*leaf, w, n); });
     constexpr int kN = 100000;
-    std::vector<int> count(DirectionGrid::kBins, 0);
-    for (int k = 0; k < kN; ++k) {
+    std::vector<int> count(k * k, 0);
+    for (int i = 0; i < kN; ++i) {
       float pdf = 0.0f;
-      const Vec3f w = PathGuide::sample(*leaf, {rng.next_float(), rng.next_float()}, Vec3f(), pdf);
-      ASSERT_NEAR(pdf, PathGuide::pdf(*leaf, w, Vec3f()), 1e-4f * pdf);
-      ++count[static_cast<std::size_t>(DirectionGrid::bin(w))];
+      const Vec3f w = PathGuide::sample(*leaf, {rng.next_float(), rng.next_float()}, n, pdf);
+      ASSERT_NEAR(pdf, PathGuide::pdf(*leaf, w, n), 1e-4f * pdf);
+      ++count[static_cast<std::size_t>(cell_of(w, k))];
     }
-    for (int b = 0; b < DirectionGrid::kBins; ++b) {
-      const double p = leaf->bins.pmf(static_cast<std::size_t>(b));
-      ASSERT_NEAR(count[static_cast<std::size_t>(b)], kN * p, 5.0 * std::sqrt(kN * p * (1.0 - p)) + 1.0) << "bin " << b;
-    }
+    for (std::size_t c = 0; c < p.size(); ++c)
+      ASSERT_NEAR(count[c], kN * p[c], 5.0 * std::sqrt(kN * p[c] * (1.0 - p[c])) + 1.0) << "cell " << c;
   }
+  EXPECT_GT(tested, 3);
 }
 
 // The mixture's bounce is an unbiased estimator: over many bounces from a

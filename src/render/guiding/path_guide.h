@@ -3,32 +3,34 @@
 // the indirect light comes from.
 //
 // Before the render (render.path_guiding pre-pass paths per pixel; 0 = off) a
-// fixed pre-pass traces camera paths with BSDF sampling and next-event
-// estimation (LightSet's plain choice and sampling, no MIS: emission found by
-// a BSDF ray counts only after a delta bounce, which no shadow ray can
-// replace). Each non-delta vertex records its position, its shading normal's
-// class (main axis and side), the bin of its bounce direction on an
-// equal-area grid over the sphere (DirectionGrid) and the luminance of the
-// radiance the rest of the path brought back along that direction: light
-// arriving through other surfaces (and through delta bounces), which
-// next-event estimation does not sample. The directions were BSDF-sampled, so
-// a bin's sum estimates that radiance weighted by the BSDF's density (for a
-// diffuse surface L cos: the product a bounce should follow). A midpoint tree
-// over space (SpatialTree) splits the records until a leaf holds at most
-// kLeafRecords; per leaf and normal class with at least kMinLeafRecords, the
-// distribution over bins is the records' sums, with kPriorShare of the mass
-// spread evenly (a bin without records is not left at zero).
+// fixed pre-pass traces camera paths with next-event estimation (LightSet's
+// plain choice and sampling, no MIS: emission found by a BSDF ray counts only
+// after a delta bounce, which no shadow ray can replace), in kIterations
+// iterations of doubling size, each sampling its bounces from the mixture with
+// the guide learned from the iterations before it (the first: the BSDF
+// alone). Each non-delta vertex records its position, its shading normal's
+// class (main axis and side), its bounce direction and the luminance of the
+// radiance the rest of the path brought back along that direction (light
+// arriving through other surfaces and delta bounces, which next-event
+// estimation does not sample) times |cos| over the direction's density: an
+// estimate of the incident indirect light times the cosine, whichever mixture
+// sampled it, so all iterations' records are learned from together. A
+// midpoint tree over space (SpatialTree) splits the records until a leaf
+// holds at most kLeafRecords; per leaf and normal class with at least
+// kMinLeafRecords, a DirectionTree of the records: the distribution a diffuse
+// bounce should follow (L cos).
 //
 // The integrator samples a bounce from the one-sample mixture kGuided x the
-// distribution (uniform within a bin; for a reflective BSDF, a direction
-// below the shading normal is mirrored above it, the density folded) +
-// (1 - kGuided) x the BSDF, with density kGuided x guide + (1 - kGuided) x
-// bsdf, used everywhere the BSDF's density was (the estimator's weight and
-// MIS with next-event estimation), so the estimate stays unbiased: the
-// mixture's density is positive wherever the BSDF's is. The learned data is
-// frozen before the render, a function of the seed alone, so the image is
-// bit-identical for any thread count. Where nothing was learned the density
-// is the BSDF's and the samples are Bsdf::sample's.
+// tree's distribution (for a reflective BSDF, a direction below the shading
+// normal is mirrored above it, the density folded) + (1 - kGuided) x the
+// BSDF, with density kGuided x guide + (1 - kGuided) x bsdf, used everywhere
+// the BSDF's density was (the estimator's weight and MIS with next-event
+// estimation), so the estimate stays unbiased: the mixture's density is
+// positive wherever the BSDF's is. The learned data is frozen before the
+// render, a function of the scene, the settings and the seed alone (not of
+// the samples rendered: a shard's image is the single render's), so the image
+// is bit-identical for any thread count. Where nothing was learned the
+// density is the BSDF's and the samples are Bsdf::sample's.
 #pragma once
 
 #include <cmath>
@@ -45,17 +47,47 @@ namespace pt {
 class WorkerPool;
 struct RenderScene;
 
-// Directions on the unit sphere in bins of equal solid angle: kRows bands of
-// equal height in z = cos theta, kColumns sectors of equal width in phi.
-struct DirectionGrid {
-  static constexpr int kRows = 4;
-  static constexpr int kColumns = 8;
-  static constexpr int kBins = kRows * kColumns;
-  static int bin(Vec3f w);
-  // A direction in bin b, uniformly over the bin's solid angle.
-  static Vec3f sample(int b, Vec2f u);
-  // The density per solid angle of a direction uniform over one bin.
-  static constexpr float kBinDensity = static_cast<float>(kBins) / (4.0f * kPi);
+// A distribution over directions: the sphere mapped to the unit square by
+// the equal-area cylindrical map (x = (cos theta + 1) / 2, y = phi / 2 pi),
+// and a quadtree over the square, finer where the learned energy is (Mueller
+// et al.'s directional tree). A cell's mass is (1 - kPriorShare) x its share
+// of the points' values + kPriorShare x its area, so every direction has a
+// positive density. Sampling descends the tree, halving in x by the halves'
+// masses and then in y by the chosen half's, the numbers rescaled at each
+// level (a continuous warp of the square); within a leaf cell the direction
+// is uniform over its solid angle (the map is equal-area).
+class DirectionTree {
+ public:
+  static constexpr float kPriorShare = 0.1f;
+  static constexpr int kMaxDepth = 10;  // cells of 1/4^10 of the sphere at the finest
+
+  static Vec2f to_square(Vec3f w);
+  static Vec3f from_square(Vec2f s);
+
+  struct Point {
+    Vec2f s;      // the direction, in the square
+    float value;  // its weight (>= 0)
+  };
+  // Builds from weighted points (reordered): a cell splits while it holds
+  // more than `split_share` of the total value and at least `min_points`
+  // points, to kMaxDepth. With no positive total: empty.
+  void build(Point* first, std::size_t count, float split_share, std::size_t min_points);
+
+  bool empty() const { return nodes_.empty(); }
+  int cells() const { return static_cast<int>(nodes_.size()) * 3 + 1; }
+  // The density per solid angle of w.
+  float pdf(Vec3f w) const;
+  // A direction and (pdf) its density per solid angle.
+  Vec3f sample(Vec2f u, float& pdf) const;
+
+ private:
+  struct Node {
+    int child[4] = {0, 0, 0, 0};  // quadrant x + 2 y; 0: a leaf cell (node 0 is the root, no one's child)
+    float p[4] = {0.25f, 0.25f, 0.25f, 0.25f};  // the quadrants' shares of this node's mass
+  };
+  int build_node(Point* first, std::size_t count, double total, float area, int depth, float split_share,
+                 std::size_t min_points);
+  std::vector<Node> nodes_;
 };
 
 class PathGuide {
@@ -63,7 +95,9 @@ class PathGuide {
   static constexpr float kGuided = 0.3f;        // the mixture's share of guided bounces
   static constexpr std::size_t kLeafRecords = 1024;  // a region's most records
   static constexpr std::size_t kMinLeafRecords = 128;  // fewer (of one normal class): nothing guided
-  static constexpr float kPriorShare = 0.2f;    // of a distribution, spread evenly over the bins
+  static constexpr float kSplitShare = 0.02f;   // a direction cell with more of a distribution's value splits
+  static constexpr std::size_t kMinCellRecords = 64;  // ... if it holds at least this many records
+  static constexpr int kIterations = 3;          // training passes, each twice the last one's paths
   static constexpr int kMaxPrepassDepth = 8;    // bounces of a pre-pass path
   static constexpr int64_t kMaxPrepassPaths = int64_t{1} << 18;
 
@@ -76,9 +110,9 @@ class PathGuide {
   bool active() const { return !tree_.empty(); }
   int leaves() const { return static_cast<int>(leaves_.size()); }
 
-  // A region's learned distribution over DirectionGrid's bins for one normal class (empty: none).
+  // A region's learned distribution of directions for one normal class (empty: none).
   struct Leaf {
-    Distribution1D bins;
+    DirectionTree directions;
   };
   // The leaf holding p, or nullptr where nothing is guided.
   // The distribution for a point p whose surface has normal n (a region's
@@ -88,7 +122,7 @@ class PathGuide {
   const Leaf* leaf(Vec3f p, Vec3f n) const {
     if (tree_.empty()) return nullptr;
     const Leaf* l = &leaves_[static_cast<std::size_t>(tree_.leaf(p) * kNormalClasses + normal_class(n))];
-    return l->bins.size() > 0 ? l : nullptr;
+    return l->directions.empty() ? nullptr : l;
   }
   static constexpr int kNormalClasses = 6;
   static int normal_class(Vec3f n) {
@@ -120,12 +154,14 @@ class PathGuide {
 
   struct Record {
     Vec3f p;
-    int bin;
+    Vec2f s;           // the bounce direction, DirectionTree::to_square
     int normal_class;  // of the vertex's shading normal
-    float value;  // luminance of the incident radiance / the direction's density
+    float value;       // luminance of the incident radiance x |cos| / the direction's density
   };
 
  private:
+  // Builds the tree and the leaves from all records so far (reordered).
+  void build(std::vector<Record>& records);
   void learn_leaf(Leaf& leaf, const Record* first, std::size_t count, int normal_class) const;
 
   SpatialTree tree_;

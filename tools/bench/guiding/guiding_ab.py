@@ -41,6 +41,7 @@ CASES = [
      "tools/peers/cycles/references/sponza-env-sun-32.exr", 0, 512),
     ("bunny outdoors, sky (48x48)", "tools/bench/render/bunny-env.json", 48, 48, None, 2048, 128),
     ("Cornell box (64x64)", "scenes/cornell-box.json", 64, 64, None, 1024, 64),
+    ("sunlit room, one roof opening (48x48)", "tools/bench/render/sunroom.json", None, None, None, 1024, 64),
     ("many lights, peer scene (36x24)", "tools/peers/cycles/scenes/many-lights-peer.json", None, None,
      "tools/peers/cycles/references/many-lights-peer-36x24.exr", 0, 64),
 ]
