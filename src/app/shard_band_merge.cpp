@@ -23,6 +23,12 @@ namespace {
 // A band film holds about this many bytes of state (it stays in the cache
 // while every shard's rows are added into it and it is resolved).
 constexpr std::size_t kBandBytes = std::size_t{1} << 20;
+// The streamed merge takes a band in blocks of columns of about this many
+// bytes of state, so that a block's state, the shards' records and its
+// packed pixels stay in the second-level cache while it is set, added to,
+// resolved and packed (a band of a 1080p frame with every AOV is one row of
+// 2 MiB of state).
+constexpr std::size_t kBlockBytes = std::size_t{256} << 10;
 // The streamed write hands the file about this many bytes of packed rows at
 // a time, in whole blocks of 32 rows (zip's 16, piz's 32), so that
 // OpenEXR compresses a chunk's blocks in parallel.
@@ -30,14 +36,25 @@ constexpr std::size_t kChunkBytes = std::size_t{8} << 20;
 // Chunks the pipeline may make ahead of the file while it is opened.
 constexpr int kAheadChunks = 4;
 
-// Every row of a band film resolved (a row at a time into `row`, its
-// resolved channels) and packed as the file stores them into `out`.
-void pack_band(const Film& band, const PackedLayout& packed, std::vector<float>& row, unsigned char* out) {
+// Pixels resolved at a time before they are packed: their channels stay in
+// the first-level cache between the two.
+constexpr std::size_t kPackPixels = 32;
+
+// Every pixel of a band film (a block of rows and columns) resolved
+// (kPackPixels at a time into `row`, their resolved channels) and packed as
+// the file stores them into `out`, its first row's first pixel, whose rows
+// are `row_bytes` apart.
+void pack_block(const Film& band, const PackedLayout& packed, std::vector<float>& row, unsigned char* out,
+                std::size_t row_bytes) {
   const auto width = static_cast<std::size_t>(band.crop().width());
   for (int y = 0; y < band.crop().height(); ++y) {
-    const std::size_t first = static_cast<std::size_t>(y) * width;
-    band.resolve_channels(first, width, row.data());
-    pack_pixels(packed, row.data(), width, out + first * packed.pixel_bytes);
+    unsigned char* to = out + static_cast<std::size_t>(y) * row_bytes;
+    const std::size_t pixel = static_cast<std::size_t>(y) * width;
+    for (std::size_t first = 0; first < width; first += kPackPixels) {
+      const std::size_t n = std::min(kPackPixels, width - first);
+      band.resolve_channels(pixel + first, n, row.data());
+      pack_pixels(packed, row.data(), n, to + first * packed.pixel_bytes);
+    }
   }
 }
 
@@ -72,7 +89,8 @@ struct ShardMerger::Bands {
   Film shape;  // the merged film's frame and AOVs, no pixels
   std::vector<AovRequest> aovs;
   ChannelType beauty;
-  int rows = 1;  // rows of a band film
+  int rows = 1;     // rows of a band film
+  int columns = 1;  // columns of a block of a band (the streamed merge)
   std::vector<StateView> views;
   std::vector<std::map<Key, std::pair<bool, int>>> orders;
   std::vector<std::atomic<std::size_t>> bad;  // per shard: the first pixel it is refused at
@@ -92,6 +110,8 @@ bool ShardMerger::view_states(const std::vector<std::string_view>& states, std::
                                    beauty, states.size());  // the shape: no pixels
   const std::size_t pixel_bytes = sizeof(PixelSum) + static_cast<std::size_t>(b->shape.aov_slots()) * sizeof(ExactSum);
   b->rows = static_cast<int>(std::max<std::size_t>(1, kBandBytes / (pixel_bytes * static_cast<std::size_t>(w.width()))));
+  b->columns = static_cast<int>(std::clamp<std::size_t>(kBlockBytes / (pixel_bytes * static_cast<std::size_t>(b->rows)), 1,
+                                                         static_cast<std::size_t>(std::max(1, w.width()))));
   // Every state viewed (its size checked) and its precedence taken, in the
   // order checked, before anything is added (as add() would, one by one).
   for (std::size_t i = 0; i < states.size(); ++i) {
@@ -117,28 +137,37 @@ LayeredImage ShardMerger::layout() const {
   return out;
 }
 
-void ShardMerger::add_band(Bands& b, Film& band, int y0, int y1) const {
-  const PixelRect& w = merged_.window;
-  // The first state with pixels in the band, when it covers the whole band
-  // (a share, or a tile as wide as the window), sets the band instead of
-  // being added to a cleared one: the same bits (Film::set_state_rows).
-  bool cleared = false;
+std::vector<StateRules> ShardMerger::band_rules(const Bands& b, int y0, int y1) const {
+  std::vector<StateRules> out(b.views.size());
   for (std::size_t i = 0; i < b.views.size(); ++i) {
     const PixelRect& c = b.views[i].crop;
     const int from = std::max(y0, c.y0), to = std::min(y1, c.y1);
-    if (from >= to) continue;
-    const StateRules r = rules(infos_[i], b.orders[i], from, to);
+    if (from < to) out[i] = rules(infos_[i], b.orders[i], from, to);
+  }
+  return out;
+}
+
+void ShardMerger::add_band(Bands& b, Film& band, const PixelRect& rect, const std::vector<StateRules>& rules) const {
+  // The first state with pixels in the block, when it covers the whole block
+  // (a share, or a tile that holds it), sets the block instead of being
+  // added to a cleared one: the same bits (Film::set_state_rect).
+  bool cleared = false;
+  for (std::size_t i = 0; i < b.views.size(); ++i) {
+    const PixelRect& c = b.views[i].crop;
+    const PixelRect in{std::max(rect.x0, c.x0), std::max(rect.y0, c.y0), std::min(rect.x1, c.x1),
+                       std::min(rect.y1, c.y1)};
+    if (in.empty()) continue;
     std::size_t refused = SIZE_MAX;
-    if (!cleared && c.x0 == w.x0 && c.x1 == w.x1 && from == y0 && to == y1) {
-      refused = band.set_state_rows(b.views[i], r, from, to);
+    if (!cleared && in == rect) {
+      refused = band.set_state_rect(b.views[i], rules[i], rect);
     } else {
-      if (!cleared) band.recrop({w.x0, y0, w.x1, y1});
-      refused = band.add_state_rows(b.views[i], r, from, to);
+      if (!cleared) band.recrop(rect);
+      refused = band.add_state_rect(b.views[i], rules[i], in);
     }
     cleared = true;
     if (refused != SIZE_MAX) lower(b.bad[i], refused);
   }
-  if (!cleared) band.recrop({w.x0, y0, w.x1, y1});
+  if (!cleared) band.recrop(rect);
 }
 
 bool ShardMerger::refused(const Bands& b, std::string& error) const {
@@ -165,7 +194,7 @@ bool ShardMerger::merge_layers(const std::vector<std::string_view>& states, Laye
   context.capture_fp_settings();
   tbb::parallel_for(tbb::blocked_range<int>(w.y0, w.y1, b.rows), [&](const tbb::blocked_range<int>& r) {
     Film& band = bands.local();
-    add_band(b, band, r.begin(), r.end());
+    add_band(b, band, {w.x0, r.begin(), w.x1, r.end()}, band_rules(b, r.begin(), r.end()));
     band.resolve_into(out);
   }, tbb::simple_partitioner(), context);
   return !refused(b, error);
@@ -175,7 +204,7 @@ bool ShardMerger::merge_streamed(const std::shared_future<ExrBandWriter*>& file,
   refusal = false;
   Bands& b = *bands_;
   const PixelRect& w = merged_.window;
-  // A row's resolved channels, then packed into its chunk as the file stores them.
+  // Pixels' resolved channels, then packed into their chunk as the file stores them.
   const PackedLayout packed = packed_layout(layout());
   const std::size_t row_bytes = packed.pixel_bytes * static_cast<std::size_t>(w.width());
   // Chunks in flight: two per thread, and a few more made while the file is
@@ -190,7 +219,7 @@ bool ShardMerger::merge_streamed(const std::shared_future<ExrBandWriter*>& file,
   const PixelRect first_band{w.x0, w.y0, w.x1, std::min(w.y1, w.y0 + b.rows)};
   tbb::enumerable_thread_specific<Film> bands([&] { return Film(merged_.width, merged_.height, first_band, b.aovs); });
   tbb::enumerable_thread_specific<std::vector<float>> resolved(
-      [&] { return std::vector<float>(packed.channels * static_cast<std::size_t>(w.width())); });
+      [&] { return std::vector<float>(packed.channels * kPackPixels); });
   // Chunks of packed rows, reused: as many as the pipeline holds at once.
   struct Chunk {
     int y0 = 0, y1 = 0;
@@ -227,8 +256,12 @@ bool ShardMerger::merge_streamed(const std::shared_future<ExrBandWriter*>& file,
                                            [&](Chunk* c) {
                                              tbb::parallel_for(tbb::blocked_range<int>(c->y0, c->y1, b.rows), [&](const tbb::blocked_range<int>& r) {
                                                Film& band = bands.local();
-                                               add_band(b, band, r.begin(), r.end());
-                                               pack_band(band, packed, resolved.local(), c->packed.get() + static_cast<std::size_t>(r.begin() - c->y0) * row_bytes);
+                                               const std::vector<StateRules> rules = band_rules(b, r.begin(), r.end());
+                                               unsigned char* rows = c->packed.get() + static_cast<std::size_t>(r.begin() - c->y0) * row_bytes;
+                                               for (int x0 = w.x0; x0 < w.x1; x0 += b.columns) {
+                                                 add_band(b, band, {x0, r.begin(), std::min(w.x1, x0 + b.columns), r.end()}, rules);
+                                                 pack_block(band, packed, resolved.local(), rows + static_cast<std::size_t>(x0 - w.x0) * packed.pixel_bytes, row_bytes);
+                                               }
                                              }, tbb::simple_partitioner());
                                              return c;
                                            }) &

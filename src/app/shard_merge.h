@@ -118,8 +118,12 @@ class ShardMerger {
   // The band merge's state (shard_band_merge.cpp): the viewed states, their
   // precedence, and per shard the first pixel refused.
   struct Bands;
-  // Adds every shard's rows [y0, y1) of a band into `band` (recropped to them).
-  void add_band(Bands& b, Film& band, int y0, int y1) const;
+  // Per shard, what its state may add in rows [y0, y1) of a band (rules();
+  // an empty crop where it has none of them).
+  std::vector<StateRules> band_rules(const Bands& b, int y0, int y1) const;
+  // Adds every shard's pixels of `rect`, a block of a band's rows whose
+  // band_rules are `rules`, into `band` (moved to `rect`).
+  void add_band(Bands& b, Film& band, const PixelRect& rect, const std::vector<StateRules>& rules) const;
   // The refusal of the first shard (in order) that had a pixel refused; false if none.
   bool refused(const Bands& b, std::string& error) const;
   std::string missing_tiles() const;

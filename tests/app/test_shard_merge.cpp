@@ -385,6 +385,54 @@ TEST(FilmMerge, SettingRowsGivesTheBitsOfAddingThemToAClearedFilm) {
   }
 }
 
+// The streamed merge takes a band in blocks of columns (Film::set_state_rect,
+// add_state_rect): every block of a band, set from one state and added to
+// from another, holds the bits the whole band holds there, and setting a
+// block gives the bits of adding it to a cleared block.
+TEST(FilmMerge, BlocksOfABandGiveTheBandsBits) {
+  constexpr int w = 7, h = 5, y0 = 1, y1 = 4;
+  Film a(w, h, {0, 0, w, h}, all_aovs()), b(w, h, {0, 0, w, h}, all_aovs());
+  render(a, a.crop(), {0, 3});
+  render(b, b.crop(), {3, 7});
+  const std::string sa = state(a), sb = state(b);
+  StateView va, vb;
+  std::string error;
+  ASSERT_TRUE(a.view_state(sa, a.crop(), a.crop(), va, error)) << error;
+  ASSERT_TRUE(b.view_state(sb, b.crop(), b.crop(), vb, error)) << error;
+  const std::size_t n = static_cast<std::size_t>(w * (y1 - y0));
+  const StateRules ra{a.crop(), std::vector<uint8_t>(n, 0), std::vector<uint64_t>(n, 3), y0 * w};
+  const StateRules rb{b.crop(), std::vector<uint8_t>(n, 0), std::vector<uint64_t>(n, 4), y0 * w};
+  Film whole(w, h, {0, y0, w, y1}, all_aovs());
+  ASSERT_EQ(whole.set_state_rows(va, ra, y0, y1), SIZE_MAX);
+  ASSERT_EQ(whole.add_state_rows(vb, rb, y0, y1), SIZE_MAX);
+  int blocks = 0;
+  for (int x0 = 0; x0 < w; x0 += 3) {
+    const PixelRect block{x0, y0, std::min(w, x0 + 3), y1};
+    Film set(w, h, {0, 0, w, h}, all_aovs()), added(w, h, {0, 0, w, h}, all_aovs());
+    ASSERT_EQ(set.set_state_rect(va, ra, block), SIZE_MAX);
+    EXPECT_EQ(set.crop(), block);
+    added.recrop(block);
+    ASSERT_EQ(added.add_state_rect(va, ra, block), SIZE_MAX);
+    EXPECT_EQ(state(set), state(added)) << "block at " << x0;
+    ASSERT_EQ(set.add_state_rect(vb, rb, block), SIZE_MAX);
+    for (int y = block.y0; y < block.y1; ++y)
+      for (int x = block.x0; x < block.x1; ++x) {
+        const PixelSum &p = set.sum(x, y), &q = whole.sum(x, y);
+        EXPECT_TRUE(p.r == q.r && p.g == q.g && p.b == q.b && p.weight == q.weight && p.coverage == q.coverage &&
+                    p.samples == q.samples) << x << ", " << y;
+        EXPECT_EQ(p.samples, 7u);
+        for (const AovRequest& r : all_aovs()) {
+          const std::vector<float> u = set.aov_value(r.type, x, y), v = whole.aov_value(r.type, x, y);
+          ASSERT_EQ(u.size(), v.size());
+          EXPECT_EQ(std::memcmp(u.data(), v.data(), u.size() * sizeof(float)), 0)
+              << aov_info(r.type).name << " at " << x << ", " << y;
+        }
+      }
+    ++blocks;
+  }
+  EXPECT_EQ(blocks, 3);
+}
+
 // ---------------------------------------------------------------- shares and tiles
 
 TEST(Shards, SharesAndTilesCoverEverythingOnce) {

@@ -170,6 +170,7 @@ Film::Film(int width, int height, PixelRect crop, std::vector<AovRequest> aovs)
     sum_offset_.push_back(sum_stride_);
     value_offset_.push_back(value_stride_);
     channel_count_.push_back(aov_channel_count(r));
+    info_.push_back(&info);
     const int ranks = info.accumulation == Accumulation::Ranked ? r.ranks : 0, count = aov_state_sums(r);
     if (ranks == 0 && !sum_runs_.empty() && sum_runs_.back().ranks == 0) {
       sum_runs_.back().count += count;
@@ -257,7 +258,7 @@ void Film::add_aovs(int x, int y, const AovScratch& scratch) {
   add_sums(pixel, scratch.sums.data());
   double* values = aov_values_.data() + pixel * static_cast<std::size_t>(value_stride_);
   for (std::size_t i = 0; i < aovs_.size(); ++i) {
-    const AovInfo& info = aov_info(aovs_[i].type);
+    const AovInfo& info = *info_[i];
     double* d = values + value_offset_[i];
     const double* s = scratch.values.data() + value_offset_[i];
     if (info.accumulation == Accumulation::FirstSample) {
@@ -305,38 +306,48 @@ void Film::add_sums(std::size_t pixel, const ExactSum* s) {
 }
 
 void Film::aov_values(std::size_t layer, std::size_t pixel, float* out) const {
-  const AovType type = aovs_[layer].type;
-  const AovInfo& info = aov_info(type);
-  const ExactSum* s = aov_sums_.data() + pixel * static_cast<std::size_t>(sum_stride_) + sum_offset_[layer];
-  const double* d = aov_values_.data() + pixel * static_cast<std::size_t>(value_stride_) + value_offset_[layer];
   const PixelSum& p = pixels_[pixel];
-  std::fill(out, out + channel_count_[layer], 0.0f);
+  aov_values(layer, p, p.weight.is_zero() ? 0.0 : p.weight.value(),
+             aov_sums_.data() + pixel * static_cast<std::size_t>(sum_stride_) + sum_offset_[layer],
+             aov_values_.data() + pixel * static_cast<std::size_t>(value_stride_) + value_offset_[layer], out);
+}
+
+void Film::aov_values(std::size_t layer, const PixelSum& p, double weight, const ExactSum* s, const double* d,
+                      float* out) const {
+  const AovInfo& info = *info_[layer];
+  const int n = info.channels;
   switch (info.accumulation) {
     case Accumulation::FilteredAverage:
       if (!p.weight.is_zero()) {
-        const double weight = p.weight.value();
-        for (int c = 0; c < info.channels; ++c) out[c] = static_cast<float>(s[c].value() / weight);
+        for (int c = 0; c < n; ++c) out[c] = static_cast<float>(s[c].value() / weight);
+      } else {
+        for (int c = 0; c < n; ++c) out[c] = 0.0f;
       }
       // A reflectance: a filter's negative lobes must not make it negative.
-      if (type == AovType::Albedo)
+      if (info.type == AovType::Albedo)
         for (int c = 0; c < 3; ++c) out[c] = std::max(out[c], 0.0f);
       break;
-    case Accumulation::Ranked:
-      ranked_values(s, aovs_[layer].ranks, p.weight, out);
+    case Accumulation::Ranked: {
+      const int ranks = aovs_[layer].ranks;
+      ranked_values(s, ranks, p.weight, out);
+      for (int c = 2 * ranks; c < channel_count_[layer]; ++c) out[c] = 0.0f;  // an odd rank's last pair
       break;
+    }
     case Accumulation::FirstSample:
-      for (int c = 0; c < info.channels; ++c) out[c] = static_cast<float>(d[c]);
+      for (int c = 0; c < n; ++c) out[c] = static_cast<float>(d[c]);
       break;
     case Accumulation::Sum:
-      if (type == AovType::Samples) {
+      if (info.type == AovType::Samples) {
         out[0] = static_cast<float>(p.samples);
       } else if (p.samples >= 2) {  // variance of the mean: unbiased sample variance / n
-        const double n = static_cast<double>(p.samples);
+        const double count = static_cast<double>(p.samples);
         for (int c = 0; c < 3; ++c) {
-          const double sum = s[c].value(), mean = sum / n;
-          const double var = std::max(0.0, (s[3 + c].value() - sum * mean) / (n - 1.0));
-          out[c] = static_cast<float>(var / n);
+          const double sum = s[c].value(), mean = sum / count;
+          const double var = std::max(0.0, (s[3 + c].value() - sum * mean) / (count - 1.0));
+          out[c] = static_cast<float>(var / count);
         }
+      } else {
+        for (int c = 0; c < channel_count_[layer]; ++c) out[c] = 0.0f;
       }
       break;
     case Accumulation::Max:
@@ -385,15 +396,19 @@ std::size_t Film::resolved_channels() const {
 }
 
 void Film::resolve_pixel(std::size_t pixel, float* out) const {
-  const RGB v = pixels_[pixel].value();
+  const PixelSum& p = pixels_[pixel];
+  const RGB v = p.value();
   out[0] = v.r;
   out[1] = v.g;
   out[2] = v.b;
-  out[3] = pixels_[pixel].alpha();
+  out[3] = p.alpha();
   out += 4;
   // Each AOV's channels follow the beauty in request order, as its layers do (layer_layout).
+  const double weight = p.weight.is_zero() ? 0.0 : p.weight.value();
+  const ExactSum* s = aov_sums_.data() + pixel * static_cast<std::size_t>(sum_stride_);
+  const double* d = aov_values_.data() + pixel * static_cast<std::size_t>(value_stride_);
   for (std::size_t l = 0; l < aovs_.size(); ++l) {
-    aov_values(l, pixel, out);
+    aov_values(l, p, weight, s + sum_offset_[l], d + value_offset_[l], out);
     out += channel_count_[l];
   }
 }

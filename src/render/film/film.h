@@ -21,6 +21,7 @@
 #include <iosfwd>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "core/color.h"
@@ -252,6 +253,12 @@ class Film {
   // first. The same return; after a refusal the pixels from the refused one
   // on are cleared, as add_state_rows leaves them in a cleared film.
   std::size_t set_state_rows(const StateView& view, const StateRules& rules, int y0, int y1);
+  // The same over `rect`, a block of the state's crop (not necessarily whole
+  // rows; `rules` cover its rows): add_state_rect adds the block (inside this
+  // film's crop), set_state_rect moves this film to the block and sets it.
+  // The pixels are taken row by row; the first refused pixel or SIZE_MAX.
+  std::size_t add_state_rect(const StateView& view, const StateRules& rules, const PixelRect& rect);
+  std::size_t set_state_rect(const StateView& view, const StateRules& rules, const PixelRect& rect);
   // The message for a pixel add_state_rows refused.
   std::string refusal(const StateView& view, std::size_t pixel, const StateRules& rules) const;
   // The bytes of one pixel's record in a film state of this film's AOVs
@@ -301,11 +308,11 @@ class Film {
   // written), or SIZE_MAX. The pixels before it are added.
   std::size_t add_records(const char* records, std::size_t first, std::size_t count,
                           const std::vector<StateException>& exceptions, const StateRules& rules);
-  // set_state_rows' work: pixels [first, first + count) of the state
-  // decoded straight into this film's pixels 0, 1, ... (the film's crop is
-  // their rows); the first refused pixel or SIZE_MAX.
+  // set_state_rect's work: pixels [first, first + count) of the state
+  // decoded straight into this film's pixels to, to + 1, ...; the first
+  // refused pixel or SIZE_MAX.
   std::size_t set_records(const char* records, std::size_t first, std::size_t count,
-                          const std::vector<StateException>& exceptions, const StateRules& rules);
+                          const std::vector<StateException>& exceptions, const StateRules& rules, std::size_t to);
   // A pixel's plain AOV values `v`, decoded from a state, made what
   // add_values makes of them in a cleared pixel.
   void first_values(double* v) const;
@@ -319,6 +326,10 @@ class Film {
   void resolve_pixel(std::size_t pixel, float* out) const;
   // The final values of AOV number `layer` of pixel number `pixel` (in the crop, row-major) into `out`.
   void aov_values(std::size_t layer, std::size_t pixel, float* out) const;
+  // aov_values of pixel `p` whose weight is `weight` (p.weight.value(), 0 for
+  // none), its AOV sums `s` and values `d` (the layer's own).
+  void aov_values(std::size_t layer, const PixelSum& p, double weight, const ExactSum* s, const double* d,
+                  float* out) const;
   std::size_t index(int x, int y) const {
     return static_cast<std::size_t>(y - crop_.y0) * static_cast<std::size_t>(crop_.width()) +
            static_cast<std::size_t>(x - crop_.x0);
@@ -336,6 +347,7 @@ class Film {
   // Per request: its first sum and first value in a pixel's AOV blocks.
   std::vector<int> sum_offset_, value_offset_;
   std::vector<int> channel_count_;  // per request: aov_channel_count()
+  std::vector<const AovInfo*> info_;  // per request: aov_info(), looked up once (the adds and resolves are per pixel)
   int sum_stride_ = 0, value_stride_ = 0;  // per pixel, for all AOVs
   bool wants_geometry_ = false, wants_lighting_ = false;
   std::vector<SumRun> sum_runs_;    // the AOV sums, in order, adjacent plain sums in one run
@@ -343,6 +355,8 @@ class Film {
   std::vector<double> aov_values_;  // pixels * value_stride_
   NonFiniteReport non_finite_;
   std::vector<uint8_t> sum_kinds_;  // per AOV sum: how a state's record holds it (film_state_codec.cpp)
+  // sum_kinds_ as runs of one kind (kind, count), in order: decode_record's loops.
+  std::vector<std::pair<uint8_t, int>> kind_runs_;
   std::size_t record_bytes_ = 0;    // a state's record of one pixel
 };
 

@@ -213,6 +213,15 @@ void for_each_block(std::size_t items, F&& f) {
   });
 }
 
+// Asks for the record `ahead` records after `record` (of `bytes`) to be
+// brought into the cache: a state's records stream from a mapped file, whose
+// pages the hardware prefetcher does not cross.
+constexpr std::size_t kPrefetchRecords = 4;
+inline void prefetch_record(const char* record, std::size_t bytes) {
+  const char* ahead = record + kPrefetchRecords * bytes;
+  for (std::size_t at = 0; at < bytes; at += 64) __builtin_prefetch(ahead + at);
+}
+
 // The exceptions of pixel `pixel` onwards: the first of them.
 const StateException* exceptions_from(const std::vector<StateException>& ex, std::size_t pixel) {
   return ex.data() + (std::lower_bound(ex.begin(), ex.end(), pixel,
@@ -325,6 +334,7 @@ std::size_t Film::add_records(const char* records, std::size_t first, std::size_
   std::vector<double> values(static_cast<std::size_t>(value_stride_));
   const StateException* ex = exceptions_from(exceptions, first);
   for (std::size_t i = first; i < first + count; ++i, records += record_bytes_) {
+    prefetch_record(records, record_bytes_);
     const StateException* end = exceptions_end(exceptions, ex, i);
     PixelSum sum;
     if (!decode_record(records, ex, end, sum, sums.data(), values.data()) ||
@@ -340,12 +350,14 @@ std::size_t Film::add_records(const char* records, std::size_t first, std::size_
 }
 
 std::size_t Film::set_records(const char* records, std::size_t first, std::size_t count,
-                              const std::vector<StateException>& exceptions, const StateRules& rules) {
+                              const std::vector<StateException>& exceptions, const StateRules& rules,
+                              std::size_t to0) {
   const auto stride = static_cast<std::size_t>(sum_stride_), vstride = static_cast<std::size_t>(value_stride_);
   const StateException* ex = exceptions_from(exceptions, first);
   for (std::size_t i = first; i < first + count; ++i, records += record_bytes_) {
+    prefetch_record(records, record_bytes_);
     const StateException* end = exceptions_end(exceptions, ex, i);
-    const std::size_t to = i - first;
+    const std::size_t to = to0 + (i - first);
     ExactSum* sums = aov_sums_.data() + to * stride;
     double* values = aov_values_.data() + to * vstride;
     // Integer sums: 0 + x is x, and valid Cryptomatte slots (ids increasing,
@@ -445,25 +457,39 @@ bool Film::view_state(std::string_view state, const PixelRect& crop, const Pixel
 }
 
 std::size_t Film::add_state_rows(const StateView& view, const StateRules& rules, int y0, int y1) {
-  const auto width = static_cast<std::size_t>(view.crop.width());
-  const std::size_t first = static_cast<std::size_t>(y0 - view.crop.y0) * width;
-  const std::size_t count = static_cast<std::size_t>(y1 - y0) * width;
-  return add_records(view.records + first * record_bytes_, first, count, view.exceptions, rules);
+  return add_state_rect(view, rules, {view.crop.x0, y0, view.crop.x1, y1});
 }
 
 std::size_t Film::set_state_rows(const StateView& view, const StateRules& rules, int y0, int y1) {
-  move_to({view.crop.x0, y0, view.crop.x1, y1});
-  const auto width = static_cast<std::size_t>(view.crop.width());
-  const std::size_t first = static_cast<std::size_t>(y0 - view.crop.y0) * width;
-  const std::size_t count = static_cast<std::size_t>(y1 - y0) * width;
-  const std::size_t bad = set_records(view.records + first * record_bytes_, first, count, view.exceptions, rules);
-  if (bad != SIZE_MAX) {  // the pixels from the refused one on: as in a cleared film
-    const auto from = static_cast<std::ptrdiff_t>(bad - first);
-    std::fill(pixels_.begin() + from, pixels_.end(), PixelSum{});
-    std::fill(aov_sums_.begin() + from * sum_stride_, aov_sums_.end(), ExactSum{});
-    std::fill(aov_values_.begin() + from * value_stride_, aov_values_.end(), 0.0);
+  return set_state_rect(view, rules, {view.crop.x0, y0, view.crop.x1, y1});
+}
+
+std::size_t Film::add_state_rect(const StateView& view, const StateRules& rules, const PixelRect& rect) {
+  const auto width = static_cast<std::size_t>(view.crop.width()), count = static_cast<std::size_t>(rect.width());
+  for (int y = rect.y0; y < rect.y1; ++y) {
+    const std::size_t first = static_cast<std::size_t>(y - view.crop.y0) * width + static_cast<std::size_t>(rect.x0 - view.crop.x0);
+    const std::size_t bad = add_records(view.records + first * record_bytes_, first, count, view.exceptions, rules);
+    if (bad != SIZE_MAX) return bad;
   }
-  return bad;
+  return SIZE_MAX;
+}
+
+std::size_t Film::set_state_rect(const StateView& view, const StateRules& rules, const PixelRect& rect) {
+  move_to(rect);
+  const auto width = static_cast<std::size_t>(view.crop.width()), count = static_cast<std::size_t>(rect.width());
+  for (int y = rect.y0; y < rect.y1; ++y) {
+    const std::size_t first = static_cast<std::size_t>(y - view.crop.y0) * width + static_cast<std::size_t>(rect.x0 - view.crop.x0);
+    const std::size_t to = static_cast<std::size_t>(y - rect.y0) * count;
+    const std::size_t bad = set_records(view.records + first * record_bytes_, first, count, view.exceptions, rules, to);
+    if (bad != SIZE_MAX) {  // the pixels from the refused one on: as in a cleared film
+      const auto from = static_cast<std::ptrdiff_t>(to + (bad - first));
+      std::fill(pixels_.begin() + from, pixels_.end(), PixelSum{});
+      std::fill(aov_sums_.begin() + from * sum_stride_, aov_sums_.end(), ExactSum{});
+      std::fill(aov_values_.begin() + from * value_stride_, aov_values_.end(), 0.0);
+      return bad;
+    }
+  }
+  return SIZE_MAX;
 }
 
 bool Film::add_state(std::string_view state, const StateRules& rules, std::string& error) {

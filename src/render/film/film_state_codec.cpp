@@ -89,6 +89,11 @@ void Film::init_state_layout() {
     for (int k = 0; k < run.ranks; ++k) sum_kinds_[static_cast<std::size_t>(run.offset + 2 * k)] = kNarrow32;
   record_bytes_ = kBeautyBytes + static_cast<std::size_t>(value_stride_) * sizeof(float);
   for (uint8_t kind : sum_kinds_) record_bytes_ += kind == kWide64 ? sizeof(int64_t) : sizeof(uint32_t);
+  kind_runs_.clear();
+  for (uint8_t kind : sum_kinds_) {
+    if (kind_runs_.empty() || kind_runs_.back().first != kind) kind_runs_.emplace_back(kind, 0);
+    ++kind_runs_.back().second;
+  }
 }
 
 void Film::encode_record(std::size_t pixel, uint64_t number, char* out, std::vector<StateException>* ex) const {
@@ -122,18 +127,21 @@ bool Film::decode_record(const char* in, const StateException* ex, const StateEx
   for (ExactSum* b : beauty) *b = from_int64(load<int64_t>(in));
   p.samples = load<uint32_t>(in);
   const auto n = static_cast<std::size_t>(sum_stride_), m = static_cast<std::size_t>(value_stride_);
-  for (std::size_t k = 0; k < n; ++k) {
-    if (sum_kinds_[k] == kWide64) {
-      sums[k] = from_int64(load<int64_t>(in));
+  ExactSum* to = sums;
+  for (const auto& [kind, count] : kind_runs_) {  // runs of one kind: no branch per slot
+    if (kind == kWide64) {
+      for (int k = 0; k < count; ++k) *to++ = from_int64(load<int64_t>(in));
     } else {
-      sums[k].set_raw(load<uint32_t>(in));
+      for (int k = 0; k < count; ++k) (to++)->set_raw(load<uint32_t>(in));
     }
   }
+  bool plain = true;
   for (std::size_t k = 0; k < m; ++k) {
     const auto bits = load<uint32_t>(in);
-    if (!plain_float(bits)) return false;
+    plain = plain && plain_float(bits);
     values[k] = static_cast<double>(std::bit_cast<float>(bits));
   }
+  if (!plain) return false;
   // The exceptions' slots hold 0 in the record; their values replace them.
   for (const StateException* e = ex; e != ex_end; ++e) {
     std::size_t at = 0, width = sizeof(int64_t);  // the slot's place in the record
