@@ -27,6 +27,26 @@ inline constexpr int kStackSize = 512;
 // JCGT 2013; pbrt-v4). gamma(n) = n u / (1 - n u), u = 2^-24.
 inline constexpr float kExitScale = 1.0f + 2.0f * ((3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f));
 
+// The reciprocal direction of axis a for the exit planes, with the widening
+// folded in: an exit is (plane - org) * (rdir * kExitScale), the same number
+// of roundings as ((plane - org) * rdir) * kExitScale, the same bound (Ize),
+// and no multiply after the node's minimum (tmax is widened by the same
+// factor, outside the chain that waits for the node).
+inline float exit_rdir(const RayQuery& q, int a) { return q.rdir[a] * kExitScale; }
+
+// Whether a slab distance of this ray can be NaN: (plane - org) * r is 0 * inf
+// only where r is infinite (a zero or tiny direction component, or rdir *
+// kExitScale overflowing). Only such rays need the NaN-safe order of the
+// bounds; the others may take them in any order.
+inline bool slab_nan_possible(const RayQuery& q) {
+  bool inf = false;
+  for (int a = 0; a < 3; ++a) {
+    const float r = exit_rdir(q, a);
+    inf |= !(q.rdir[a] - q.rdir[a] == 0.0f) || !(r - r == 0.0f);  // x - x is NaN for +-inf (and NaN)
+  }
+  return inf;
+}
+
 struct StackEntry {
   uint32_t ref;
   float dist;  // entry distance of the box; stale once a closer hit is found

@@ -236,24 +236,36 @@ class Avx2Ops {
   explicit Avx2Ops(const RayQuery& q)
       : org_{_mm256_set1_ps(q.org[0]), _mm256_set1_ps(q.org[1]), _mm256_set1_ps(q.org[2])},
         rdir_{_mm256_set1_ps(q.rdir[0]), _mm256_set1_ps(q.rdir[1]), _mm256_set1_ps(q.rdir[2])},
+        rdir_far_{_mm256_set1_ps(kernel::exit_rdir(q, 0)), _mm256_set1_ps(kernel::exit_rdir(q, 1)),
+                  _mm256_set1_ps(kernel::exit_rdir(q, 2))},
         tmin_(_mm256_set1_ps(q.tmin)),
         near_{q.near[0] * 8, q.near[1] * 8, q.near[2] * 8},
         far_{(q.near[0] ^ 1u) * 8, (q.near[1] ^ 1u) * 8, (q.near[2] ^ 1u) * 8},
+        nan_safe_(kernel::slab_nan_possible(q)),
         tri8_(q) {}
 
-  // Slab test; see kernel_sse2.cpp for the NaN rule (max/min keep their
-  // second operand, the running bound, when the first is NaN).
+  // Slab test; see kernel.h (exit_rdir, slab_nan_possible) and kernel_sse2.cpp
+  // for the NaN rule (max/min keep their second operand, the running bound,
+  // when the first is NaN). Exits are widened through rdir_far_ and tmax * kExitScale,
+  // so no multiply follows the minimum; a ray without a NaN to fear takes
+  // the bounds as balanced trees (two levels where the chain takes three).
   uint32_t intersect_node(const Node8& node, float tmax, float* dist) const {
     const float* b = &node.bounds[0][0];
     const __m256 nx = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(b + near_[0]), org_[0]), rdir_[0]);
     const __m256 ny = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(b + 16 + near_[1]), org_[1]), rdir_[1]);
     const __m256 nz = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(b + 32 + near_[2]), org_[2]), rdir_[2]);
-    const __m256 fx = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(b + far_[0]), org_[0]), rdir_[0]);
-    const __m256 fy = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(b + 16 + far_[1]), org_[1]), rdir_[1]);
-    const __m256 fz = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(b + 32 + far_[2]), org_[2]), rdir_[2]);
-    const __m256 tnear = _mm256_max_ps(nx, _mm256_max_ps(ny, _mm256_max_ps(nz, tmin_)));
-    const __m256 tfar = _mm256_mul_ps(_mm256_min_ps(fx, _mm256_min_ps(fy, _mm256_min_ps(fz, _mm256_set1_ps(tmax)))),
-                                      _mm256_set1_ps(kernel::kExitScale));
+    const __m256 fx = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(b + far_[0]), org_[0]), rdir_far_[0]);
+    const __m256 fy = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(b + 16 + far_[1]), org_[1]), rdir_far_[1]);
+    const __m256 fz = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(b + 32 + far_[2]), org_[2]), rdir_far_[2]);
+    const __m256 tmax8 = _mm256_set1_ps(tmax * kernel::kExitScale);
+    __m256 tnear, tfar;
+    if (nan_safe_) {
+      tnear = _mm256_max_ps(nx, _mm256_max_ps(ny, _mm256_max_ps(nz, tmin_)));
+      tfar = _mm256_min_ps(fx, _mm256_min_ps(fy, _mm256_min_ps(fz, tmax8)));
+    } else {
+      tnear = _mm256_max_ps(_mm256_max_ps(nx, ny), _mm256_max_ps(nz, tmin_));
+      tfar = _mm256_min_ps(_mm256_min_ps(fx, fy), _mm256_min_ps(fz, tmax8));
+    }
     _mm256_store_ps(dist, tnear);
     return static_cast<uint32_t>(_mm256_movemask_ps(_mm256_cmp_ps(tnear, tfar, _CMP_LE_OQ)));
   }
@@ -275,8 +287,9 @@ class Avx2Ops {
   }
 
  private:
-  __m256 org_[3], rdir_[3], tmin_;
+  __m256 org_[3], rdir_[3], rdir_far_[3], tmin_;
   uint32_t near_[3], far_[3];
+  bool nan_safe_;
   TriangleRay<8> tri8_;
 };
 
