@@ -370,39 +370,6 @@ TEST(PathAgreement, EveryInfiniteLightAtEveryVertexOnlyWithAFewInfiniteLights) {
   EXPECT_TRUE(unchanged(*cornell, 0)) << "the Cornell box";
 }
 
-// ---------------------------------------------------------------- shadow-ray roulette
-// IntegratorSettings::shadow_roulette traces a light sample's shadow ray with
-// probability (its unoccluded contribution) / (threshold x the path's estimate
-// so far) where that is below 1, and divides by it: the image converges to the
-// one that traces every shadow ray (same test: 16 seeds, every block within 5
-// combined standard errors) in the courtyard under a sun and a sky (each light
-// at every vertex, plain and light-guided) and in the MIS scene (one light
-// chosen per vertex: area lights and a sky), with a threshold of 1, far above
-// the default, so that most shadow rays after the first vertex are rouletted.
-Image render_shadow_roulette(const SceneDescription& d, float shadow_roulette, int light_guiding, uint64_t seed) {
-  IntegratorSettings s = test::path_settings(16, 6, seed);
-  s.light_guiding = light_guiding;
-  s.shadow_roulette = shadow_roulette;
-  return test::render_path(d, s);
-}
-
-TEST(PathAgreement, ShadowRouletteConvergesToTracingEveryShadowRay) {
-  const auto with = [](const SceneDescription& d, float threshold, int guiding) {
-    return estimate([&](uint64_t seed) { return render_shadow_roulette(d, threshold, guiding, seed); });
-  };
-  const SceneDescription courtyard = test::courtyard_scene(true);
-  for (const int guiding : {0, 4})
-    EXPECT_TRUE(agree(with(courtyard, 0.0f, guiding), with(courtyard, 1.0f, guiding))) << "light_guiding " << guiding;
-  const SceneDescription mis = mis_scene();
-  EXPECT_TRUE(agree(with(mis, 0.0f, 0), with(mis, 1.0f, 0))) << "the MIS scene";
-  // It does roulette: the images differ.
-  const Image off = render_shadow_roulette(courtyard, 0.0f, 0, 1), on = render_shadow_roulette(courtyard, 1.0f, 0, 1);
-  bool differ = false;
-  for (std::size_t i = 0; i < off.pixels.size() && !differ; ++i)
-    for (int c = 0; c < 3; ++c) differ = differ || off.pixels[i][c] != on.pixels[i][c];
-  EXPECT_TRUE(differ);
-}
-
 // ---------------------------------------------------------------- path guiding
 // render.path_guiding (render/guiding/path_guide.h) changes how bounce
 // directions are sampled (a mixture with the BSDF's sampling, used in MIS with

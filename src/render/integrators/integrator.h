@@ -76,11 +76,6 @@ struct IntegratorSettings {
   // (1 / (MSE x time), tools/study/roulette/roulette_study.py, docs/path-tracing.md).
   int roulette_depth = 3;
   float roulette_threshold = 1.0f / 3.0f;
-  // path: Russian roulette on shadow rays. A light sample whose unoccluded
-  // contribution to the pixel c (largest channel) is below
-  // `shadow_roulette` x the path's estimate so far (largest channel) t has
-  // its shadow ray traced with probability c / t and is divided by it; 0 = off.
-  float shadow_roulette = 0.0f;
   SamplerType sampler = SamplerType::Sobol;  // path: where its random numbers come from (docs/samplers.md)
   // path: light guiding's pre-pass paths per pixel (render.light_guiding,
   // render/guiding/light_guide.h); 0 = off.

@@ -49,8 +49,7 @@ class PathTracer {
         strategy_(settings.light_strategy),
         each_(lights_estimated_each(scene, settings)),
         roulette_depth_(std::max(1, settings.roulette_depth)),
-        inv_roulette_threshold_(settings.roulette_threshold > 0.0f ? 1.0f / settings.roulette_threshold : 1.0f),
-        shadow_roulette_(std::max(0.0f, settings.shadow_roulette)) {}
+        inv_roulette_threshold_(settings.roulette_threshold > 0.0f ? 1.0f / settings.roulette_threshold : 1.0f) {}
 
   // `aov`, when not null, receives the lighting split (path_aov.h).
   CameraEstimate radiance(const CameraRay& camera_ray, Sampler& sampler, AovSample* aov = nullptr) const {
@@ -92,7 +91,7 @@ class PathTracer {
       if (rec.active() && depth == 0) rec.first_vertex(bsdf);
       const LightGuide::Site site = guide_.site(isect.geo.p);
       const PathGuide::Leaf* region = bsdf.delta_only() ? nullptr : path_guide_.leaf(isect.geo.p, bsdf.shading_normal());
-      if (!bsdf.delta_only()) L += next_event(isect, site, region, bsdf, wo, beta, L, depth, sampler, rec);
+      if (!bsdf.delta_only()) L += next_event(isect, site, region, bsdf, wo, beta, depth, sampler, rec);
 
       BsdfSample bs;
       // A BSDF with one lobe has nothing to choose: no sample dimension for it.
@@ -127,15 +126,6 @@ class PathTracer {
   }
 
  private:
-  // Russian roulette on a shadow ray (IntegratorSettings::shadow_roulette): a
-  // sample whose unoccluded contribution beta x estimate is below `threshold`
-  // (largest channels) is traced with probability contribution / threshold.
-  struct ShadowRoulette {
-    RGB beta;
-    float threshold;  // 0: every shadow ray is traced
-    Sampler* sampler;
-  };
-
   // MIS weight of an environment seen through a BSDF-sampled direction.
   // The light choice's probability is the one at the previous vertex (prev_p, prev_n).
   float escape_weight(Vec3f dir, bool specular, float prev_pdf, const LightGuide::Site& prev, Vec3f prev_n) const {
@@ -159,12 +149,10 @@ class PathTracer {
     return power_heuristic(prev_pdf, pdf);
   }
 
-  // Next-event estimation at a vertex reached with throughput beta, the path's
-  // estimate so far being `path_L`: its contribution (each term also given to
-  // the AOV split).
+  // Next-event estimation at a vertex reached with throughput beta: its
+  // contribution (each term also given to the AOV split).
   RGB next_event(const Intersection& isect, const LightGuide::Site& site, const PathGuide::Leaf* region,
-                 const Bsdf& bsdf, Vec3f wo, RGB beta, RGB path_L, int depth, Sampler& sampler,
-                 PathAovRecorder& rec) const {
+                 const Bsdf& bsdf, Vec3f wo, RGB beta, int depth, Sampler& sampler, PathAovRecorder& rec) const {
     // One light's estimate, weighted by beta and given to the AOV split.
     const auto term = [&](RGB estimate, Vec3f wi_light) {
       const RGB t = beta * estimate;
@@ -174,15 +162,13 @@ class PathTracer {
     Vec3f wi_light;
     if (each_.empty()) {
       if (lights_.empty()) return {};
-      const ShadowRoulette rr{beta, shadow_roulette_ * path_L.max_component(), &sampler};
-      const RGB estimate = direct_light(isect, site, region, bsdf, wo, sampler, rr, &wi_light);
+      const RGB estimate = direct_light(isect, site, region, bsdf, wo, sampler, &wi_light);
       return term(estimate, wi_light);
     }
     RGB sum;
     for (const int index : each_) {  // every light, each with its own sample and shadow ray
       const Vec2f u = sampler.get_2d();
-      const ShadowRoulette rr{beta, shadow_roulette_ * (path_L + sum).max_component(), &sampler};
-      const RGB estimate = sample_one(isect, site, region, bsdf, wo, index, 1.0f, u, rr, &wi_light);
+      const RGB estimate = sample_one(isect, site, region, bsdf, wo, index, 1.0f, u, &wi_light);
       sum += term(estimate, wi_light);
     }
     return sum;
@@ -198,8 +184,7 @@ class PathTracer {
   // sampled at one point; or, where each_ is not empty, each of those lights.
   // `wi_out`, when not null, receives the sampled light direction (for the AOV split).
   RGB direct_light(const Intersection& isect, const LightGuide::Site& site, const PathGuide::Leaf* region,
-                   const Bsdf& bsdf, Vec3f wo, Sampler& sampler, const ShadowRoulette& rr,
-                   Vec3f* wi_out = nullptr) const {
+                   const Bsdf& bsdf, Vec3f wo, Sampler& sampler, Vec3f* wi_out = nullptr) const {
     // Where there is nothing to choose (one light that can be picked), no
     // sample dimension is spent on the choice.
     const float u_light = lights_.needs_choice() ? sampler.get_1d() : 0.0f;
@@ -207,13 +192,12 @@ class PathTracer {
     float pmf = 0.0f;
     const int index = guide_.choose(site, isect.geo.ng, u_light, pmf);
     if (index < 0 || !(pmf > 0.0f)) return {};
-    return sample_one(isect, site, region, bsdf, wo, index, pmf, u, rr, wi_out);
+    return sample_one(isect, site, region, bsdf, wo, index, pmf, u, wi_out);
   }
 
   // The light `index`, sampled with u and weighed as chosen with probability pmf.
   RGB sample_one(const Intersection& isect, const LightGuide::Site& site, const PathGuide::Leaf* region,
-                 const Bsdf& bsdf, Vec3f wo, int index, float pmf, Vec2f u, const ShadowRoulette& rr,
-                 Vec3f* wi_out) const {
+                 const Bsdf& bsdf, Vec3f wo, int index, float pmf, Vec2f u, Vec3f* wi_out) const {
     LightSample ls;
     if (!guide_.sample(index, site, u, ls)) return {};
     if (ls.L.is_black() || !(ls.pdf > 0.0f)) return {};
@@ -221,22 +205,13 @@ class PathTracer {
     if (wi_out != nullptr) *wi_out = ls.wi;
     const RGB f = bsdf.f(wo, ls.wi);
     if (f.is_black()) return {};
+    if (scene_.occluded(light_shadow_ray(isect.geo, ls))) return {};
     const float light_pdf = pmf * ls.pdf;
     const float w = (ls.delta || strategy_ == LightStrategy::LightOnly)
                         ? 1.0f
                         : power_heuristic(light_pdf, PathGuide::bounce_pdf(bsdf, region, wo, ls.wi));
     const float cos_i = std::fabs(dot(ls.wi, bsdf.shading_normal()));
-    float scale = cos_i * w / light_pdf;
-    if (rr.threshold > 0.0f) {
-      const float c = (rr.beta * f * ls.L).max_component() * scale;
-      if (c < rr.threshold) {
-        const float survive = c / rr.threshold;
-        if (!(rr.sampler->get_1d() < survive)) return {};
-        scale /= survive;
-      }
-    }
-    if (scene_.occluded(light_shadow_ray(isect.geo, ls))) return {};
-    return f * ls.L * scale;
+    return f * ls.L * (cos_i * w / light_pdf);
   }
 
   const RenderScene& scene_;
@@ -251,7 +226,6 @@ class PathTracer {
   std::span<const int> each_;
   int roulette_depth_;
   float inv_roulette_threshold_;
-  float shadow_roulette_;  // IntegratorSettings::shadow_roulette
 };
 
 class PathIntegrator final : public Integrator {
