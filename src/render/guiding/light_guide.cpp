@@ -220,7 +220,9 @@ bool LightGuide::sample(int light, const Site& at, Vec2f u, LightSample& s) cons
   const float x = lf->environment.sample_continuous(v, &density, &b);
   const float w = std::clamp(x * static_cast<float>(lf->environment.size()) - static_cast<float>(b), 0.0f,
                              kOneMinusEpsilon);
-  s.wi = map_->uv_to_direction(bins_.sample(static_cast<int>(b), Vec2f(w, u.y)));
+  const Vec2f uv = bins_.sample(static_cast<int>(b), Vec2f(w, u.y));
+  map_->prefetch(uv);  // the texel finish_environment_sample reads (through the direction, the same one but at a texel's edge)
+  s.wi = map_->uv_to_direction(uv);
   return finish_environment_sample(lf, s);
 }
 

@@ -127,6 +127,7 @@ RGB EnvironmentMap::radiance(Vec3f dir) const { return texel(direction_to_uv(nor
 bool EnvironmentMap::sample(Vec2f u, LightSample& s) const {
   float pdf_uv = 0.0f;
   const Vec2f uv = distribution_.sample(u, &pdf_uv);
+  prefetch(uv);
   const float sin_theta = std::sin(kPi * uv.y);
   if (!(pdf_uv > 0.0f) || !(sin_theta > 0.0f)) return false;
   s.wi = uv_to_direction(uv);

@@ -44,6 +44,11 @@ class EnvironmentMap {
   // the radiance, and the solid-angle density of sample() there.
   RGB radiance_at(Vec2f uv) const { return texel(uv) * intensity_; }
   float pdf_at(Vec2f uv) const;
+  // Starts loading the texel at uv into the cache, for a radiance_at(uv) that
+  // follows other work: a hint, no effect on any result. A sample's texel is a
+  // random line of a table of megabytes (12 bytes a texel), whose load was most
+  // of a guided sky sample's own time (docs/bench/sample-cost.md).
+  void prefetch(Vec2f uv) const { __builtin_prefetch(&texel(uv)); }
   float power(float scene_radius) const;
 
   // The direction <-> image coordinate mapping described above.
