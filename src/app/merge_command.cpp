@@ -135,7 +135,8 @@ bool streams(const MergeOptions& m) {
 }
 
 // The file of the streamed merge, opened on a thread of its own (the image
-// module loads there, ~0.2 s) while the first bands are merged: `opened`
+// module loads there, ~0.2 s, unless the file is uncompressed:
+// io/exr_uncompressed.h) while the first bands are merged: `opened`
 // gets its writer (nullptr if it cannot be opened, `error` then says why);
 // the file is finished once `merged` says the merge wrote every row, and
 // discarded if not (`merge_error` then says why, set before `merged`).

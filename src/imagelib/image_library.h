@@ -97,7 +97,8 @@ inline constexpr const char* kSrgbDecodedSuffix = "#pt-srgb-decoded";
 // bands are made (the streamed merge: app/shard_band_merge.cpp). Opened with
 // the image's layout (a LayeredImage's frame, window and layers' names,
 // channels and types; no values), it writes the same bytes as write_exr of
-// the whole image would (whatever the bands' heights).
+// the whole image would (whatever the bands' heights). An uncompressed file
+// is written without the module (io/exr_uncompressed.h, the same bytes).
 class ExrBandWriter {
  public:
   virtual ~ExrBandWriter() = default;

@@ -13,6 +13,7 @@
 
 #include "imagelib/image_library.h"
 #include "io/atomic_file.h"
+#include "io/exr_uncompressed.h"
 
 namespace pt {
 
@@ -225,21 +226,24 @@ bool write_image_with_alpha(const std::string& path, const Image& image, const s
       error);
 }
 
-// An EXR of `image`'s size, written by `write` through the image module into a
-// temporary file that replaces `path` only once it is complete.
-bool write_exr_file(const std::string& path, const LayeredImage& image, std::string& error,
-                    const std::function<bool(const ImageLibrary&, const std::string&, std::string&)>& write) {
+// An EXR of `image`'s size, written by `write` into a temporary file that
+// replaces `path` only once it is complete.
+bool write_exr_atomically(const std::string& path, const LayeredImage& image, std::string& error,
+                          const std::function<bool(const std::string&, std::string&)>& write) {
   if (image.width <= 0 || image.height <= 0) {
     error = "cannot write '" + path + "': the image is empty";
     return false;
   }
-  return write_atomically(
-      path,
-      [&](const std::string& tmp, std::string& why) {
-        const ImageLibrary* lib = library(why);
-        return lib != nullptr && write(*lib, tmp, why);
-      },
-      error);
+  return write_atomically(path, write, error);
+}
+
+// The same, written through the image module.
+bool write_exr_file(const std::string& path, const LayeredImage& image, std::string& error,
+                    const std::function<bool(const ImageLibrary&, const std::string&, std::string&)>& write) {
+  return write_exr_atomically(path, image, error, [&](const std::string& tmp, std::string& why) {
+    const ImageLibrary* lib = library(why);
+    return lib != nullptr && write(*lib, tmp, why);
+  });
 }
 
 }  // namespace
@@ -270,9 +274,15 @@ bool write_layered_image(const std::string& path, const LayeredImage& image, con
 bool write_exr_bands(const std::string& path, const LayeredImage& layout, const ImageMetadata& metadata,
                      const ExrSettings& exr, const std::function<bool(ExrBandWriter&, std::string&)>& write,
                      std::string& error) {
-  return write_exr_file(path, layout, error, [&](const ImageLibrary& lib, const std::string& tmp, std::string& why) {
-    const std::unique_ptr<ExrBandWriter> writer = lib.open_exr(tmp, layout, metadata, exr, why);
+  const auto finish = [&](const std::unique_ptr<ExrBandWriter>& writer, std::string& why) {
     return writer != nullptr && write(*writer, why) && writer->close(why);
+  };
+  if (writes_uncompressed_exr(layout, metadata, exr))  // the same bytes, without loading the image module
+    return write_exr_atomically(path, layout, error, [&](const std::string& tmp, std::string& why) {
+      return finish(open_uncompressed_exr(tmp, layout, metadata, why), why);
+    });
+  return write_exr_file(path, layout, error, [&](const ImageLibrary& lib, const std::string& tmp, std::string& why) {
+    return finish(lib.open_exr(tmp, layout, metadata, exr, why), why);
   });
 }
 

@@ -61,7 +61,8 @@ bool write_layered_image(const std::string& path, const LayeredImage& image, con
 // same bytes as write_layered_image of the whole image, and as atomically (on
 // failure nothing is left at `path`; `error` says "cannot write '<path>':
 // <why>"). `layout`: the image's frame, window and layers (names, channels,
-// types); its values are not read.
+// types); its values are not read. Uncompressed ("none"), with the renderer's
+// metadata names, it is written without the image module (io/exr_uncompressed.h).
 bool write_exr_bands(const std::string& path, const LayeredImage& layout, const ImageMetadata& metadata,
                      const ExrSettings& exr, const std::function<bool(ExrBandWriter&, std::string&)>& write,
                      std::string& error);

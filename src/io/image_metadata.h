@@ -15,6 +15,11 @@
 
 namespace pt {
 
+// Every EXR's chromaticities attribute: CIE xy of the Rec.709 red, green and
+// blue primaries and of D65 (both EXR writers: imagelib/oiio/exr_writer.cpp,
+// io/exr_uncompressed.cpp).
+inline constexpr std::array<float, 8> kExrChromaticities = {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f};
+
 struct ImageMetadata {
   using Matrix = std::array<float, 16>;  // row-major, as OpenEXR's M44f
   std::vector<std::pair<std::string, std::string>> strings;

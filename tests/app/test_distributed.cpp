@@ -285,6 +285,17 @@ TEST_F(Distributed, StreamedMergeWritesTheSameBytesAsTheWholeImage) {
       }
     }
   }
+  // Uncompressed, the streamed merge writes the file itself (io/exr_uncompressed.h): the same bytes,
+  // with no image module to load; a compressed file needs the module.
+  const std::string nowhere = "PT_OIIO_MODULE='" + path("nowhere/pt_oiio.so") + "'";
+  RunResult alone = run("merge s0.ptshard s1.ptshard s2.ptshard -o alone.exr --exr-compression none", nowhere);
+  ASSERT_EQ(alone.status, 0) << alone.err;
+  ASSERT_EQ(run("merge s0.ptshard s1.ptshard s2.ptshard -o whole.exr -o whole.png --exr-compression none").status, 0);
+  EXPECT_TRUE(without_cap_date(slurp(path("alone.exr"))) == without_cap_date(slurp(path("whole.exr"))));
+  alone = run("merge s0.ptshard s1.ptshard s2.ptshard -o zip.exr --exr-compression zip", nowhere);
+  EXPECT_EQ(alone.status, 1);
+  EXPECT_NE(alone.err.find("cannot load the image module"), std::string::npos) << alone.err;
+  EXPECT_FALSE(std::filesystem::exists(path("zip.exr")));
   for (const std::string args : {"--multipart", "--shard-out m.ptshard"}) {
     const RunResult r = run("merge s0.ptshard s1.ptshard s2.ptshard -o other.exr " + args);
     ASSERT_EQ(r.status, 0) << args << ": " << r.err;

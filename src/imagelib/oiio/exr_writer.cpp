@@ -132,9 +132,7 @@ void add_image_metadata(OIIO::ImageSpec& spec, const ImageMetadata& metadata, bo
   for (const auto& [name, value] : metadata.ints) spec.attribute(name, value);
   for (const auto& [name, value] : metadata.floats) spec.attribute(name, value);
   for (const auto& [name, value] : metadata.matrices) spec.attribute(name, OIIO::TypeMatrix44, value.data());
-  // CIE xy of the Rec.709 red, green and blue primaries and of D65.
-  static const float kRec709[8] = {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f};
-  spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), kRec709);
+  spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), kExrChromaticities.data());
 }
 
 bool write_exr_layers(const std::string& path, const LayeredImage& image, const ImageMetadata& metadata,
