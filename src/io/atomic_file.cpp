@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -36,24 +37,30 @@ bool write_atomically(const std::string& path,
   return ok;
 }
 
+bool write_fd(int fd, const void* data, std::size_t size, std::string& why, std::size_t piece) {
+  const char* p = static_cast<const char*>(data);
+  while (size > 0) {
+    const ssize_t n = ::write(fd, p, std::min(size, piece));
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      why = n < 0 ? std::strerror(errno) : "the disk accepted no more bytes";
+      return false;
+    }
+    p += n;
+    size -= static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
 bool write_bytes(const std::string& path, const void* data, std::size_t size, std::string& why) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   if (fd < 0) {
     why = std::strerror(errno);
     return false;
   }
-  const char* p = static_cast<const char*>(data);
-  std::size_t left = size;
-  while (left > 0) {
-    const ssize_t n = ::write(fd, p, left);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      why = n < 0 ? std::strerror(errno) : "the disk accepted no more bytes";
-      ::close(fd);
-      return false;
-    }
-    p += n;
-    left -= static_cast<std::size_t>(n);
+  if (!write_fd(fd, data, size, why)) {
+    ::close(fd);
+    return false;
   }
   if (::close(fd) != 0) {  // e.g. a delayed write error on a network file system
     why = std::strerror(errno);

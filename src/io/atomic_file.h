@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <string>
 
@@ -23,6 +24,11 @@ bool write_atomically(const std::string& path,
 // every write() and the close(); false with `why` (strerror: "No space left on
 // device", "File too large"). For the inside of a write_atomically callback.
 bool write_bytes(const std::string& path, const void* data, std::size_t size, std::string& why);
+
+// Writes all `size` bytes to the open file `fd`, handing write() at most
+// `piece` bytes at a time and retrying after EINTR; false with `why`
+// (strerror, or "the disk accepted no more bytes"). Does not close `fd`.
+bool write_fd(int fd, const void* data, std::size_t size, std::string& why, std::size_t piece = SIZE_MAX);
 
 // Why a stream write failed: "write failed: <strerror(errno)>" when the
 // system said why, else "write failed".

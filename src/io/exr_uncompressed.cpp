@@ -17,6 +17,7 @@
 #include <tbb/parallel_for.h>
 
 #include "imagelib/image_library.h"
+#include "io/atomic_file.h"
 #include "io/exr_pack.h"
 
 namespace pt {
@@ -138,21 +139,6 @@ std::string header(const LayeredImage& layout, const ImageMetadata& metadata, co
   return out;
 }
 
-// Writes `size` bytes at `p`, kWritePiece at a time.
-bool write_all(int fd, const char* p, std::size_t size, std::string& why) {
-  while (size > 0) {
-    const ssize_t n = ::write(fd, p, std::min(size, kWritePiece));
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      why = n < 0 ? std::strerror(errno) : "the disk accepted no more bytes";
-      return false;
-    }
-    p += n;
-    size -= static_cast<std::size_t>(n);
-  }
-  return true;
-}
-
 // Gathers one channel of `n` packed pixels (`step` bytes apart) into `out`.
 template <std::size_t Bytes>
 void gather(const unsigned char* in, std::size_t step, std::size_t n, unsigned char* out) {
@@ -191,7 +177,7 @@ class UncompressedExrWriter final : public ExrBandWriter {
         }
       }
     });
-    if (!write_all(fd_, reinterpret_cast<const char*>(buffer_.data()), buffer_.size(), error)) return false;
+    if (!write_fd(fd_, buffer_.data(), buffer_.size(), error, kWritePiece)) return false;
     y_ = y1;
     return true;
   }
@@ -270,7 +256,7 @@ std::unique_ptr<ExrBandWriter> open_uncompressed_exr(const std::string& path, co
     return nullptr;
   }
   auto writer = std::make_unique<UncompressedExrWriter>(fd, layout, std::move(channels), pixel_bytes);
-  if (!write_all(fd, head.data(), head.size(), error)) return nullptr;
+  if (!write_fd(fd, head.data(), head.size(), error, kWritePiece)) return nullptr;
   return writer;
 }
 
