@@ -598,14 +598,16 @@ TEST_P(Backends, AxisParallelRaysWithSignedZerosAndOriginsOnSlabPlanes) {
 }
 
 TEST_P(Backends, NearlyAxisParallelRaysWithHugeReciprocalsOnSlabPlanes) {
-  // Our BVH takes a node's bounds in a NaN-safe order only for rays with an
-  // infinite reciprocal (1 / dir, or 1 / dir widened by the exit factor:
-  // kernel.h, slab_nan_possible); every other ray takes them as balanced
-  // trees. The edge between the two: direction components so small that the
-  // reciprocal is huge but finite (1e-30; 2^-128 + 2^-149 and + 2^-147, the
-  // largest finite reciprocals, which stay finite once widened) or infinite
-  // (2^-128 and smaller), with origins on the boxes' slab planes. Checked
-  // against the brute-force loop; Embree's own traversal is not what this tests.
+  // Our BVH takes a node's bounds as two-level max/min trees, which stay
+  // conservative when a slab distance is NaN (0 * inf: an origin on a slab
+  // plane with an infinite reciprocal; kernel.h). Until session 16 such rays
+  // took a NaN-safe chain instead, chosen per ray; this test checked the edge
+  // between the two orders and now checks the trees on it: direction
+  // components so small that the reciprocal is huge but finite (1e-30;
+  // 2^-128 + 2^-149 and + 2^-147, the largest finite reciprocals, which stay
+  // finite once widened) or infinite (2^-128 and smaller), with origins on the
+  // boxes' slab planes. Checked against the brute-force loop; Embree's own
+  // traversal is not what this tests.
   if (!GetParam().exact()) GTEST_SKIP() << "tests our BVH's slab test";
   SceneGeometry g;
   g.shapes.push_back(test::make_box_mesh({0, 0, 0}, {1, 1, 1}));

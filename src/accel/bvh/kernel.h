@@ -34,18 +34,16 @@ inline constexpr float kExitScale = 1.0f + 2.0f * ((3.0f * 0x1p-24f) / (1.0f - 3
 // factor, outside the chain that waits for the node).
 inline float exit_rdir(const RayQuery& q, int a) { return q.rdir[a] * kExitScale; }
 
-// Whether a slab distance of this ray can be NaN: (plane - org) * r is 0 * inf
-// only where r is infinite (a zero or tiny direction component, or rdir *
-// kExitScale overflowing). Only such rays need the NaN-safe order of the
-// bounds; the others may take them in any order.
-inline bool slab_nan_possible(const RayQuery& q) {
-  bool inf = false;
-  for (int a = 0; a < 3; ++a) {
-    const float r = exit_rdir(q, a);
-    inf |= !(q.rdir[a] - q.rdir[a] == 0.0f) || !(r - r == 0.0f);  // x - x is NaN for +-inf (and NaN)
-  }
-  return inf;
-}
+// A slab distance (plane - org) * r is NaN (0 * inf) only for an origin on a
+// plane with an infinite reciprocal (a zero or tiny direction component). The
+// kernels take the bounds as two-level trees, max(max(nx, ny), max(nz, tmin))
+// and min(min(fx, fy), min(fz, tmax)), for every ray: max/min return their
+// second operand when either is NaN, and tmin, tmax are never NaN, so the
+// outer operation's second operand is a number and the result is never NaN;
+// a NaN inner operand drops at most one real distance with it, so the entry
+// can come out smaller and the exit larger, never the other way: a box may be
+// visited needlessly, never culled wrongly (docs/bvh.md, session 16; the
+// tests' axis-parallel rays on slab planes check it).
 
 struct StackEntry {
   uint32_t ref;

@@ -18,16 +18,10 @@ class Sse2Ops {
                   _mm_set1_ps(kernel::exit_rdir(q, 2))},
         tmin_(_mm_set1_ps(q.tmin)),
         near_{q.near[0] * 8, q.near[1] * 8, q.near[2] * 8},
-        far_{(q.near[0] ^ 1u) * 8, (q.near[1] ^ 1u) * 8, (q.near[2] ^ 1u) * 8},
-        nan_safe_(kernel::slab_nan_possible(q)) {}
+        far_{(q.near[0] ^ 1u) * 8, (q.near[1] ^ 1u) * 8, (q.near[2] ^ 1u) * 8} {}
 
-  // Slab test. A NaN from 0 * inf (origin on a slab plane, an infinite
-  // reciprocal: kernel.h, slab_nan_possible) must not cull the box: max/min
-  // return their second operand when either is NaN, so for such a ray the
-  // bounds are taken as a chain with the running bound second, and a NaN
-  // distance leaves it unchanged. Other rays take them as balanced trees (the
-  // same values: max and min of non-NaN floats do not depend on the order but
-  // for the sign of a zero, which no comparison sees). The wide kernels make
+  // Slab test, the bounds as two-level trees: conservative when a distance is
+  // NaN (0 * inf, an origin on a slab plane: kernel.h). The wide kernels make
   // exactly these operations (their node counts are compared in the tests).
   uint32_t intersect_node(const Node8& node, float tmax, float* dist) const {
     const __m128 tmax4 = _mm_set1_ps(tmax * kernel::kExitScale);
@@ -40,14 +34,8 @@ class Sse2Ops {
       const __m128 fx = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + far_[0] + h), org_[0]), rdir_far_[0]);
       const __m128 fy = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + 16 + far_[1] + h), org_[1]), rdir_far_[1]);
       const __m128 fz = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b + 32 + far_[2] + h), org_[2]), rdir_far_[2]);
-      __m128 tnear, tfar;
-      if (nan_safe_) {
-        tnear = _mm_max_ps(nx, _mm_max_ps(ny, _mm_max_ps(nz, tmin_)));
-        tfar = _mm_min_ps(fx, _mm_min_ps(fy, _mm_min_ps(fz, tmax4)));
-      } else {
-        tnear = _mm_max_ps(_mm_max_ps(nx, ny), _mm_max_ps(nz, tmin_));
-        tfar = _mm_min_ps(_mm_min_ps(fx, fy), _mm_min_ps(fz, tmax4));
-      }
+      const __m128 tnear = _mm_max_ps(_mm_max_ps(nx, ny), _mm_max_ps(nz, tmin_));
+      const __m128 tfar = _mm_min_ps(_mm_min_ps(fx, fy), _mm_min_ps(fz, tmax4));
       _mm_store_ps(dist + h, tnear);
       mask |= static_cast<uint32_t>(_mm_movemask_ps(_mm_cmple_ps(tnear, tfar))) << h;
     }
@@ -73,7 +61,6 @@ class Sse2Ops {
  private:
   __m128 org_[3], rdir_[3], rdir_far_[3], tmin_;
   uint32_t near_[3], far_[3];  // offsets of the entry / exit rows within an axis' pair of rows
-  bool nan_safe_;              // slab_nan_possible(): the bounds as a NaN-safe chain
 };
 
 bool intersect(const SceneData& s, RayQuery& q, HitRecord& hit) {

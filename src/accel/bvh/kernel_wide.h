@@ -241,14 +241,11 @@ class Avx2Ops {
         tmin_(_mm256_set1_ps(q.tmin)),
         near_{q.near[0] * 8, q.near[1] * 8, q.near[2] * 8},
         far_{(q.near[0] ^ 1u) * 8, (q.near[1] ^ 1u) * 8, (q.near[2] ^ 1u) * 8},
-        nan_safe_(kernel::slab_nan_possible(q)),
         tri8_(q) {}
 
-  // Slab test; see kernel.h (exit_rdir, slab_nan_possible) and kernel_sse2.cpp
-  // for the NaN rule (max/min keep their second operand, the running bound,
-  // when the first is NaN). Exits are widened through rdir_far_ and tmax * kExitScale,
-  // so no multiply follows the minimum; a ray without a NaN to fear takes
-  // the bounds as balanced trees (two levels where the chain takes three).
+  // Slab test; see kernel.h (exit_rdir, and why the two-level trees of the
+  // bounds are conservative when a distance is NaN). Exits are widened through
+  // rdir_far_ and tmax * kExitScale, so no multiply follows the minimum.
   uint32_t intersect_node(const Node8& node, float tmax, float* dist) const {
     const float* b = &node.bounds[0][0];
     const __m256 nx = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(b + near_[0]), org_[0]), rdir_[0]);
@@ -258,14 +255,8 @@ class Avx2Ops {
     const __m256 fy = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(b + 16 + far_[1]), org_[1]), rdir_far_[1]);
     const __m256 fz = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(b + 32 + far_[2]), org_[2]), rdir_far_[2]);
     const __m256 tmax8 = _mm256_set1_ps(tmax * kernel::kExitScale);
-    __m256 tnear, tfar;
-    if (nan_safe_) {
-      tnear = _mm256_max_ps(nx, _mm256_max_ps(ny, _mm256_max_ps(nz, tmin_)));
-      tfar = _mm256_min_ps(fx, _mm256_min_ps(fy, _mm256_min_ps(fz, tmax8)));
-    } else {
-      tnear = _mm256_max_ps(_mm256_max_ps(nx, ny), _mm256_max_ps(nz, tmin_));
-      tfar = _mm256_min_ps(_mm256_min_ps(fx, fy), _mm256_min_ps(fz, tmax8));
-    }
+    const __m256 tnear = _mm256_max_ps(_mm256_max_ps(nx, ny), _mm256_max_ps(nz, tmin_));
+    const __m256 tfar = _mm256_min_ps(_mm256_min_ps(fx, fy), _mm256_min_ps(fz, tmax8));
     _mm256_store_ps(dist, tnear);
     return static_cast<uint32_t>(_mm256_movemask_ps(_mm256_cmp_ps(tnear, tfar, _CMP_LE_OQ)));
   }
@@ -289,7 +280,6 @@ class Avx2Ops {
  private:
   __m256 org_[3], rdir_[3], rdir_far_[3], tmin_;
   uint32_t near_[3], far_[3];
-  bool nan_safe_;
   TriangleRay<8> tri8_;
 };
 
