@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "backend_cases.h"
+#include "geometry/float_util.h"
 #include "../geometry/test_util.h"
 
 namespace pt {
@@ -595,6 +596,62 @@ TEST_P(Backends, AxisParallelRaysWithSignedZerosAndOriginsOnSlabPlanes) {
   EXPECT_FLOAT_EQ(hit.t, 1.0f);
   ASSERT_TRUE(accel->intersect(Ray{{0.0f, 0.5f, -1.0f}, {0.0f, -0.0f, 1.0f}}, hit));  // on the x = 0 plane
   EXPECT_EQ(hit.shape, 0u);
+}
+
+TEST_P(Backends, AxisParallelRaysOnSlabPlanesThroughInstancesAndShortIntervals) {
+  // Zero direction components with origins on slab planes make the node
+  // test's distances 0 * inf = NaN; our BVH takes the bounds as max/min
+  // trees, which stay conservative under a NaN (kernel.h). Here such rays
+  // also reach bottom levels through instances (a translation and an
+  // axis-aligned scale keep the zeros exact and map slab planes onto slab
+  // planes in object space) and end at finite tmax on, before and past the
+  // boxes' faces; against the brute-force loop, for intersect() and
+  // occluded(), in every kernel the CPU runs. (Boxes are padded by a few ulps,
+  // so a NaN comes from an origin on a padded plane, which the padded
+  // coordinates below give; a box culled there would hold nothing an exactly
+  // axis-parallel ray can hit, so this checks the answers, not the culling:
+  // a kernel that drops such boxes passes it too.)
+  SceneGeometry g;
+  g.shapes.push_back(test::make_box_mesh({0, 0, 0}, {1, 1, 1}));
+  g.shapes.push_back(test::make_box_mesh({2, 0, 0}, {3, 1, 1}));
+  g.shapes.push_back(test::box_face_quad({0, 2, 0}, {1, 3, 1}, 2));
+  g.prototypes.push_back({0});
+  g.prototypes.push_back({2});
+  g.instances.push_back(Instance{0, Transform(Affine::translate(0, 2, 0) * Affine::scale(1, 1, 2))});
+  g.instances.push_back(Instance{1, Transform(Affine::translate(2, 0, 2))});
+  auto accel = build(g);
+  ASSERT_NE(accel, nullptr);
+  // Boxes are padded by a few ulps (fp::pad), so an origin makes a NaN only
+  // on a padded plane: the boxes' padded planes are among the coordinates (a
+  // triangle of a face spanning [0, 1] has exactly these padded bounds).
+  const Bounds3f near_box = fp::pad(Bounds3f{{0, 0, 0}, {1, 1, 1}});
+  const Bounds3f far_box = fp::pad(Bounds3f{{2, 2, 2}, {3, 3, 3}});
+  std::vector<Ray> rays;
+  const float coords[] = {0.0f, 0.5f, 1.0f, 2.0f, 2.5f, 3.0f, near_box.lo.x, near_box.hi.x, far_box.lo.x, far_box.hi.x};
+  const float ends[] = {kInfinity, 1.0f, 2.0f, 2.5f};
+  for (int axis = 0; axis < 3; ++axis) {
+    for (float sign : {1.0f, -1.0f}) {
+      for (float zero : {0.0f, -0.0f}) {
+        for (float a : coords) {
+          for (float b : coords) {
+            for (float tmax : ends) {
+              Vec3f dir(zero), origin;
+              dir[axis] = sign;
+              origin[axis] = sign > 0 ? -1.0f : 5.0f;
+              origin[(axis + 1) % 3] = a;
+              origin[(axis + 2) % 3] = b;
+              rays.push_back(Ray{origin, dir, 0.0f, tmax});
+              origin[axis] = 2.0f;  // between the boxes
+              rays.push_back(Ray{origin, dir, 0.0f, tmax});
+              origin[axis] = far_box.lo.x;  // on a padded slab plane
+              rays.push_back(Ray{origin, dir, 0.0f, tmax});
+            }
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(check_rays(g, *accel, rays).hits, 300);
 }
 
 TEST_P(Backends, NearlyAxisParallelRaysWithHugeReciprocalsOnSlabPlanes) {
