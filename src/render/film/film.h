@@ -150,6 +150,11 @@ struct StateCodec {
   std::vector<char> defaults;                // a full record (every slot at its type's width)
   std::array<uint64_t, kStateWords> varying{};  // the slots a record may hold: those whose default is 0
   std::vector<uint64_t> index;  // per group of kStateGroup records, its offset among the records; then their size
+  // The defaults decoded (a record that holds no slot): what a record's
+  // decode starts from.
+  PixelSum pixel;
+  std::vector<ExactSum> sums;
+  std::vector<double> values;
 };
 
 // A complete film state in memory (a mapped shard file after its header),
@@ -335,6 +340,8 @@ class Film {
   // false when they are not as pack_record writes them.
   bool decode_record(const char*& in, const char* end, const StateCodec& codec, const StateException* ex,
                      const StateException* ex_end, PixelSum& sum, ExactSum* sums, double* values) const;
+  // codec.pixel, sums and values from codec.defaults.
+  void decode_defaults(StateCodec& codec) const;
   // The parts of a state's header after the non-finite report: the
   // defaults, the exception list and the record index of a state of
   // `pixels` pixels; false with `error`.
@@ -402,6 +409,7 @@ class Film {
   // sum_kinds_ as runs of one kind (kind, count), in order: decode_record's loops.
   std::vector<std::pair<uint8_t, int>> kind_runs_;
   std::vector<uint32_t> slot_offset_;  // per state slot: where a full record holds it
+  std::vector<uint8_t> slot_kind_;     // per state slot: what it is and where it decodes to (film_state_codec.cpp)
   std::array<uint64_t, kStateWords> wide_slots_{};  // the state slots held in 8 bytes (the others in 4)
   std::size_t record_bytes_ = 0;    // a full record of one pixel
   std::size_t bitmap_bytes_ = 0;    // a record's mask of the slots it holds

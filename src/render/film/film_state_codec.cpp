@@ -31,6 +31,10 @@ namespace pt {
 namespace {
 
 enum SlotKind : uint8_t { kWide64, kNarrow32, kFloat32 };  // int64 sum; uint32 id or count; float value
+// A state slot's kind and where it decodes to: the beauty's sums (int64), its
+// count (uint32), an AOV sum (int64, or uint32 for a Cryptomatte id), an AOV
+// value (float).
+enum SlotRole : uint8_t { kBeautySlot, kCountSlot, kWideSumSlot, kNarrowSumSlot, kValueSlot };
 
 constexpr std::size_t kBeautySums = 5;  // r, g, b, weight, coverage
 // Pixels per block of the parallel passes over a film (defaults, exceptions).
@@ -108,6 +112,10 @@ void Film::init_state_layout() {
   // At most 111 slots (every AOV of the catalogue, Cryptomatte at its most
   // ranks): a catalogue that outgrows kStateWords is a programming error.
   if (kinds.size() > 64 * kStateWords) throw std::logic_error("film state slots outgrow kStateWords");
+  slot_kind_.assign(kBeautySums, kBeautySlot);
+  slot_kind_.push_back(kCountSlot);
+  for (uint8_t kind : sum_kinds_) slot_kind_.push_back(kind == kWide64 ? kWideSumSlot : kNarrowSumSlot);
+  slot_kind_.insert(slot_kind_.end(), static_cast<std::size_t>(value_stride_), kValueSlot);
   slot_offset_.clear();
   wide_slots_.fill(0);
   record_bytes_ = 0;
@@ -228,58 +236,60 @@ std::size_t Film::record_size(const char* in, const char* end, const StateCodec&
 
 bool Film::decode_record(const char*& in, const char* end, const StateCodec& codec, const StateException* ex,
                          const StateException* ex_end, PixelSum& p, ExactSum* sums, double* values) const {
-  const std::size_t size = record_size(in, end, codec);
-  if (size == 0) return false;
+  // Near its group's end the record's size is checked before it is read;
+  // elsewhere no record can reach the end.
+  const auto room = static_cast<std::size_t>(end - in);
   std::array<uint64_t, kStateWords> mask{};
-  std::memcpy(mask.data(), in, bitmap_bytes_);
-  const char* at = in + bitmap_bytes_;  // the slots it holds
-  const char* def = codec.defaults.data();  // the full record of the defaults
-  std::size_t slot = 0;
-  bool zero = false;  // a slot held as 0, which only a default is
-  // The next slot of `width` bytes: from the record when its mask holds it,
-  // else its default (no branch per slot).
-  const auto take = [&](auto& v) {
-    const bool held = ((mask[slot / 64] >> (slot % 64)) & 1) != 0;
-    std::memcpy(&v, held ? at : def, sizeof v);
-    at += held ? sizeof v : 0;
-    def += sizeof v;
-    zero |= held && v == 0;
-    ++slot;
-  };
-  ExactSum* beauty[kBeautySums] = {&p.r, &p.g, &p.b, &p.weight, &p.coverage};
-  for (ExactSum* b : beauty) {
-    int64_t v;
-    take(v);
-    *b = from_int64(v);
+  if (room < bitmap_bytes_ + record_bytes_ || room < sizeof mask) {
+    if (record_size(in, end, codec) == 0) return false;
+    std::memcpy(mask.data(), in, bitmap_bytes_);
+  } else {
+    std::memcpy(mask.data(), in, sizeof mask);  // the mask and what follows it
+    for (std::size_t w = 0; w < kStateWords; ++w) {
+      const std::size_t bits = std::min<std::size_t>(64, 8 * bitmap_bytes_ - std::min(8 * bitmap_bytes_, 64 * w));
+      mask[w] &= bits == 64 ? ~uint64_t{0} : (uint64_t{1} << bits) - 1;
+      if ((mask[w] & ~codec.varying[w]) != 0) return false;  // a slot past the last, or one every pixel shares
+    }
   }
-  uint32_t samples;
-  take(samples);
-  p.samples = samples;
-  const auto n = static_cast<std::size_t>(sum_stride_), m = static_cast<std::size_t>(value_stride_);
-  ExactSum* to = sums;
-  for (const auto& [kind, count] : kind_runs_) {  // runs of one kind: no branch per slot
-    if (kind == kWide64) {
-      for (int k = 0; k < count; ++k) {
-        int64_t v;
-        take(v);
-        *to++ = from_int64(v);
-      }
-    } else {
-      for (int k = 0; k < count; ++k) {
-        uint32_t v;
-        take(v);
-        (to++)->set_raw(v);
+  // The defaults, then the slots the record holds, in slot order.
+  p = codec.pixel;
+  const auto n = static_cast<std::size_t>(sum_stride_);
+  std::copy(codec.sums.begin(), codec.sums.end(), sums);
+  std::copy(codec.values.begin(), codec.values.end(), values);
+  ExactSum* beauty[kBeautySums] = {&p.r, &p.g, &p.b, &p.weight, &p.coverage};
+  const char* at = in + bitmap_bytes_;
+  bool bad = false;  // a slot held as 0 (only a default is), or a float that is not plain
+  for (std::size_t w = 0; w < kStateWords; ++w) {
+    for (uint64_t m = mask[w]; m != 0; m &= m - 1) {
+      const std::size_t k = 64 * w + static_cast<std::size_t>(std::countr_zero(m));
+      switch (slot_kind_[k]) {
+        case kBeautySlot:
+          *beauty[k] = from_int64(load<int64_t>(at));
+          bad |= beauty[k]->is_zero();
+          break;
+        case kCountSlot:
+          p.samples = load<uint32_t>(at);
+          bad |= p.samples == 0;
+          break;
+        case kWideSumSlot:
+          sums[k - kBeautySums - 1] = from_int64(load<int64_t>(at));
+          bad |= sums[k - kBeautySums - 1].is_zero();
+          break;
+        case kNarrowSumSlot: {
+          const auto v = load<uint32_t>(at);
+          sums[k - kBeautySums - 1].set_raw(v);
+          bad |= v == 0;
+          break;
+        }
+        default: {
+          const auto bits = load<uint32_t>(at);
+          bad |= bits == 0 || !plain_float(bits);
+          values[k - kBeautySums - 1 - n] = static_cast<double>(std::bit_cast<float>(bits));
+        }
       }
     }
   }
-  bool plain = true;
-  for (std::size_t k = 0; k < m; ++k) {
-    uint32_t bits;
-    take(bits);
-    plain = plain && plain_float(bits);
-    values[k] = static_cast<double>(std::bit_cast<float>(bits));
-  }
-  if (!plain || zero) return false;
+  if (bad) return false;
   // The exceptions' slots are not held (the defaults of those slots are 0:
   // valid_exception); their values replace the zeros.
   for (const StateException* e = ex; e != ex_end; ++e) {
@@ -295,8 +305,27 @@ bool Film::decode_record(const char*& in, const char* end, const StateCodec& cod
       values[k - kBeautySums - 1 - n] = std::bit_cast<double>(static_cast<uint64_t>(e->value));
     }
   }
-  in += size;
+  in = at;
   return true;
+}
+
+void Film::decode_defaults(StateCodec& codec) const {
+  const auto n = static_cast<std::size_t>(sum_stride_);
+  codec.pixel = PixelSum{};
+  codec.sums.assign(n, ExactSum{});
+  codec.values.assign(static_cast<std::size_t>(value_stride_), 0.0);
+  ExactSum* beauty[kBeautySums] = {&codec.pixel.r, &codec.pixel.g, &codec.pixel.b, &codec.pixel.weight,
+                                   &codec.pixel.coverage};
+  for (std::size_t k = 0; k < slot_kind_.size(); ++k) {
+    const char* at = codec.defaults.data() + slot_offset_[k];
+    switch (slot_kind_[k]) {
+      case kBeautySlot: *beauty[k] = from_int64(load<int64_t>(at)); break;
+      case kCountSlot: codec.pixel.samples = load<uint32_t>(at); break;
+      case kWideSumSlot: codec.sums[k - kBeautySums - 1] = from_int64(load<int64_t>(at)); break;
+      case kNarrowSumSlot: codec.sums[k - kBeautySums - 1].set_raw(load<uint32_t>(at)); break;
+      default: codec.values[k - kBeautySums - 1 - n] = static_cast<double>(std::bit_cast<float>(load<uint32_t>(at)));
+    }
+  }
 }
 
 bool Film::valid_exception(const StateException& e, std::size_t pixels, const StateCodec& codec) const {
@@ -332,6 +361,7 @@ bool Film::read_codec(std::istream& in, std::size_t pixels, StateCodec& codec, s
       return false;
     }
   }
+  decode_defaults(codec);
   // The exceptions.
   uint64_t count = 0;
   if (!in.read(reinterpret_cast<char*>(&count), sizeof count)) {
