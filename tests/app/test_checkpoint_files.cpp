@@ -111,18 +111,20 @@ TEST_F(ResumeHostile, DamagedFilmStatesAreRefused) {
   expect_refused(good_.magic + good_.header, "not a film state");                                // header only
   expect_refused(good_.magic + good_.header + good_.body.substr(0, good_.body.size() / 2), "truncated film state");
   expect_refused(good_.magic + good_.header + good_.body + "x", "film state has trailing data");
-  // A sample count in the first pixel beyond the header's spp_done (the
-  // sums are exact integers: any bits are some sum, none is non-finite).
+  // A sample count beyond the header's spp_done (the sums are exact
+  // integers: any bits are some sum, none is non-finite): every pixel holds
+  // the same count, so it is the state's default, after its header (89
+  // bytes, no AOVs) and the default record's five sums.
   std::string body = good_.body;
-  const std::size_t first_count = body.size() - 8 * 6 * 44 + 40;  // 8x6 records of 44 bytes, no AOVs
+  const std::size_t first_count = 89 + 5 * 8;
   const uint32_t many = 1000;
   body.replace(first_count, sizeof many, reinterpret_cast<const char*>(&many), sizeof many);
   expect_refused(good_.magic + good_.header + body, "holds 1000 samples in pixel (0, 0)");
-  // A checkpoint of an older pathtracer (film state version 4), refused naming the version.
+  // A checkpoint of an older pathtracer (film state version 5), refused naming the version.
   body = good_.body;
   ASSERT_EQ(body.substr(0, 8), "PTFILM\r\n");
-  body[8] = 4;
-  expect_refused(good_.magic + good_.header + body, "film state version 4 is not read by this pathtracer");
+  body[8] = 5;
+  expect_refused(good_.magic + good_.header + body, "film state version 5 is not read by this pathtracer");
 }
 
 TEST_F(ResumeHostile, CheckpointsOfAnotherSceneOrResolutionAreRefused) {

@@ -221,24 +221,28 @@ TEST_F(Distributed, DamagedShardFilesAreRefusedAndNothingIsWritten) {
   refused(good.substr(0, good.size() - 1), "truncated film state");
   refused(good.substr(0, good.size() / 2), "truncated film state");
   refused(good + "x", "film state has trailing data");
-  // The first pixel's sample count raised above the header's: after the film
-  // state's header (89 bytes and 3 per AOV, their count at byte 36), the count
-  // of its exceptions (none here) and the record's five sums (8 bytes each).
+  // The pixels' sample count raised above the header's: every pixel holds
+  // the same count, so it is among the film state's defaults (a full record
+  // after the state's header of 89 bytes and 3 per AOV, their count at byte
+  // 36), after the record's five sums (8 bytes each); the count of the
+  // exceptions (none here) follows the defaults.
   std::string samples = good;
   const std::size_t body = good.find("PTFILM\r\n");
   ASSERT_NE(body, std::string::npos);
   const auto aovs = static_cast<std::size_t>(static_cast<unsigned char>(good[body + 36]));
-  ASSERT_EQ(good.substr(body + 89 + 3 * aovs, 8), std::string(8, '\0'));
-  samples[body + 89 + 3 * aovs + 8 + 5 * 8] = 99;
+  const std::size_t defaults = body + 89 + 3 * aovs, full = 44 + 21 * 8 + 9 * 4;  // the beauty, 21 sums, 9 values
+  ASSERT_EQ(good.substr(defaults + full, 8), std::string(8, '\0'));
+  ASSERT_NE(good[defaults + 40], 0);
+  samples[defaults + 40] = 99;
   refused(samples, "its film state holds 99 samples in pixel (0, 0), more than its pieces' 5");
-  // A shard of an older pathtracer (film state version 4) is refused naming the version.
+  // A shard of an older pathtracer (film state version 5) is refused naming the version.
   std::string old = good;
-  old[body + 8] = 4;
-  refused(old, "film state version 4 is not read by this pathtracer, which reads version 5 (written by an older "
+  old[body + 8] = 5;
+  refused(old, "film state version 5 is not read by this pathtracer, which reads version 6 (written by an older "
                "one: render it again with this one)");
   // An exception (a wide value) listed but damaged: its count says more than the file holds.
   std::string listed = good;
-  listed[body + 89 + 3 * aovs] = 1;
+  listed[defaults + full] = 1;
   refused(listed, "corrupt film state (wide value 0 of 1)");
   const RunResult r = run("merge 0.ptshard 1.ptshard -o m.exr");  // the good ones still merge
   EXPECT_EQ(r.status, 0) << r.err;

@@ -22,9 +22,12 @@
 #include "app/shard_merge.h"
 #include "render/film/exact_sum.h"
 #include "render/film/film.h"
+#include "shard_test_films.h"
 
 namespace pt {
 namespace {
+
+using namespace shard_test;
 
 // ---------------------------------------------------------------- exact sums
 
@@ -74,67 +77,7 @@ TEST(ExactSum, RoundsToUnitsAndClampsHugeTerms) {
 
 // ---------------------------------------------------------------- films
 
-std::vector<AovRequest> all_aovs() {
-  std::vector<AovRequest> all;
-  for (const AovInfo& info : aov_catalogue()) all.push_back({info.type, info.default_type});
-  return all;
-}
-
-// A stand-in for a renderer: sample s of pixel (x, y) is a function of
-// (x, y, s) only, as the render loop's are; a NaN now and then.
-void render(Film& film, const PixelRect& crop, Range samples) {
-  AovScratch scratch = film.make_scratch();
-  for (int y = crop.y0; y < crop.y1; ++y)
-    for (int x = crop.x0; x < crop.x1; ++x) {
-      PixelSum sum;
-      scratch.clear();
-      NonFiniteReport bad;
-      for (int s = samples.begin; s < samples.end; ++s) {
-        std::mt19937 rng(static_cast<unsigned>(x * 7919 + y * 104729 + s * 1299709));
-        std::uniform_real_distribution<float> u(0.0f, 3.0f);
-        RGB c(u(rng), u(rng), u(rng) * 1e-3f);
-        if ((x + y + s) % 97 == 0) c.r = std::nanf("");
-        // Fireflies: sums beyond the 64 bits of a state's record (exceptions).
-        if ((x * 3 + y * 5 + s) % 53 == 7) c.g = 4e6f + c.g;
-        const float w = u(rng) - 0.5f;
-        AovSample a;
-        a.albedo = RGB(u(rng), u(rng), u(rng));
-        a.normal = Vec3f(u(rng), u(rng), u(rng));
-        a.position = Vec3f(static_cast<float>(s), u(rng), u(rng));
-        a.depth = static_cast<float>(s) + 1.0f;
-        a.object = static_cast<uint32_t>(s % 5);
-        a.emission = RGB(u(rng));
-        a.diffuse_direct = RGB(u(rng));
-        // Cryptomatte: up to 9 ids in a pixel, more than its 6 ranks, and misses.
-        a.hit = (s + x) % 4 != 0;
-        a.crypto_object = a.hit ? 1.0f + static_cast<float>((s * 3 + y) % 9) : 0.0f;
-        a.crypto_material = a.hit ? 0.5f + static_cast<float>(s % 3) : 0.0f;
-        const bool finite = c.is_finite();
-        if (!finite) bad.record(x, y, s, c);
-        sum.add(finite ? c : RGB(), w, a.hit);
-        film.accumulate(scratch, a, c, w, !finite);
-      }
-      film.add(x, y, sum);
-      film.add_aovs(x, y, scratch);
-      film.add_non_finite(bad);
-    }
-}
-
-std::string state(const Film& film) {
-  std::ostringstream out;
-  film.write_state(out);
-  return out.str();
-}
 std::string state_of_film(const Film& film) { return state(film); }
-
-// Where a film state's pixel records begin: after its header (89 bytes and 3
-// per AOV), the count of its exceptions and the exceptions (28 bytes each).
-std::size_t records_at(std::string_view state, std::size_t aovs) {
-  const std::size_t at = 89 + 3 * aovs;
-  uint64_t count = 0;
-  std::memcpy(&count, state.data() + at, sizeof count);
-  return at + sizeof count + static_cast<std::size_t>(count) * 28;
-}
 
 constexpr int kW = 6, kH = 5, kSpp = 30;
 
@@ -179,79 +122,6 @@ TEST(FilmMerge, TilesLandInTheirPixelsAndBadRegionsAreRefused) {
   EXPECT_EQ(state(merged), state(whole));  // unchanged by the refusals
 }
 
-// The film state's compact records (version 5): what a record cannot hold
-// (a firefly's sums beyond 64 bits, a count beyond 32, a value that is not a
-// float) is listed with its full value, read back exactly and written back
-// byte for byte; anything written otherwise, or another version, is refused.
-TEST(FilmState, CompactRecordsKeepEveryValueAndRefuseOtherEncodings) {
-  constexpr int w = 4, h = 3;
-  Film film(w, h, {0, 0, w, h}, all_aovs());
-  render(film, film.crop(), {0, 5});  // pixel (1, 0) sample 4 is a firefly
-  PixelSum many;
-  many.samples = (uint64_t{1} << 32) + 5;
-  many.r = ExactSum(-3e6);
-  film.add(1, 1, many);
-  const std::string written = state(film);
-  const std::size_t aovs = all_aovs().size(), list = 89 + 3 * aovs;
-  uint64_t count = 0;
-  std::memcpy(&count, &written[list], sizeof count);
-  EXPECT_GE(count, 4u);  // the firefly's g and its variance's; the count and r of (1, 1)
-  const auto read = [&](const std::string& bytes, std::string& error) {
-    Film back(w, h, {0, 0, w, h}, all_aovs());
-    std::istringstream in(bytes);
-    return back.read_state(in, error) ? std::optional<Film>(std::move(back)) : std::nullopt;
-  };
-  std::string error;
-  std::optional<Film> back = read(written, error);
-  ASSERT_TRUE(back) << error;
-  EXPECT_EQ(state(*back), written);
-  EXPECT_EQ(back->sum(1, 1).samples, many.samples + 5);
-  EXPECT_EQ(back->sum(1, 1).r, film.sum(1, 1).r);
-  // A value that is no float (0.1 in double), in the last pixel's last slot:
-  // listed last, its record's slot 0.
-  std::size_t slots = 6, values = 0;  // a pixel's: the beauty's 5 sums and count, the AOVs' sums and values
-  for (const AovRequest& r : film.aovs()) {  // Cryptomatte's ranks set (6)
-    slots += static_cast<std::size_t>(aov_state_sums(r) + aov_state_values(r));
-    values += static_cast<std::size_t>(aov_state_values(r));
-  }
-  ASSERT_GT(values, 0u);
-  std::string crafted = written;
-  std::memset(&crafted[crafted.size() - 4], 0, 4);
-  const auto exception = [](uint64_t pixel, uint32_t slot, uint64_t lo) {
-    std::string e(28, '\0');
-    std::memcpy(&e[0], &pixel, 8);
-    std::memcpy(&e[8], &slot, 4);
-    std::memcpy(&e[12], &lo, 8);
-    return e;
-  };
-  const std::size_t records = list + 8 + count * 28;
-  const uint64_t more = count + 1;
-  std::memcpy(&crafted[list], &more, 8);
-  crafted.insert(records, exception(w * h - 1, slots - 1, std::bit_cast<uint64_t>(0.1)));
-  back = read(crafted, error);
-  ASSERT_TRUE(back) << error;
-  EXPECT_EQ(state(*back), crafted);
-  // Refused: a listed value its record could hold; a record's slot not 0
-  // where the list holds the value; the list out of order; version 4.
-  std::string bad = crafted;
-  bad.replace(records, 28, exception(w * h - 1, slots - 1, std::bit_cast<uint64_t>(0.5)));
-  EXPECT_FALSE(read(bad, error));
-  EXPECT_EQ(error, "corrupt film state (wide value " + std::to_string(count) + " of " + std::to_string(more) + ")");
-  bad = crafted;
-  bad[bad.size() - 1] = 1;
-  EXPECT_FALSE(read(bad, error));
-  EXPECT_EQ(error, "corrupt film state (pixel 11 of the crop)");
-  bad = crafted;
-  bad.replace(records, 28, exception(0, slots - 1, std::bit_cast<uint64_t>(0.1)));
-  EXPECT_FALSE(read(bad, error));
-  EXPECT_EQ(error, "corrupt film state (wide value " + std::to_string(count) + " of " + std::to_string(more) + ")");
-  bad = written;
-  bad[8] = 4;
-  EXPECT_FALSE(read(bad, error));
-  EXPECT_EQ(error, "film state version 4 is not read by this pathtracer, which reads version 5 (written by an older "
-                   "one: render it again with this one)");
-}
-
 // A film state in memory (a mapped shard file) is added in parallel blocks
 // of pixels, from bytes at any alignment: the same bits as the stream's adds,
 // and a state that breaks the rules is refused naming its first bad pixel.
@@ -294,27 +164,29 @@ TEST(FilmMerge, StatesInMemoryAddInParallelToTheSameBits) {
   EXPECT_EQ(error, "truncated film state header");
   EXPECT_EQ(state(merged), before);
   // Too many samples in pixels 9000 and 5000 (the third and second blocks): the first is named.
-  const std::size_t header = records_at(view_b, all_aovs().size()), samples_at = 5 * sizeof(int64_t);
-  const std::size_t record = whole.state_record_bytes();
-  EXPECT_EQ(record, 472u);  // every AOV of the catalogue (Cryptomatte at 6 levels): docs/distributed.md
-  EXPECT_GT(header, 89 + 3 * all_aovs().size() + 8) << "the fireflies make exceptions";
-  std::string bad(view_b);
+  EXPECT_EQ(whole.state_record_bytes(), 472u);  // every AOV of the catalogue (Cryptomatte at 6 levels): docs/distributed.md
+  StateParts parts = expand(b, view_b);
+  EXPECT_FALSE(parts.exceptions.empty()) << "the fireflies make exceptions";
   for (std::size_t pixel : {9000u, 5000u}) {
     const uint32_t many = 1000;
-    std::memcpy(&bad[header + pixel * record + samples_at], &many, sizeof many);
+    std::memcpy(&parts.full[pixel][parts.offset[5]], &many, sizeof many);
   }
+  std::string bad = " " + pack(parts);  // misaligned, as view_b
+  ASSERT_EQ(bad.size(), view_b.size() + 1 + 4 * n) << "every record holds its count now";
+  bad.erase(0, 1);
   EXPECT_FALSE(merged.add_state(bad, rules(false, 3), error));
   EXPECT_EQ(error, "its film state holds 1000 samples in pixel (8, 39), more than its pieces' 3 "
                    "(the two do not belong together)");
   // A Cryptomatte slot's id that is no id (a float's bits with exponent 0),
-  // in the last pixel. CryptoObject's slots follow the plain sums (int64 each).
-  std::size_t crypto = 0;  // where CryptoObject's slots begin among a pixel's AOV sums
+  // in the last pixel. CryptoObject's slots follow the plain sums.
+  std::size_t crypto = 6;  // CryptoObject's first slot
   for (const AovRequest& r : a.aovs()) {
     if (r.type == AovType::CryptoObject) break;
     crypto += static_cast<std::size_t>(aov_state_sums(r));
   }
   bad = std::string(view_b);
-  const std::size_t id_at = header + (n - 1) * record + 5 * sizeof(int64_t) + sizeof(uint32_t) + crypto * sizeof(int64_t);
+  const std::size_t id_at = b.state_slot_at(bad, n - 1, static_cast<uint32_t>(crypto));
+  ASSERT_NE(id_at, std::string::npos);
   const uint32_t not_an_id = 1;
   std::memcpy(&bad[id_at], &not_an_id, sizeof not_an_id);
   EXPECT_FALSE(merged.add_state(bad, rules(false, 3), error));
@@ -334,8 +206,7 @@ TEST(FilmMerge, SettingRowsGivesTheBitsOfAddingThemToAClearedFilm) {
   Film a(w, h, {0, 0, w, h}, all_aovs()), other(w, h, {0, 0, w, h}, all_aovs());
   render(a, a.crop(), {0, 3});
   render(other, other.crop(), {3, 7});
-  std::string bytes = state(a);
-  const std::size_t records = records_at(bytes, all_aovs().size()), record = a.state_record_bytes();
+  StateParts parts = expand(a, state(a));
   std::size_t values = 0, max_at = 0;  // a pixel's plain values; NonFinite's among them
   std::vector<std::pair<std::size_t, int>> first;  // first-sample layers: their first value, channels
   for (const AovRequest& r : a.aovs()) {
@@ -345,8 +216,10 @@ TEST(FilmMerge, SettingRowsGivesTheBitsOfAddingThemToAClearedFilm) {
     values += static_cast<std::size_t>(info.values);
   }
   ASSERT_EQ(first.size(), 4u);
-  const auto value_at = [&](std::size_t pixel, std::size_t k) { return records + (pixel + 1) * record - (values - k) * 4; };
-  const auto put = [&](std::size_t pixel, std::size_t k, float v) { std::memcpy(&bytes[value_at(pixel, k)], &v, 4); };
+  const std::size_t first_value = parts.width.size() - values;
+  const auto put = [&](std::size_t pixel, std::size_t k, float v) {
+    std::memcpy(&parts.full[pixel][parts.offset[first_value + k]], &v, 4);
+  };
   const float odd[] = {-0.0f, std::nanf(""), -1.5f, std::numeric_limits<float>::infinity(), 0.25f, 0.0f};
   for (std::size_t p = 0; p < static_cast<std::size_t>(w * h); ++p) {
     const float v = odd[p % 6];
@@ -356,6 +229,7 @@ TEST(FilmMerge, SettingRowsGivesTheBitsOfAddingThemToAClearedFilm) {
       put(p, at + static_cast<std::size_t>(channels), v);
     }
   }
+  const std::string bytes = pack(parts);
   for (uint64_t most : {uint64_t{3}, uint64_t{2}}) {  // 2: pixel 7 refused (it holds 3 samples)
     for (uint8_t other_first : {0, 1}) {
       const std::size_t n = static_cast<std::size_t>(w * (y1 - y0));
@@ -375,12 +249,8 @@ TEST(FilmMerge, SettingRowsGivesTheBitsOfAddingThemToAClearedFilm) {
       EXPECT_EQ(state(set), want) << "most samples " << most << ", other first " << int(other_first);
       // Not vacuous: the maximum of -0.0 at pixel 6 (y0 * w) was made +0.0,
       // its first-sample values (flag -0.0) zeros.
-      const std::size_t at = records_at(want, all_aovs().size()) + record - (values - max_at) * 4;
-      uint32_t bits = 1;
-      std::memcpy(&bits, &want[at], 4);
-      EXPECT_EQ(bits, 0u);
-      std::memcpy(&bits, &bytes[value_at(6, max_at)], 4);
-      EXPECT_EQ(bits, 0x80000000u);
+      EXPECT_EQ(read_at<uint32_t>(expand(a, want).full[6], parts.offset[first_value + max_at]), 0u);
+      EXPECT_EQ(read_at<uint32_t>(parts.full[6], parts.offset[first_value + max_at]), 0x80000000u);
     }
   }
 }
@@ -616,10 +486,11 @@ TEST(ShardMerger, StreamedStatesAreCheckedAsTheyAreRead) {
   }
   ShardMerger merger(false);
   ASSERT_TRUE(merger.check("b", b.info, error)) << error;
-  std::stringstream truncated(state(b.film).substr(0, 500));
+  const std::string whole = state(b.film), cut = whole.substr(0, whole.size() - 100);  // inside its records
+  std::stringstream truncated(cut);
   EXPECT_FALSE(merger.add("b", b.info, truncated, error));
   EXPECT_EQ(error, "'b': truncated film state");
-  EXPECT_FALSE(merger.add("b", b.info, std::string_view(state(b.film)).substr(0, 500), error));
+  EXPECT_FALSE(merger.add("b", b.info, std::string_view(cut), error));
   EXPECT_EQ(error, "'b': truncated film state");
   // The state of tile 0/5 under the header of tile 1/5 (the same size, another
   // place) is refused, not added in the wrong place.
@@ -706,7 +577,8 @@ TEST(ShardMerger, BandMergeChecksEveryState) {
   EXPECT_EQ(error, "'s1': its film state holds 15 samples in pixel (0, 0), more than its pieces' 14 "
                    "(the two do not belong together)");
   a.info.pieces[0].done = {0, 15};
-  EXPECT_FALSE(band_merge({&a, &b}, out, error, false, {state(a.film), state(b.film).substr(0, 500)}));
+  const std::string whole = state(b.film);
+  EXPECT_FALSE(band_merge({&a, &b}, out, error, false, {state(a.film), whole.substr(0, whole.size() - 100)}));
   EXPECT_EQ(error, "'s1': truncated film state");
   EXPECT_FALSE(band_merge({&a, &b}, out, error, false, {state(a.film), state(b.film) + "x"}));
   EXPECT_EQ(error, "'s1': film state has trailing data");

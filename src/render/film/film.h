@@ -17,6 +17,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <iosfwd>
 #include <string>
@@ -140,15 +141,35 @@ struct StateException {
   UInt128 value = 0;   // the sum's integer, the count, or the value's double bits
 };
 
+// A film state's record layout (version 6, film_state_codec.cpp): the
+// slots every pixel of the state shares (a full record, 0 in the others),
+// which slots a record may hold, and where every 32nd record begins.
+constexpr std::size_t kStateGroup = 32;  // records per entry of the record index
+constexpr std::size_t kStateWords = 2;   // 64-bit words of a record's slot mask (128 slots; 111 at most)
+struct StateCodec {
+  std::vector<char> defaults;                // a full record (every slot at its type's width)
+  std::array<uint64_t, kStateWords> varying{};  // the slots a record may hold: those whose default is 0
+  std::vector<uint64_t> index;  // per group of kStateGroup records, its offset among the records; then their size
+  // The defaults decoded (a record that holds no slot): what a record's
+  // decode starts from.
+  PixelSum pixel;
+  std::vector<ExactSum> sums;
+  std::vector<double> values;
+};
+
 // A complete film state in memory (a mapped shard file after its header),
-// its header and size checked (Film::view_state): its exceptions and where
-// its pixel records begin, for Film::add_state_rows. The records need not be
-// aligned.
+// its header and size checked (Film::view_state): its exceptions, its codec
+// and where its pixel records begin, for Film::add_state_rows. The records
+// need not be aligned.
 struct StateView {
   PixelRect crop;
   NonFiniteReport non_finite;
   std::vector<StateException> exceptions;
-  const char* records = nullptr;  // the crop's pixels' records, row-major
+  StateCodec codec;
+  // The crop's pixels' records, row-major, from the one codec.index puts
+  // `records_from` bytes in (0: all of them; a stream's reader holds some).
+  const char* records = nullptr;
+  uint64_t records_from = 0;
 };
 
 class Film {
@@ -261,9 +282,20 @@ class Film {
   std::size_t set_state_rect(const StateView& view, const StateRules& rules, const PixelRect& rect);
   // The message for a pixel add_state_rows refused.
   std::string refusal(const StateView& view, std::size_t pixel, const StateRules& rules) const;
-  // The bytes of one pixel's record in a film state of this film's AOVs
-  // (the exceptions and header aside): 448 with every AOV, 44 for the beauty.
+  // The bytes of one pixel's full record in a film state of this film's
+  // AOVs (every slot at its type's width: a state's defaults, and the most a
+  // record holds besides its mask of ceil(slots / 8) bytes): 448 with every
+  // AOV of the path integrator, 44 for the beauty.
   std::size_t state_record_bytes() const { return record_bytes_; }
+  // Where pixel number `pixel`'s record (its mask) begins in the film state
+  // `state` (of this film's AOVs), or std::string::npos when the state is
+  // damaged. For tests and tools that inspect states.
+  std::size_t state_record_at(std::string_view state, std::size_t pixel) const;
+  // Where slot `slot` (as StateException::slot) of pixel number `pixel` of
+  // the film state `state` (of this film's AOVs) is stored: its offset in
+  // `state`, or std::string::npos when the pixel's record does not hold it
+  // (its value is the state's default) or the state is damaged.
+  std::size_t state_slot_at(std::string_view state, std::size_t pixel, uint32_t slot) const;
   // Moves this film to `crop` and clears it: a band film reused for the
   // next band (no allocation unless the crop is larger than any before).
   void recrop(const PixelRect& crop);
@@ -281,44 +313,63 @@ class Film {
   bool valid_ranked(const ExactSum* s) const;
   // Adds another film's plain AOV values `s` (first-sample layers, maxima) to pixel number `pixel`.
   void add_values(std::size_t pixel, const double* s, bool other_first);
-  // The film state's compact records (film_state_codec.cpp). Slots of a
-  // pixel: state_slots(), numbered as StateException::slot.
+  // The film state's records (film_state_codec.cpp; the layout in
+  // film_state.cpp). Slots of a pixel: state_slots(), numbered as
+  // StateException::slot. A full record holds every slot at its type's
+  // width (record_bytes_); a state's record, a mask of the slots that differ
+  // from the state's defaults (bitmap_bytes_), then those slots.
   void init_state_layout();
   std::size_t state_slots() const { return 6 + static_cast<std::size_t>(sum_stride_ + value_stride_); }
   // Whether `e` is a slot of a state of `pixels` pixels whose value its
   // record could not hold (anything else is not how write_state writes it).
-  bool valid_exception(const StateException& e, std::size_t pixels) const;
-  // The record of this film's pixel number `pixel` into `out`
+  bool valid_exception(const StateException& e, std::size_t pixels, const StateCodec& codec) const;
+  // The full record of this film's pixel number `pixel` into `out`
   // (record_bytes_); the slots it cannot hold are 0 there and appended to
   // `exceptions` (when not null) as pixel `number`.
   void encode_record(std::size_t pixel, uint64_t number, char* out, std::vector<StateException>* exceptions) const;
-  // A record and its pixel's exceptions [ex, ex_end) into a pixel's sums,
-  // AOV sums and values; false when they are not as encode_record writes them.
-  bool decode_record(const char* in, const StateException* ex, const StateException* ex_end, PixelSum& sum,
-                     ExactSum* sums, double* values) const;
-  // Reads a state's exception list (the count, then the entries) of a state
-  // of `pixels` pixels; false with `error`.
-  bool read_exceptions(std::istream& in, std::size_t pixels, std::vector<StateException>& out,
-                       std::string& error) const;
-  static void write_exceptions(std::ostream& out, const std::vector<StateException>& exceptions);
-  // add_state's work on pixels [first, first + count) of a state over
-  // `rules.crop` (row-major), from their records (which need not be
-  // aligned) and the state's exceptions: the first pixel that breaks the
-  // rules (too many samples; corrupt Cryptomatte slots; a record not as
-  // written), or SIZE_MAX. The pixels before it are added.
-  std::size_t add_records(const char* records, std::size_t first, std::size_t count,
-                          const std::vector<StateException>& exceptions, const StateRules& rules);
+  // The record of the full record `full` under `codec` into `out` (when not
+  // null); its size.
+  std::size_t pack_record(const char* full, const StateCodec& codec, char* out) const;
+  // This film's state's codec (its defaults and record index) and exceptions.
+  StateCodec state_codec(std::vector<StateException>& exceptions) const;
+  // The size of the record at `in` under `codec`, which must end by `end`;
+  // 0 when its mask is not as pack_record writes it or it passes `end`.
+  std::size_t record_size(const char* in, const char* end, const StateCodec& codec) const;
+  // The record at `in` (ending by `end`) and its pixel's exceptions [ex,
+  // ex_end) into a pixel's sums, AOV sums and values, `in` moved past it;
+  // false when they are not as pack_record writes them.
+  bool decode_record(const char*& in, const char* end, const StateCodec& codec, const StateException* ex,
+                     const StateException* ex_end, PixelSum& sum, ExactSum* sums, double* values) const;
+  // codec.pixel, sums and values from codec.defaults.
+  void decode_defaults(StateCodec& codec) const;
+  // The parts of a state's header after the non-finite report: the
+  // defaults, the exception list and the record index of a state of
+  // `pixels` pixels; false with `error`.
+  bool read_codec(std::istream& in, std::size_t pixels, StateCodec& codec, std::vector<StateException>& exceptions,
+                  std::string& error) const;
+  void write_codec(std::ostream& out, const StateCodec& codec, const std::vector<StateException>& exceptions) const;
+  // The record of pixel `pixel` of a viewed state (`at`) and the end of its
+  // group (`end`); false when a record before it in its group is damaged.
+  bool seek_record(const StateView& view, std::size_t pixel, const char*& at, const char*& end) const;
+  // After pixel `pixel`'s record (of `pixels`), `at` past it: false when it
+  // ends its group and the records do not end where the index says; `end`
+  // moved to the next group's end.
+  static bool next_record(const StateView& view, std::size_t pixel, std::size_t pixels, const char* at,
+                          const char*& end);
+  // add_state's work on pixels [first, first + count) of a viewed state
+  // (rules over its crop): the first pixel that breaks the rules (too many
+  // samples; corrupt Cryptomatte slots; a record not as written), or
+  // SIZE_MAX. The pixels before it are added.
+  std::size_t add_records(const StateView& view, std::size_t first, std::size_t count, const StateRules& rules);
   // set_state_rect's work: pixels [first, first + count) of the state
   // decoded straight into this film's pixels to, to + 1, ...; the first
   // refused pixel or SIZE_MAX.
-  std::size_t set_records(const char* records, std::size_t first, std::size_t count,
-                          const std::vector<StateException>& exceptions, const StateRules& rules, std::size_t to);
+  std::size_t set_records(const StateView& view, std::size_t first, std::size_t count, const StateRules& rules,
+                          std::size_t to);
   // A pixel's plain AOV values `v`, decoded from a state, made what
   // add_values makes of them in a cleared pixel.
   void first_values(double* v) const;
   static std::string too_many_samples(std::size_t pixel, uint64_t samples, const StateRules& rules);
-  // refusal() of the pixel whose record is at `record`.
-  std::string refusal(const char* record, const StateView& view, std::size_t pixel, const StateRules& rules) const;
   // Resolves pixels [first, first + count) of the crop into `out`'s pixels
   // from `at` on (layers laid out by layer_layout).
   void resolve_pixels(LayeredImage& out, std::size_t first, std::size_t count, std::size_t at) const;
@@ -357,7 +408,11 @@ class Film {
   std::vector<uint8_t> sum_kinds_;  // per AOV sum: how a state's record holds it (film_state_codec.cpp)
   // sum_kinds_ as runs of one kind (kind, count), in order: decode_record's loops.
   std::vector<std::pair<uint8_t, int>> kind_runs_;
-  std::size_t record_bytes_ = 0;    // a state's record of one pixel
+  std::vector<uint32_t> slot_offset_;  // per state slot: where a full record holds it
+  std::vector<uint8_t> slot_kind_;     // per state slot: what it is and where it decodes to (film_state_codec.cpp)
+  std::array<uint64_t, kStateWords> wide_slots_{};  // the state slots held in 8 bytes (the others in 4)
+  std::size_t record_bytes_ = 0;    // a full record of one pixel
+  std::size_t bitmap_bytes_ = 0;    // a record's mask of the slots it holds
 };
 
 }  // namespace pt

@@ -1,5 +1,6 @@
 // Film::write_state / read_state: checkpoints of a film, bit for bit.
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <bit>
 #include <cstddef>
@@ -20,29 +21,39 @@ namespace pt {
 
 namespace {
 
-// State layout (version 5), all little-endian:
+// State layout (version 6), all little-endian:
 //   the 8-byte magic; uint32 version, width, height; int32 crop x0, y0, x1, y1;
 //   uint32 AOV count, then per AOV uint8 type, uint8 channel type and uint8
 //   ranks (Cryptomatte; 0 for the others);
 //   the non-finite report: uint64 nan, pos_inf, neg_inf; uint8 has_first;
 //   int32 x, y, sample; float r, g, b;
+//   the defaults: a full record (below) of the slots every pixel of the crop
+//   holds alike (pixel 0's value there), 0 in the other slots;
 //   uint64 the number of exceptions, then each: uint64 pixel (of the crop,
 //   row-major), uint32 slot, its value as 128 bits (the low 64 first), in
 //   increasing (pixel, slot) order;
+//   the record index: per group of 32 pixels of the crop (row-major; the
+//   last may be shorter), uint64 where its records begin, from the first
+//   record; then uint64 the records' size;
 //   per pixel of the crop (row-major, top row first), its record
-//   (film_state_codec.cpp): r, g, b, weight and coverage as int64 (exact sums,
-//   render/film/exact_sum.h: integers in units of 2^-44), samples as uint32,
-//   the AOVs' exact sums in request order as int64 (a Cryptomatte layer: per
-//   rank, its id's 32 bits as uint32 and its weight as int64), then the AOVs'
-//   plain values as floats. A slot whose value its type cannot hold is 0 in
-//   the record and listed among the exceptions with its full value (a sum's
-//   128-bit integer, the count, a value's double bits).
+//   (film_state_codec.cpp): a mask of ceil(slots / 8) bytes (bit k of byte
+//   k / 8 for slot k), then the slots it sets, in slot order, at their
+//   widths; a slot not set holds its default.
+// A full record holds every slot: r, g, b, weight and coverage as int64
+// (exact sums, render/film/exact_sum.h: integers in units of 2^-44), samples
+// as uint32, the AOVs' exact sums in request order as int64 (a Cryptomatte
+// layer: per rank, its id's 32 bits as uint32 and its weight as int64), then
+// the AOVs' plain values as floats. A slot whose value its type cannot hold
+// is 0 there and listed among the exceptions with its full value (a sum's
+// 128-bit integer, the count, a value's double bits). A record sets exactly
+// the slots whose value differs from its default: a slot with a default
+// other than 0 is set by no record, and a set slot is not 0.
 // Versions 1 (beauty only, no crop), 2 (sums in double), 3 (either sums in
-// double with coverage, or exact sums without it) and 4 (every sum in 128
-// bits, values in double: 992 bytes a pixel with every AOV, 448 now) are no
-// longer read.
+// double with coverage, or exact sums without it), 4 (every sum in 128
+// bits, values in double: 992 bytes a pixel with every AOV) and 5 (every
+// record full: 448 bytes a pixel with every AOV) are no longer read.
 constexpr char kMagic[8] = {'P', 'T', 'F', 'I', 'L', 'M', '\r', '\n'};
-constexpr uint32_t kStateVersion = 5;
+constexpr uint32_t kStateVersion = 6;
 static_assert(std::endian::native == std::endian::little, "film states are written in the host's byte order");
 
 template <typename T>
@@ -162,19 +173,24 @@ bool read_non_finite(std::istream& in, NonFiniteReport& nf, std::string& error) 
   return true;
 }
 
-// Reads `items` groups of `per_item` values of T in blocks of about 8 MiB,
-// calling `add(block, first_item, item_count)` for each; false if the stream
-// ends first or `add` refuses.
-template <typename T, typename F>
-bool read_blocks(std::istream& in, std::size_t items, std::size_t per_item, F&& add) {
-  if (per_item == 0) return true;
-  const std::size_t per_block = std::max<std::size_t>(1, (std::size_t{8} << 20) / (sizeof(T) * per_item));
-  std::vector<T> block(std::min(items, per_block) * per_item);
-  for (std::size_t first = 0; first < items; first += per_block) {
-    const std::size_t n = std::min(per_block, items - first);
-    if (!in.read(reinterpret_cast<char*>(block.data()), static_cast<std::streamsize>(n * per_item * sizeof(T))) ||
-        !add(block.data(), first, n))
-      return false;
+// Reads the records of a state's groups [0, groups) from a stream in
+// batches of about 8 MiB, pointing `view` at each batch and calling
+// `add(first_pixel, pixel_count)`: false if the stream ends first or `add`
+// refuses.
+template <typename F>
+bool read_groups(std::istream& in, StateView& view, std::size_t pixels, F&& add) {
+  const std::vector<uint64_t>& index = view.codec.index;
+  const std::size_t groups = index.size() - 1;
+  std::vector<char> batch;
+  for (std::size_t g0 = 0, g1 = 0; g0 < groups; g0 = g1) {
+    g1 = g0 + 1;
+    while (g1 < groups && index[g1 + 1] - index[g0] <= (std::size_t{8} << 20)) ++g1;
+    batch.resize(index[g1] - index[g0]);
+    if (!in.read(batch.data(), static_cast<std::streamsize>(batch.size()))) return false;
+    view.records = batch.data();
+    view.records_from = index[g0];
+    const std::size_t first = g0 * kStateGroup;
+    if (!add(first, std::min(pixels, g1 * kStateGroup) - first)) return false;
   }
   return true;
 }
@@ -203,23 +219,13 @@ std::size_t for_blocks(std::size_t items, F&& add) {
   return lowest.load();
 }
 
-// Runs `f(block, first, count)` for blocks [block * kAddGrain, ...) of
-// [0, items), in parallel.
-template <typename F>
-void for_each_block(std::size_t items, F&& f) {
-  const std::size_t blocks = (items + kAddGrain - 1) / kAddGrain;
-  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
-    f(b, b * kAddGrain, std::min(kAddGrain, items - b * kAddGrain));
-  });
-}
-
-// Asks for the record `ahead` records after `record` (of `bytes`) to be
-// brought into the cache: a state's records stream from a mapped file, whose
-// pages the hardware prefetcher does not cross.
-constexpr std::size_t kPrefetchRecords = 4;
-inline void prefetch_record(const char* record, std::size_t bytes) {
-  const char* ahead = record + kPrefetchRecords * bytes;
-  for (std::size_t at = 0; at < bytes; at += 64) __builtin_prefetch(ahead + at);
+// Asks for the bytes a few records after `at` to be brought into the
+// cache: a state's records stream from a mapped file, whose pages the
+// hardware prefetcher does not cross.
+constexpr std::size_t kPrefetchBytes = 1024;
+inline void prefetch_records(const char* at) {
+  __builtin_prefetch(at + kPrefetchBytes);
+  __builtin_prefetch(at + kPrefetchBytes + 64);
 }
 
 // The exceptions of pixel `pixel` onwards: the first of them.
@@ -257,54 +263,57 @@ bool Film::write_state(std::ostream& out) const {
   put(out, static_cast<uint8_t>(nf.has_first));
   for (int v : {nf.x, nf.y, nf.sample}) put(out, static_cast<int32_t>(v));
   for (float v : {nf.value.r, nf.value.g, nf.value.b}) put(out, v);
-  // The records twice: once for the exceptions, which come first, then
-  // block by block into the stream; each pass in parallel blocks.
-  const std::size_t n = pixels_.size();
-  std::vector<std::vector<StateException>> found((n + kAddGrain - 1) / kAddGrain);
-  for_each_block(n, [&](std::size_t block, std::size_t first, std::size_t count) {
-    std::vector<char> record(record_bytes_);
-    for (std::size_t i = first; i < first + count; ++i) encode_record(i, i, record.data(), &found[block]);
-  });
   std::vector<StateException> exceptions;
-  for (const auto& f : found) exceptions.insert(exceptions.end(), f.begin(), f.end());
-  write_exceptions(out, exceptions);
-  const std::size_t per_write = std::max<std::size_t>(kAddGrain, (std::size_t{8} << 20) / record_bytes_ / kAddGrain * kAddGrain);
-  std::vector<char> buffer(std::min(n, per_write) * record_bytes_);
-  for (std::size_t first = 0; first < n && out; first += per_write) {
-    const std::size_t count = std::min(per_write, n - first);
-    for_each_block(count, [&](std::size_t, std::size_t b, std::size_t c) {
-      for (std::size_t i = b; i < b + c; ++i) encode_record(first + i, first + i, &buffer[i * record_bytes_], nullptr);
+  const StateCodec codec = state_codec(exceptions);
+  write_codec(out, codec, exceptions);
+  // The records, in batches of groups of about 8 MiB, each encoded in parallel.
+  const std::size_t n = pixels_.size(), groups = codec.index.size() - 1;
+  std::vector<char> batch;
+  for (std::size_t g0 = 0, g1 = 0; g0 < groups && out; g0 = g1) {
+    g1 = g0 + 1;
+    while (g1 < groups && codec.index[g1 + 1] - codec.index[g0] <= (std::size_t{8} << 20)) ++g1;
+    batch.resize(codec.index[g1] - codec.index[g0]);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(g0, g1, kAddGrain / kStateGroup), [&](const tbb::blocked_range<std::size_t>& r) {
+      std::vector<char> full(record_bytes_);
+      char* to = batch.data() + (codec.index[r.begin()] - codec.index[g0]);
+      for (std::size_t i = r.begin() * kStateGroup; i < std::min(n, r.end() * kStateGroup); ++i) {
+        encode_record(i, i, full.data(), nullptr);
+        to += pack_record(full.data(), codec, to);
+      }
     });
-    out.write(buffer.data(), static_cast<std::streamsize>(count * record_bytes_));
+    out.write(batch.data(), static_cast<std::streamsize>(batch.size()));
   }
   return static_cast<bool>(out);
 }
 
 bool Film::read_state(std::istream& in, std::string& error) {
-  PixelRect crop;
-  if (!read_layout(in, width_, height_, crop, aovs_, error)) return false;
-  if (crop != crop_) {
-    error = "film state covers pixels " + crop.text() + ", the render's crop is " + crop_.text();
+  StateView view;
+  if (!read_layout(in, width_, height_, view.crop, aovs_, error)) return false;
+  if (view.crop != crop_) {
+    error = "film state covers pixels " + view.crop.text() + ", the render's crop is " + crop_.text();
     return false;
   }
-  NonFiniteReport nf;
-  std::vector<StateException> exceptions;
-  if (!read_non_finite(in, nf, error) || !read_exceptions(in, pixels_.size(), exceptions, error)) return false;
+  const std::size_t n = pixels_.size();
+  if (!read_non_finite(in, view.non_finite, error) || !read_codec(in, n, view.codec, view.exceptions, error))
+    return false;
   // Integer sums cannot be corrupt in value (any bits are some sum); the
   // samples are checked against the header by the checkpoint and shard readers.
-  std::vector<PixelSum> pixels(pixels_.size());
+  std::vector<PixelSum> pixels(n);
   const auto stride = static_cast<std::size_t>(sum_stride_), vstride = static_cast<std::size_t>(value_stride_);
   std::vector<ExactSum> sums(aov_sums_.size());
   std::vector<double> values(aov_values_.size());
-  const StateException* ex = exceptions.data();
   std::size_t bad = SIZE_MAX;
-  const bool read = read_blocks<char>(in, pixels.size(), record_bytes_, [&](const char* r, std::size_t first, std::size_t count) {
-    for (std::size_t i = first; i < first + count && bad == SIZE_MAX; ++i, r += record_bytes_) {
-      const StateException* end = exceptions_end(exceptions, ex, i);
-      if (!decode_record(r, ex, end, pixels[i], sums.data() + i * stride, values.data() + i * vstride) ||
-          !valid_ranked(sums.data() + i * stride))
+  const bool read = read_groups(in, view, n, [&](std::size_t first, std::size_t count) {
+    const char *at = nullptr, *end = nullptr;
+    const StateException* ex = exceptions_from(view.exceptions, first);
+    if (!seek_record(view, first, at, end)) bad = first;
+    for (std::size_t i = first; i < first + count && bad == SIZE_MAX; ++i) {
+      const StateException* ex_end = exceptions_end(view.exceptions, ex, i);
+      if (!decode_record(at, end, view.codec, ex, ex_end, pixels[i], sums.data() + i * stride,
+                         values.data() + i * vstride) ||
+          !valid_ranked(sums.data() + i * stride) || !next_record(view, i, n, at, end))
         bad = i;
-      ex = end;
+      ex = ex_end;
     }
     return bad == SIZE_MAX;
   });
@@ -320,27 +329,66 @@ bool Film::read_state(std::istream& in, std::string& error) {
     error = "film state has trailing data";
     return false;
   }
-  pixels_ = std::move(pixels);
-  aov_sums_ = std::move(sums);
-  aov_values_ = std::move(values);
-  non_finite_ = nf;
+  // The defaults must be the ones write_state finds in these pixels (the
+  // slots every pixel holds alike): what is read is written back byte for byte.
+  std::swap(pixels_, pixels);
+  std::swap(aov_sums_, sums);
+  std::swap(aov_values_, values);
+  std::vector<StateException> exceptions;
+  if (state_codec(exceptions).defaults != view.codec.defaults) {
+    std::swap(pixels_, pixels);
+    std::swap(aov_sums_, sums);
+    std::swap(aov_values_, values);
+    error = "corrupt film state (defaults not those of its pixels)";
+    return false;
+  }
+  non_finite_ = view.non_finite;
   return true;
 }
 
-std::size_t Film::add_records(const char* records, std::size_t first, std::size_t count,
-                              const std::vector<StateException>& exceptions, const StateRules& rules) {
+bool Film::seek_record(const StateView& view, std::size_t pixel, const char*& at, const char*& end) const {
+  const std::size_t group = pixel / kStateGroup;
+  at = view.records + (view.codec.index[group] - view.records_from);
+  end = view.records + (view.codec.index[group + 1] - view.records_from);
+  for (std::size_t i = group * kStateGroup; i < pixel; ++i) {
+    const std::size_t size = record_size(at, end, view.codec);
+    if (size == 0) return false;
+    at += size;
+  }
+  return true;
+}
+
+bool Film::next_record(const StateView& view, std::size_t pixel, std::size_t pixels, const char* at,
+                       const char*& end) {
+  if ((pixel + 1) % kStateGroup != 0 && pixel + 1 != pixels) return true;
+  if (at != end) return false;
+  if (pixel + 1 < pixels) end = view.records + (view.codec.index[(pixel + 1) / kStateGroup + 1] - view.records_from);
+  return true;
+}
+
+namespace {
+std::size_t pixels_of(const PixelRect& crop) {
+  return static_cast<std::size_t>(crop.width()) * static_cast<std::size_t>(crop.height());
+}
+}  // namespace
+
+std::size_t Film::add_records(const StateView& view, std::size_t first, std::size_t count, const StateRules& rules) {
   const auto width = static_cast<std::size_t>(rules.crop.width());
+  const std::size_t n = pixels_of(view.crop);
   std::vector<ExactSum> sums(static_cast<std::size_t>(sum_stride_));
   std::vector<double> values(static_cast<std::size_t>(value_stride_));
-  const StateException* ex = exceptions_from(exceptions, first);
-  for (std::size_t i = first; i < first + count; ++i, records += record_bytes_) {
-    prefetch_record(records, record_bytes_);
-    const StateException* end = exceptions_end(exceptions, ex, i);
+  const StateException* ex = exceptions_from(view.exceptions, first);
+  const char *at = nullptr, *end = nullptr;
+  if (!seek_record(view, first, at, end)) return first;
+  for (std::size_t i = first; i < first + count; ++i) {
+    prefetch_records(at);
+    const StateException* ex_end = exceptions_end(view.exceptions, ex, i);
     PixelSum sum;
-    if (!decode_record(records, ex, end, sum, sums.data(), values.data()) ||
-        sum.samples > rules.max_samples[i - rules.first] || !valid_ranked(sums.data()))
+    if (!decode_record(at, end, view.codec, ex, ex_end, sum, sums.data(), values.data()) ||
+        sum.samples > rules.max_samples[i - rules.first] || !valid_ranked(sums.data()) ||
+        !next_record(view, i, n, at, end))
       return i;
-    ex = end;
+    ex = ex_end;
     const std::size_t to = index(rules.crop.x0 + static_cast<int>(i % width), rules.crop.y0 + static_cast<int>(i / width));
     pixels_[to].add(sum);
     add_sums(to, sums.data());
@@ -349,24 +397,27 @@ std::size_t Film::add_records(const char* records, std::size_t first, std::size_
   return SIZE_MAX;
 }
 
-std::size_t Film::set_records(const char* records, std::size_t first, std::size_t count,
-                              const std::vector<StateException>& exceptions, const StateRules& rules,
+std::size_t Film::set_records(const StateView& view, std::size_t first, std::size_t count, const StateRules& rules,
                               std::size_t to0) {
   const auto stride = static_cast<std::size_t>(sum_stride_), vstride = static_cast<std::size_t>(value_stride_);
-  const StateException* ex = exceptions_from(exceptions, first);
-  for (std::size_t i = first; i < first + count; ++i, records += record_bytes_) {
-    prefetch_record(records, record_bytes_);
-    const StateException* end = exceptions_end(exceptions, ex, i);
+  const std::size_t n = pixels_of(view.crop);
+  const StateException* ex = exceptions_from(view.exceptions, first);
+  const char *at = nullptr, *end = nullptr;
+  if (!seek_record(view, first, at, end)) return first;
+  for (std::size_t i = first; i < first + count; ++i) {
+    prefetch_records(at);
+    const StateException* ex_end = exceptions_end(view.exceptions, ex, i);
     const std::size_t to = to0 + (i - first);
     ExactSum* sums = aov_sums_.data() + to * stride;
     double* values = aov_values_.data() + to * vstride;
     // Integer sums: 0 + x is x, and valid Cryptomatte slots (ids increasing,
     // free slots last and empty) are what add_ranked makes of them from
     // empty slots. The plain values are not: first_values.
-    if (!decode_record(records, ex, end, pixels_[to], sums, values) ||
-        pixels_[to].samples > rules.max_samples[i - rules.first] || !valid_ranked(sums))
+    if (!decode_record(at, end, view.codec, ex, ex_end, pixels_[to], sums, values) ||
+        pixels_[to].samples > rules.max_samples[i - rules.first] || !valid_ranked(sums) ||
+        !next_record(view, i, n, at, end))
       return i;
-    ex = end;
+    ex = ex_end;
     first_values(values);
   }
   return SIZE_MAX;
@@ -381,44 +432,41 @@ std::string Film::too_many_samples(std::size_t pixel, uint64_t samples, const St
 }
 
 std::string Film::refusal(const StateView& view, std::size_t pixel, const StateRules& rules) const {
-  return refusal(view.records + pixel * record_bytes_, view, pixel, rules);
-}
-
-std::string Film::refusal(const char* record, const StateView& view, std::size_t pixel, const StateRules& rules) const {
   const StateException* ex = exceptions_from(view.exceptions, pixel);
-  const StateException* end = exceptions_end(view.exceptions, ex, pixel);
+  const StateException* ex_end = exceptions_end(view.exceptions, ex, pixel);
   PixelSum sum;
   std::vector<ExactSum> sums(static_cast<std::size_t>(sum_stride_));
   std::vector<double> values(static_cast<std::size_t>(value_stride_));
   const auto width = static_cast<std::size_t>(view.crop.width());
   const std::string where = "pixel (" + std::to_string(view.crop.x0 + static_cast<int>(pixel % width)) + ", " +
                             std::to_string(view.crop.y0 + static_cast<int>(pixel / width)) + ")";
-  if (!decode_record(record, ex, end, sum, sums.data(), values.data()))
+  const char *at = nullptr, *end = nullptr;
+  if (!seek_record(view, pixel, at, end) || !decode_record(at, end, view.codec, ex, ex_end, sum, sums.data(), values.data()))
     return "corrupt film state (" + where + ": a value not stored as this pathtracer stores it)";
   if (sum.samples > rules.max_samples[pixel - rules.first]) return too_many_samples(pixel, sum.samples, rules);
-  return "corrupt film state (Cryptomatte slots of " + where + ")";
+  if (!valid_ranked(sums.data())) return "corrupt film state (Cryptomatte slots of " + where + ")";
+  return "corrupt film state (" + where + ": its records do not end where the record index says)";
 }
 
 bool Film::add_state(std::istream& in, const StateRules& rules, std::string& error) {
-  PixelRect c;
-  if (!read_layout(in, width_, height_, c, aovs_, error)) return false;
-  if (c != rules.crop || !crop_.contains(c)) {
-    error = "film state covers pixels " + c.text() + ", not " + rules.crop.text() + " inside " + crop_.text();
+  StateView view;
+  if (!read_layout(in, width_, height_, view.crop, aovs_, error)) return false;
+  if (view.crop != rules.crop || !crop_.contains(view.crop)) {
+    error = "film state covers pixels " + view.crop.text() + ", not " + rules.crop.text() + " inside " + crop_.text();
     return false;
   }
-  StateView view;
-  view.crop = c;
-  const std::size_t n = static_cast<std::size_t>(c.width()) * static_cast<std::size_t>(c.height());
-  if (!read_non_finite(in, view.non_finite, error) || !read_exceptions(in, n, view.exceptions, error)) return false;
+  const std::size_t n = pixels_of(view.crop);
+  if (!read_non_finite(in, view.non_finite, error) || !read_codec(in, n, view.codec, view.exceptions, error))
+    return false;
   if (rules.first != 0 || rules.other_first.size() != n || rules.max_samples.size() != n) {
     error = "film state rules of the wrong size";
     return false;
   }
   std::size_t bad = SIZE_MAX;
   std::string refused;
-  const bool read = read_blocks<char>(in, n, record_bytes_, [&](const char* r, std::size_t first, std::size_t count) {
-    bad = add_records(r, first, count, view.exceptions, rules);
-    if (bad != SIZE_MAX) refused = refusal(r + (bad - first) * record_bytes_, view, bad, rules);
+  const bool read = read_groups(in, view, n, [&](std::size_t first, std::size_t count) {
+    bad = add_records(view, first, count, rules);
+    if (bad != SIZE_MAX) refused = refusal(view, bad, rules);
     return bad == SIZE_MAX;
   });
   if (bad != SIZE_MAX || !read) {
@@ -443,17 +491,49 @@ bool Film::view_state(std::string_view state, const PixelRect& crop, const Pixel
     error = "film state covers pixels " + c.text() + ", not " + crop.text() + " inside " + inside.text();
     return false;
   }
-  const std::size_t n = static_cast<std::size_t>(c.width()) * static_cast<std::size_t>(c.height());
-  if (!read_non_finite(in, view.non_finite, error) || !read_exceptions(in, n, view.exceptions, error)) return false;
+  const std::size_t n = pixels_of(c);
+  if (!read_non_finite(in, view.non_finite, error) || !read_codec(in, n, view.codec, view.exceptions, error))
+    return false;
   // The whole body is checked for its size before any of it is added.
-  const std::size_t header = buffer.consumed(), body = n * record_bytes_;
+  const std::size_t header = buffer.consumed(), body = view.codec.index.back();
   if (state.size() - header != body) {
     error = state.size() - header < body ? "truncated film state" : "film state has trailing data";
     return false;
   }
   view.crop = c;
   view.records = state.data() + header;
+  view.records_from = 0;
   return true;
+}
+
+std::size_t Film::state_record_at(std::string_view state, std::size_t pixel) const {
+  StateView view;
+  std::string error;
+  MemoryBuffer buffer(state);
+  std::istream in(&buffer);
+  if (!read_layout(in, width_, height_, view.crop, aovs_, error) || !read_non_finite(in, view.non_finite, error) ||
+      !read_codec(in, pixels_of(view.crop), view.codec, view.exceptions, error) || pixel >= pixels_of(view.crop))
+    return std::string::npos;
+  const std::size_t header = buffer.consumed();
+  if (state.size() - header != view.codec.index.back()) return std::string::npos;
+  view.records = state.data() + header;
+  const char *at = nullptr, *end = nullptr;
+  if (!seek_record(view, pixel, at, end)) return std::string::npos;
+  return static_cast<std::size_t>(at - state.data());
+}
+
+std::size_t Film::state_slot_at(std::string_view state, std::size_t pixel, uint32_t slot) const {
+  const std::size_t record = state_record_at(state, pixel);
+  if (record == std::string::npos || slot >= state_slots() || state.size() - record < bitmap_bytes_)
+    return std::string::npos;
+  std::array<uint64_t, kStateWords> mask{};
+  std::memcpy(mask.data(), state.data() + record, bitmap_bytes_);
+  if (((mask[slot / 64] >> (slot % 64)) & 1) == 0) return std::string::npos;
+  std::size_t offset = bitmap_bytes_;
+  for (uint32_t k = 0; k < slot; ++k)
+    if (((mask[k / 64] >> (k % 64)) & 1) != 0)
+      offset += (k + 1 < state_slots() ? slot_offset_[k + 1] : record_bytes_) - slot_offset_[k];
+  return record + offset;
 }
 
 std::size_t Film::add_state_rows(const StateView& view, const StateRules& rules, int y0, int y1) {
@@ -468,7 +548,7 @@ std::size_t Film::add_state_rect(const StateView& view, const StateRules& rules,
   const auto width = static_cast<std::size_t>(view.crop.width()), count = static_cast<std::size_t>(rect.width());
   for (int y = rect.y0; y < rect.y1; ++y) {
     const std::size_t first = static_cast<std::size_t>(y - view.crop.y0) * width + static_cast<std::size_t>(rect.x0 - view.crop.x0);
-    const std::size_t bad = add_records(view.records + first * record_bytes_, first, count, view.exceptions, rules);
+    const std::size_t bad = add_records(view, first, count, rules);
     if (bad != SIZE_MAX) return bad;
   }
   return SIZE_MAX;
@@ -480,7 +560,7 @@ std::size_t Film::set_state_rect(const StateView& view, const StateRules& rules,
   for (int y = rect.y0; y < rect.y1; ++y) {
     const std::size_t first = static_cast<std::size_t>(y - view.crop.y0) * width + static_cast<std::size_t>(rect.x0 - view.crop.x0);
     const std::size_t to = static_cast<std::size_t>(y - rect.y0) * count;
-    const std::size_t bad = set_records(view.records + first * record_bytes_, first, count, view.exceptions, rules, to);
+    const std::size_t bad = set_records(view, first, count, rules, to);
     if (bad != SIZE_MAX) {  // the pixels from the refused one on: as in a cleared film
       const auto from = static_cast<std::ptrdiff_t>(to + (bad - first));
       std::fill(pixels_.begin() + from, pixels_.end(), PixelSum{});
@@ -496,13 +576,12 @@ bool Film::add_state(std::string_view state, const StateRules& rules, std::strin
   StateView view;
   if (!view_state(state, rules.crop, crop_, view, error)) return false;
   const std::size_t n = rules.max_samples.size();
-  if (rules.first != 0 || rules.other_first.size() != n ||
-      n != static_cast<std::size_t>(view.crop.width()) * static_cast<std::size_t>(view.crop.height())) {
+  if (rules.first != 0 || rules.other_first.size() != n || n != pixels_of(view.crop)) {
     error = "film state rules of the wrong size";
     return false;
   }
   const std::size_t bad = for_blocks(n, [&](std::size_t first, std::size_t count) {
-    return std::min(n, add_records(view.records + first * record_bytes_, first, count, view.exceptions, rules));
+    return std::min(n, add_records(view, first, count, rules));
   });
   if (bad < n) {
     error = refusal(view, bad, rules);
