@@ -190,9 +190,9 @@ bool merge_streamed(const MergeOptions& m, const std::vector<Input>& inputs, Sha
   }
   merged.set_value(ok);
   // Every band is merged: the shards are unmapped (~0.05 s of the kernel's
-  // a shard of 1 GB) while the file thread closes the file and renames it
-  // into place (which frees the pages of a file it replaces: 0.1-0.5 s for
-  // one of 447 MiB, docs/bench/merge-s16-write.md).
+  // time for a shard of 1 GB) while the file thread closes the file and
+  // renames it into place (which frees the pages of a file it replaces:
+  // 0.3-0.5 s for one of 447 MiB at load 8, docs/bench/merge-s16-write.md).
   states.clear();
   files.clear();
   file.join();

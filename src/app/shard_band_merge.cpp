@@ -41,19 +41,27 @@ constexpr int kAheadChunks = 4;
 // the first-level cache between the two.
 constexpr std::size_t kPackPixels = 32;
 
-// Where the streamed merge packs its pixels: rows `row_bytes` apart, each
-// pixels packed as `packed` one after another, or, when `lines` is given (an
-// uncompressed file: io/exr_uncompressed.h), in the file's lines.
+// Where the streamed merge packs its pixels: rows `row_bytes` apart, a row's
+// pixels packed as `packed` one after another, or, when `lines` has channels
+// (an uncompressed file: io/exr_uncompressed.h), in the file's lines.
 struct Packing {
-  const PackedLayout& packed;
-  const LineLayout* lines;
-  std::size_t row_bytes;
+  PackedLayout packed;
+  LineLayout lines;
+  std::size_t row_bytes = 0;
 };
+
+// The packing of the merged image of layout `shape` (without values), in the
+// file's lines when `lines`.
+Packing packing(const LayeredImage& shape, bool lines) {
+  Packing to{packed_layout(shape), lines ? uncompressed_exr_lines(shape) : LineLayout{}, 0};
+  to.row_bytes = lines ? to.lines.row_bytes : to.packed.pixel_bytes * static_cast<std::size_t>(shape.width);
+  return to;
+}
 
 // Every pixel of a band film (a block of rows and columns) resolved
 // (kPackPixels at a time into `row`, their resolved channels) and packed as
 // `to` says into rows from `out` on (the block's first row), the block's
-// first pixel pixel `x` of its row.
+// first pixel being pixel `x` of its row.
 void pack_block(const Film& band, const Packing& to, std::vector<float>& row, unsigned char* out, std::size_t x) {
   const auto width = static_cast<std::size_t>(band.crop().width());
   for (int y = 0; y < band.crop().height(); ++y) {
@@ -62,8 +70,8 @@ void pack_block(const Film& band, const Packing& to, std::vector<float>& row, un
     for (std::size_t first = 0; first < width; first += kPackPixels) {
       const std::size_t n = std::min(kPackPixels, width - first);
       band.resolve_channels(pixel + first, n, row.data());
-      if (to.lines != nullptr) {
-        pack_lines(*to.lines, row.data(), x + first, n, rows);
+      if (!to.lines.channels.empty()) {
+        pack_lines(to.lines, row.data(), x + first, n, rows);
       } else {
         pack_pixels(to.packed, row.data(), n, rows + (x + first) * to.packed.pixel_bytes);
       }
@@ -78,7 +86,7 @@ bool write_chunk(const std::shared_future<ExrBandWriter*>& file, int y0, int y1,
                  const Packing& to, std::string& error) {
   ExrBandWriter* writer = file.get();
   if (writer == nullptr) return false;
-  if (to.lines != nullptr) return writer->write_lines(y0, y1, rows, error);
+  if (!to.lines.channels.empty()) return writer->write_lines(y0, y1, rows, error);
   if (writer->row_bytes() != to.row_bytes) {  // both from packed_layout: not expected
     error = "the EXR writer's rows are " + std::to_string(writer->row_bytes()) + " bytes, the merge's " +
             std::to_string(to.row_bytes);
@@ -220,11 +228,7 @@ bool ShardMerger::merge_streamed(const std::shared_future<ExrBandWriter*>& file,
   Bands& b = *bands_;
   const PixelRect& w = merged_.window;
   // Pixels' resolved channels, then packed into their chunk as the file stores them.
-  const LayeredImage shape = layout();
-  const PackedLayout packed = packed_layout(shape);
-  const LineLayout file_lines = lines ? uncompressed_exr_lines(shape) : LineLayout{};
-  const Packing to{packed, lines ? &file_lines : nullptr,
-                   lines ? file_lines.row_bytes : packed.pixel_bytes * static_cast<std::size_t>(w.width())};
+  const Packing to = packing(layout(), lines);
   const std::size_t row_bytes = to.row_bytes;
   // Chunks in flight: two per thread, and a few more made while the file is
   // opened (the image module's load), before the first write.
@@ -238,7 +242,7 @@ bool ShardMerger::merge_streamed(const std::shared_future<ExrBandWriter*>& file,
   const PixelRect first_band{w.x0, w.y0, w.x1, std::min(w.y1, w.y0 + b.rows)};
   tbb::enumerable_thread_specific<Film> bands([&] { return Film(merged_.width, merged_.height, first_band, b.aovs); });
   tbb::enumerable_thread_specific<std::vector<float>> resolved(
-      [&] { return std::vector<float>(packed.channels * kPackPixels); });
+      [&] { return std::vector<float>(to.packed.channels * kPackPixels); });
   // Chunks of packed rows, reused: as many as the pipeline holds at once.
   struct Chunk {
     int y0 = 0, y1 = 0;

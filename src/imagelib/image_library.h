@@ -34,7 +34,7 @@
 
 namespace pt {
 
-inline constexpr int kImageLibraryAbi = 4;
+inline constexpr int kImageLibraryAbi = 5;
 
 // What an image file's header says.
 struct ImageHeader {
