@@ -16,6 +16,7 @@
 #include "app/shard_merge.h"
 #include "imagelib/image_library.h"
 #include "io/exr_pack.h"
+#include "io/exr_uncompressed.h"
 
 namespace pt {
 namespace {
@@ -40,37 +41,58 @@ constexpr int kAheadChunks = 4;
 // the first-level cache between the two.
 constexpr std::size_t kPackPixels = 32;
 
+// Where the streamed merge packs its pixels: rows `row_bytes` apart, a row's
+// pixels packed as `packed` one after another, or, when `lines` has channels
+// (an uncompressed file: io/exr_uncompressed.h), in the file's lines.
+struct Packing {
+  PackedLayout packed;
+  LineLayout lines;
+  std::size_t row_bytes = 0;
+};
+
+// The packing of the merged image of layout `shape` (without values), in the
+// file's lines when `lines`.
+Packing packing(const LayeredImage& shape, bool lines) {
+  Packing to{packed_layout(shape), lines ? uncompressed_exr_lines(shape) : LineLayout{}, 0};
+  to.row_bytes = lines ? to.lines.row_bytes : to.packed.pixel_bytes * static_cast<std::size_t>(shape.width);
+  return to;
+}
+
 // Every pixel of a band film (a block of rows and columns) resolved
 // (kPackPixels at a time into `row`, their resolved channels) and packed as
-// the file stores them into `out`, its first row's first pixel, whose rows
-// are `row_bytes` apart.
-void pack_block(const Film& band, const PackedLayout& packed, std::vector<float>& row, unsigned char* out,
-                std::size_t row_bytes) {
+// `to` says into rows from `out` on (the block's first row), the block's
+// first pixel being pixel `x` of its row.
+void pack_block(const Film& band, const Packing& to, std::vector<float>& row, unsigned char* out, std::size_t x) {
   const auto width = static_cast<std::size_t>(band.crop().width());
   for (int y = 0; y < band.crop().height(); ++y) {
-    unsigned char* to = out + static_cast<std::size_t>(y) * row_bytes;
+    unsigned char* rows = out + static_cast<std::size_t>(y) * to.row_bytes;
     const std::size_t pixel = static_cast<std::size_t>(y) * width;
     for (std::size_t first = 0; first < width; first += kPackPixels) {
       const std::size_t n = std::min(kPackPixels, width - first);
       band.resolve_channels(pixel + first, n, row.data());
-      pack_pixels(packed, row.data(), n, to + first * packed.pixel_bytes);
+      if (!to.lines.channels.empty()) {
+        pack_lines(to.lines, row.data(), x + first, n, rows);
+      } else {
+        pack_pixels(to.packed, row.data(), n, rows + (x + first) * to.packed.pixel_bytes);
+      }
     }
   }
 }
 
-// Writes packed rows [y0, y1) to the file once it is open (waiting for it):
-// false when it could not be opened (`error` empty: its opener has the
-// message) or the write fails.
-bool write_chunk(const std::shared_future<ExrBandWriter*>& file, int y0, int y1, const unsigned char* packed,
-                 std::size_t row_bytes, std::string& error) {
+// Writes rows [y0, y1) (packed, or the file's lines) to the file once it is
+// open (waiting for it): false when it could not be opened (`error` empty:
+// its opener has the message) or the write fails.
+bool write_chunk(const std::shared_future<ExrBandWriter*>& file, int y0, int y1, unsigned char* rows,
+                 const Packing& to, std::string& error) {
   ExrBandWriter* writer = file.get();
   if (writer == nullptr) return false;
-  if (writer->row_bytes() != row_bytes) {  // both from packed_layout: not expected
+  if (!to.lines.channels.empty()) return writer->write_lines(y0, y1, rows, error);
+  if (writer->row_bytes() != to.row_bytes) {  // both from packed_layout: not expected
     error = "the EXR writer's rows are " + std::to_string(writer->row_bytes()) + " bytes, the merge's " +
-            std::to_string(row_bytes);
+            std::to_string(to.row_bytes);
     return false;
   }
-  return writer->write(y0, y1, packed, error);
+  return writer->write(y0, y1, rows, error);
 }
 
 void lower(std::atomic<std::size_t>& lowest, std::size_t value) {
@@ -200,13 +222,14 @@ bool ShardMerger::merge_layers(const std::vector<std::string_view>& states, Laye
   return !refused(b, error);
 }
 
-bool ShardMerger::merge_streamed(const std::shared_future<ExrBandWriter*>& file, std::string& error, bool& refusal) {
+bool ShardMerger::merge_streamed(const std::shared_future<ExrBandWriter*>& file, bool lines, std::string& error,
+                                 bool& refusal) {
   refusal = false;
   Bands& b = *bands_;
   const PixelRect& w = merged_.window;
   // Pixels' resolved channels, then packed into their chunk as the file stores them.
-  const PackedLayout packed = packed_layout(layout());
-  const std::size_t row_bytes = packed.pixel_bytes * static_cast<std::size_t>(w.width());
+  const Packing to = packing(layout(), lines);
+  const std::size_t row_bytes = to.row_bytes;
   // Chunks in flight: two per thread, and a few more made while the file is
   // opened (the image module's load), before the first write.
   const int tokens = std::max(2, 2 * tbb::this_task_arena::max_concurrency()) + kAheadChunks;
@@ -219,7 +242,7 @@ bool ShardMerger::merge_streamed(const std::shared_future<ExrBandWriter*>& file,
   const PixelRect first_band{w.x0, w.y0, w.x1, std::min(w.y1, w.y0 + b.rows)};
   tbb::enumerable_thread_specific<Film> bands([&] { return Film(merged_.width, merged_.height, first_band, b.aovs); });
   tbb::enumerable_thread_specific<std::vector<float>> resolved(
-      [&] { return std::vector<float>(packed.channels * kPackPixels); });
+      [&] { return std::vector<float>(to.packed.channels * kPackPixels); });
   // Chunks of packed rows, reused: as many as the pipeline holds at once.
   struct Chunk {
     int y0 = 0, y1 = 0;
@@ -260,7 +283,7 @@ bool ShardMerger::merge_streamed(const std::shared_future<ExrBandWriter*>& file,
                                                unsigned char* rows = c->packed.get() + static_cast<std::size_t>(r.begin() - c->y0) * row_bytes;
                                                for (int x0 = w.x0; x0 < w.x1; x0 += b.columns) {
                                                  add_band(b, band, {x0, r.begin(), std::min(w.x1, x0 + b.columns), r.end()}, rules);
-                                                 pack_block(band, packed, resolved.local(), rows + static_cast<std::size_t>(x0 - w.x0) * packed.pixel_bytes, row_bytes);
+                                                 pack_block(band, to, resolved.local(), rows, static_cast<std::size_t>(x0 - w.x0));
                                                }
                                              }, tbb::simple_partitioner());
                                              return c;
@@ -268,7 +291,7 @@ bool ShardMerger::merge_streamed(const std::shared_future<ExrBandWriter*>& file,
           tbb::make_filter<Chunk*, void>(tbb::filter_mode::serial_in_order,
                                          [&](Chunk* c) {
                                            const bool any_refused = std::any_of(b.bad.begin(), b.bad.end(), [](const auto& x) { return x != SIZE_MAX; });
-                                           if (!any_refused && !write_failed) write_failed = !write_chunk(file, c->y0, c->y1, c->packed.get(), row_bytes, why);
+                                           if (!any_refused && !write_failed) write_failed = !write_chunk(file, c->y0, c->y1, c->packed.get(), to, why);
                                            spare.push(c);
                                          }),
       context);

@@ -76,7 +76,10 @@ class ShardMerger {
   // was refused (the message merge_layers gives, naming the shard; nothing
   // is written after the refused band) or the writer failed (its message;
   // empty if the file could not be opened).
-  bool merge_streamed(const std::shared_future<ExrBandWriter*>& file, std::string& error, bool& refused);
+  // `lines`: the file is uncompressed (io/exr_uncompressed.h,
+  // writes_uncompressed_exr): the rows are packed as it stores them
+  // (uncompressed_exr_lines) and handed to its writer's write_lines.
+  bool merge_streamed(const std::shared_future<ExrBandWriter*>& file, bool lines, std::string& error, bool& refused);
   // The merged beauty's half/float type.
   ChannelType beauty_type() const;
   // After the last shard: every tile of the window and every sample of the

@@ -34,7 +34,7 @@
 
 namespace pt {
 
-inline constexpr int kImageLibraryAbi = 4;
+inline constexpr int kImageLibraryAbi = 5;
 
 // What an image file's header says.
 struct ImageHeader {
@@ -109,6 +109,15 @@ class ExrBandWriter {
   // Writes packed rows [y0, y1) (frame coordinates); each call's rows follow
   // the last call's. False with `error`.
   virtual bool write(int y0, int y1, const unsigned char* packed, std::string& error) = 0;
+  // Writes rows [y0, y1) as the file stores them, when it stores them
+  // uncompressed (io/exr_uncompressed.h, uncompressed_exr_lines: each row's
+  // lines, after its y and byte count, which this sets); false with `error`
+  // from writers of other files. Each call's rows follow the last call's.
+  virtual bool write_lines(int y0, int y1, unsigned char* rows, std::string& error) {
+    (void)y0, (void)y1, (void)rows;
+    error = "this EXR writer takes packed rows, not lines";
+    return false;
+  }
   // Finishes the file (after every row). False with `error`.
   virtual bool close(std::string& error) = 0;
 };

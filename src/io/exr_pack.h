@@ -3,7 +3,9 @@
 // part's channel order), for the EXR writer (imagelib/oiio/exr_writer.cpp),
 // which hands such rows to OpenImageIO as they are, and for the streamed
 // merge (app/shard_band_merge.cpp), which packs its resolved rows itself, so
-// that only the file write needs the image module. Halves are rounded to
+// that only the file write needs the image module. Or packed in lines, as an
+// uncompressed file stores a row (io/exr_uncompressed.h, LineLayout): each
+// channel's values of the row one after another. Halves are rounded to
 // nearest even, as OpenImageIO's conversion (Imath's) rounds them.
 #pragma once
 
@@ -49,5 +51,26 @@ void pack_floats(const float* v, std::size_t in_step, std::size_t channels, std:
 // pixel one after another, in the layout's order) packed into `out`
 // (n * layout.pixel_bytes bytes).
 void pack_pixels(const PackedLayout& layout, const float* values, std::size_t n, unsigned char* out);
+
+// One channel of a row packed in lines: where its line begins (bytes from the
+// row's start) and whether it is stored as half.
+struct LineChannel {
+  std::size_t line = 0;
+  bool half = false;
+};
+
+// A row packed in lines: per channel of a pixel's values (every layer's
+// channels, in the layers' order, as pack_pixels reads them), its line; the
+// bytes of a row (its lines and whatever else the row holds).
+struct LineLayout {
+  std::vector<LineChannel> channels;
+  std::size_t row_bytes = 0;
+};
+
+// `n` pixels of `layout.channels.size()` floats each (as pack_pixels reads
+// them), pixels x, x + 1, ... of a row, packed into that row's lines (`row`,
+// its first byte): channel c of pixel x + i at row + line(c) + (x + i) * its
+// bytes (2 half, 4 float).
+void pack_lines(const LineLayout& layout, const float* values, std::size_t x, std::size_t n, unsigned char* row);
 
 }  // namespace pt

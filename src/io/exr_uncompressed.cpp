@@ -157,10 +157,7 @@ class UncompressedExrWriter final : public ExrBandWriter {
   std::size_t row_bytes() const override { return pixel_bytes_ * width_; }
 
   bool write(int y0, int y1, const unsigned char* packed, std::string& error) override {
-    if (fd_ < 0 || y0 != y_ || y1 < y0 || y1 > y_end_) {
-      error = "rows " + std::to_string(y0) + " to " + std::to_string(y1) + " written out of order";
-      return false;
-    }
+    if (!in_order(y0, y1, error)) return false;
     // Each row a chunk: its y, its size, then each channel's values of the row.
     const std::size_t chunk = 8 + row_bytes();
     buffer_.resize(static_cast<std::size_t>(y1 - y0) * chunk);
@@ -182,6 +179,18 @@ class UncompressedExrWriter final : public ExrBandWriter {
     return true;
   }
 
+  bool write_lines(int y0, int y1, unsigned char* rows, std::string& error) override {
+    if (!in_order(y0, y1, error)) return false;
+    const std::size_t chunk = 8 + row_bytes();
+    for (int y = y0; y < y1; ++y) {
+      const int32_t head[2] = {y, static_cast<int32_t>(row_bytes())};
+      std::memcpy(rows + static_cast<std::size_t>(y - y0) * chunk, head, sizeof head);
+    }
+    if (!write_fd(fd_, rows, static_cast<std::size_t>(y1 - y0) * chunk, error, kWritePiece)) return false;
+    y_ = y1;
+    return true;
+  }
+
   bool close(std::string& error) override {
     if (fd_ < 0) return false;
     if (y_ != y_end_) {
@@ -196,6 +205,13 @@ class UncompressedExrWriter final : public ExrBandWriter {
   }
 
  private:
+  // Whether rows [y0, y1) follow the last written (`error` if not).
+  bool in_order(int y0, int y1, std::string& error) const {
+    if (fd_ >= 0 && y0 == y_ && y1 >= y0 && y1 <= y_end_) return true;
+    error = "rows " + std::to_string(y0) + " to " + std::to_string(y1) + " written out of order";
+    return false;
+  }
+
   int fd_;
   int y_, y_end_;
   std::size_t width_, pixel_bytes_;
@@ -234,6 +250,24 @@ bool writes_uncompressed_exr(const LayeredImage& layout, const ImageMetadata& me
   for (const auto& [name, value] : metadata.matrices)
     if (!plain_name(name, true) || !once(name)) return false;
   return true;
+}
+
+LineLayout uncompressed_exr_lines(const LayeredImage& layout) {
+  const std::vector<FileChannel> channels = file_channels(layout);
+  const auto width = static_cast<std::size_t>(std::max(0, layout.width));
+  // A channel's place in a packed pixel names it among the pixel's values
+  // (both in the layers' order): the line of the channel at that place.
+  std::vector<std::pair<std::size_t, LineChannel>> by_offset;
+  std::size_t at = 8;  // the row's y and byte count
+  for (const FileChannel& c : channels) {
+    by_offset.push_back({c.offset, {at, c.bytes == 2}});
+    at += c.bytes * width;
+  }
+  std::sort(by_offset.begin(), by_offset.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  LineLayout lines;
+  for (const auto& [offset, line] : by_offset) lines.channels.push_back(line);
+  lines.row_bytes = at;
+  return lines;
 }
 
 std::unique_ptr<ExrBandWriter> open_uncompressed_exr(const std::string& path, const LayeredImage& layout,

@@ -14,6 +14,7 @@
 #include <memory>
 #include <string>
 
+#include "io/exr_pack.h"
 #include "io/exr_settings.h"
 #include "io/image_metadata.h"
 #include "io/layered_image.h"
@@ -37,5 +38,12 @@ bool writes_uncompressed_exr(const LayeredImage& layout, const ImageMetadata& me
 // writes_uncompressed_exr. nullptr with `error` (the system's words) on failure.
 std::unique_ptr<ExrBandWriter> open_uncompressed_exr(const std::string& path, const LayeredImage& layout,
                                                      const ImageMetadata& metadata, std::string& error);
+
+// A row of that file as it stores it, for pack_lines (io/exr_pack.h): its
+// y and its values' byte count (two int32, which the writer's write_lines
+// sets), then each channel's line, the channels in the order of their
+// names; row_bytes counts all of it. The channels of a pixel's values are
+// the layout's layers' channels, in order.
+LineLayout uncompressed_exr_lines(const LayeredImage& layout);
 
 }  // namespace pt

@@ -88,5 +88,41 @@ TEST(ExrPack, LayoutPlacesEachLayerAfterTheLast) {
   EXPECT_EQ(layout.channels, 8u);
 }
 
+// pack_lines: each channel's values in its own line, at the line's place in
+// the row, from pixel x on; halves as Imath rounds them (groups of 8 with and
+// without a NaN, a tail shorter than 8), nothing outside the pixels written.
+TEST(ExrPack, PacksLinesAsAChannelByChannelConversion) {
+  const std::size_t channels = 5, width = 45, x = 3, n = 37;
+  LineLayout layout;
+  // Lines in another order than the values' channels, a gap of 8 bytes first.
+  const std::size_t order[channels] = {3, 0, 4, 1, 2};
+  const bool half[channels] = {false, true, true, false, true};
+  layout.channels.resize(channels);
+  std::size_t at = 8;
+  for (const std::size_t c : order) {
+    layout.channels[c] = {at, half[c]};
+    at += (half[c] ? 2 : 4) * width;
+  }
+  layout.row_bytes = at;
+  std::vector<float> v = values(n * channels);
+  v[8 * channels + 2] = std::numeric_limits<float>::quiet_NaN();  // a NaN in channel 2's second group of 8
+  v[9 * channels + 1] = std::numeric_limits<float>::signaling_NaN();
+  std::vector<unsigned char> row(layout.row_bytes, 0xAB);
+  pack_lines(layout, v.data(), x, n, row.data());
+  std::vector<unsigned char> expected(layout.row_bytes, 0xAB);
+  for (std::size_t c = 0; c < channels; ++c)
+    for (std::size_t i = 0; i < n; ++i) {
+      const float f = v[i * channels + c];
+      unsigned char* to = expected.data() + layout.channels[c].line;
+      if (half[c]) {
+        const uint16_t bits = Imath::half(f).bits();
+        std::memcpy(to + (x + i) * sizeof bits, &bits, sizeof bits);
+      } else {
+        std::memcpy(to + (x + i) * sizeof f, &f, sizeof f);
+      }
+    }
+  EXPECT_EQ(row, expected);
+}
+
 }  // namespace
 }  // namespace pt

@@ -3,6 +3,7 @@
 // sample count, and that AOVs do not depend on threads or tiles.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <cstring>
 
@@ -405,6 +406,76 @@ TEST(Aov, IndependentOfThreadsAndTiles) {
     ASSERT_EQ(a.layers[i].values.size(), b.layers[i].values.size());
     EXPECT_EQ(0, std::memcmp(a.layers[i].values.data(), b.layers[i].values.data(),
                              a.layers[i].values.size() * sizeof(float)));
+  }
+}
+
+// The resolve of every pixel (layers(): the filtered averages a run of
+// adjacent layers at a time) gives the bits of each AOV's own values
+// (aov_value), whatever the order of the layers around the averages, for
+// pixels with weight, without (weights that cancel), and with negative
+// weights (the albedo clamped at 0).
+TEST(AovResolve, LayersHoldEachAovsOwnValues) {
+  for (const char* list : {"albedo,N,P,Z,emission,diffuse_direct,diffuse_indirect,specular_direct,specular_indirect,"
+                           "variance,samples,nonfinite,CryptoObject,CryptoMaterial",
+                           "P,albedo,Z,N,variance,emission", "albedo", "N,diffuse_direct", "Z,CryptoObject"}) {
+    std::vector<AovRequest> aovs;
+    ChannelType beauty = ChannelType::Float;
+    std::string error;
+    ASSERT_TRUE(parse_aov_list(list, aovs, beauty, error)) << error;
+    Film film(8, 4, PixelRect{0, 0, 8, 4}, aovs);
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 8; ++x) {
+        AovScratch scratch = film.make_scratch();
+        const int samples = x == 3 || x == 5 ? 2 : 1 + (x + y) % 3;
+        for (int k = 0; k < samples; ++k) {
+          // Pixel (3, y): two samples whose weights cancel; x = 5: the second
+          // weight negative, so that the albedo's red sum is (clamped at 0).
+          const float w = x == 3 ? (k == 0 ? 0.5f : -0.5f) : x == 5 ? (k == 0 ? 1.0f : -0.9f)
+                                                                   : 0.3f + 0.2f * static_cast<float>(k + y);
+          const float f = 0.1f + 0.37f * static_cast<float>(x + 2 * y + 3 * k);
+          AovSample a;
+          a.hit = (x + k) % 4 != 0;
+          a.albedo = RGB(f, 0.5f * f, 1.0f - f);
+          a.normal = Vec3f(std::sin(f), std::cos(f), -f);
+          a.position = Vec3f(f, -f, 2.0f * f);
+          a.depth = 3.0f * f;
+          a.crypto_object = static_cast<float>(1 + (x + k) % 3) * 1.5f;
+          a.crypto_material = static_cast<float>(1 + (y + k) % 2) * 2.5f;
+          a.emission = RGB(f * f, 0.0f, -f);
+          a.diffuse_direct = RGB(1.0f / (1.0f + f), f, 0.25f);
+          a.diffuse_indirect = a.specular_direct = a.specular_indirect = RGB(f, f, f);
+          const RGB radiance(f, 2.0f * f, 0.5f);
+          film.accumulate(scratch, a, radiance, w, false);
+          PixelSum p;
+          p.add(radiance, w, a.hit);
+          film.add(x, y, p);
+        }
+        film.add_aovs(x, y, scratch);
+      }
+    const LayeredImage layers = film.layers();
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 8; ++x) {
+        std::vector<float> expected;
+        for (const AovRequest& r : film.aovs()) {
+          const std::vector<float> v = film.aov_value(r.type, x, y);
+          expected.insert(expected.end(), v.begin(), v.end());
+        }
+        std::vector<float> resolved;
+        const auto pixel = static_cast<std::size_t>(y * 8 + x);
+        for (std::size_t l = 1; l < layers.layers.size(); ++l) {  // the beauty's aside
+          const std::size_t n = layers.layers[l].channels.size();
+          resolved.insert(resolved.end(), layers.layers[l].values.begin() + static_cast<std::ptrdiff_t>(pixel * n),
+                          layers.layers[l].values.begin() + static_cast<std::ptrdiff_t>((pixel + 1) * n));
+        }
+        ASSERT_EQ(resolved.size(), expected.size()) << list;
+        for (std::size_t c = 0; c < expected.size(); ++c)
+          EXPECT_EQ(std::bit_cast<uint32_t>(resolved[c]), std::bit_cast<uint32_t>(expected[c]))
+              << list << ": pixel (" << x << ", " << y << ") channel " << c << ": " << resolved[c] << " against "
+              << expected[c];
+        if (x == 5 && std::string(list) == "albedo") {
+          EXPECT_EQ(resolved[0], 0.0f) << "clamped";
+        }
+      }
   }
 }
 

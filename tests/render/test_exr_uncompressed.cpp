@@ -75,6 +75,37 @@ bool write_bands(const std::string& path, const LayeredImage& image, const Image
   }, error);
 }
 
+// The same with the file's lines (uncompressed_exr_lines, pack_lines,
+// write_lines), `pixels` pixels of a row packed at a time.
+bool write_lines(const std::string& path, const LayeredImage& image, const ImageMetadata& metadata,
+                 const ExrSettings& exr, int band, std::size_t pixels, std::string& error) {
+  const std::vector<const ImageLayer*> layers = every_layer(image);
+  const LineLayout lines = uncompressed_exr_lines(image);
+  return write_exr_bands(path, image, metadata, exr, [&](ExrBandWriter& writer, std::string& why) {
+    const auto width = static_cast<std::size_t>(image.width);
+    const std::size_t channels = lines.channels.size();
+    std::vector<unsigned char> rows(static_cast<std::size_t>(band) * lines.row_bytes);
+    std::vector<float> values(pixels * channels);
+    for (int y0 = 0; y0 < image.height; y0 += band) {
+      const int y1 = std::min(image.height, y0 + band);
+      for (int y = y0; y < y1; ++y)
+        for (std::size_t x = 0; x < width; x += pixels) {
+          const std::size_t n = std::min(pixels, width - x);
+          for (std::size_t i = 0; i < n; ++i) {  // every layer's channels of a pixel, in order
+            float* v = values.data() + i * channels;
+            for (const ImageLayer* l : layers) {
+              const std::size_t k = l->channels.size();
+              v = std::copy_n(l->values.data() + (static_cast<std::size_t>(y) * width + x + i) * k, k, v);
+            }
+          }
+          pack_lines(lines, values.data(), x, n, rows.data() + static_cast<std::size_t>(y - y0) * lines.row_bytes);
+        }
+      if (!writer.write_lines(image.y + y0, image.y + y1, rows.data(), why)) return false;
+    }
+    return true;
+  }, error);
+}
+
 class ExrUncompressed : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -108,6 +139,36 @@ TEST_F(ExrUncompressed, WritesTheImageModulesBytes) {
     EXPECT_TRUE(bytes_without_date(path("golden.exr")) ==
                 bytes_without_date(std::string(PT_TEST_DATA_DIR) + "/data/exr_bytes/none.exr"));
   }
+}
+
+// The rows packed as the file stores them (the streamed merge's uncompressed
+// write): the same bytes; the image module's writer does not take them.
+TEST_F(ExrUncompressed, WritesLinesAsTheFileStoresThem) {
+  const LayeredImage image = test::exr_bytes_image();
+  const ExrSettings none{"none", false};
+  const ImageMetadata metadata = renderer_metadata();
+  std::string error;
+  ASSERT_TRUE(write_layered_image(path("module.exr"), image, DisplaySettings{}, error, metadata, none)) << error;
+  const std::string expected = bytes_without_date(path("module.exr"));
+  const LineLayout lines = uncompressed_exr_lines(image);
+  ASSERT_EQ(lines.channels.size(), 11u);
+  EXPECT_EQ(lines.row_bytes, 8 + static_cast<std::size_t>(image.width) * (5 * 4 + 6 * 2));
+  for (const auto& [band, pixels] : {std::pair{1, std::size_t{32}}, {7, 5}, {21, 37}}) {
+    ASSERT_TRUE(write_lines(path("lines.exr"), image, metadata, none, band, pixels, error)) << error;
+    EXPECT_TRUE(bytes_without_date(path("lines.exr")) == expected) << "bands of " << band << " rows, " << pixels << " pixels";
+  }
+  ImageMetadata other = renderer_metadata();
+  other.set("comments", "written by the module");
+  EXPECT_FALSE(write_lines(path("module_lines.exr"), image, other, none, 4, 32, error));
+  EXPECT_NE(error.find("packed rows"), std::string::npos) << error;
+  EXPECT_FALSE(fs::exists(path("module_lines.exr")));
+  // Out of order, as write().
+  EXPECT_FALSE(write_exr_bands(path("gap.exr"), image, metadata, none, [&](ExrBandWriter& w, std::string& why) {
+    std::vector<unsigned char> rows(lines.row_bytes * 2);
+    return w.write_lines(image.y, image.y + 1, rows.data(), why) && w.write_lines(image.y + 2, image.y + 3, rows.data(), why);
+  }, error));
+  EXPECT_NE(error.find("out of order"), std::string::npos) << error;
+  EXPECT_FALSE(fs::exists(path("gap.exr")));
 }
 
 TEST_F(ExrUncompressed, OtherNamesAndCompressionsGoToTheImageModule) {

@@ -108,6 +108,19 @@ void ranked_values(const ExactSum* slots, int ranks, const ExactSum& weight, flo
   }
 }
 
+// Filtered averages: `n` sums `s` over the pixel's weight `weight` (its
+// weight sum's value, not zero) into `out`. The values first, then the
+// divisions in one loop (which the compiler gives two at a time).
+void average(const ExactSum* s, int n, double weight, float* out) {
+  constexpr int kBatch = 16;
+  for (int first = 0; first < n; first += kBatch) {
+    const int m = std::min(kBatch, n - first);
+    double v[kBatch];
+    for (int c = 0; c < m; ++c) v[c] = s[first + c].value();
+    for (int c = 0; c < m; ++c) out[first + c] = static_cast<float>(v[c] / weight);
+  }
+}
+
 }  // namespace
 
 std::string PixelRect::text() const {
@@ -162,6 +175,7 @@ Film::Film(int width, int height, PixelRect crop, std::vector<AovRequest> aovs)
     : width_(std::max(width, 0)), height_(std::max(height, 0)), crop_(clip(crop, width_, height_)),
       pixels_(static_cast<std::size_t>(crop_.width()) * static_cast<std::size_t>(crop_.height())),
       aovs_(std::move(aovs)) {
+  int resolved_out = 4;  // a pixel's resolved channels: the beauty's, then each AOV's
   for (AovRequest& r : aovs_) {
     const AovInfo& info = aov_info(r.type);
     r.ranks = info.accumulation != Accumulation::Ranked ? 0
@@ -177,6 +191,19 @@ Film::Film(int width, int height, PixelRect crop, std::vector<AovRequest> aovs)
     } else if (count > 0) {
       sum_runs_.push_back({sum_stride_, count, ranks});
     }
+    averaged_.push_back(info.accumulation == Accumulation::FilteredAverage && count == channel_count_.back());
+    if (averaged_.back() != 0) {
+      const int out = resolved_out, n = count;
+      if (info.type == AovType::Albedo) albedo_out_ = out;
+      if (!average_runs_.empty() && average_runs_.back().sum + average_runs_.back().count == sum_stride_ &&
+          average_runs_.back().out + average_runs_.back().count == out) {
+        average_runs_.back().count += n;
+      } else {
+        average_runs_.push_back({sum_stride_, out, n});
+      }
+    }
+    if (info.values > 0) value_layers_.push_back(value_offset_.size() - 1);
+    resolved_out += channel_count_.back();
     sum_stride_ += count;
     value_stride_ += aov_state_values(r);
     if (aov_bit(r.type) & kGeometryAovs) wants_geometry_ = true;
@@ -319,7 +346,7 @@ void Film::aov_values(std::size_t layer, const PixelSum& p, double weight, const
   switch (info.accumulation) {
     case Accumulation::FilteredAverage:
       if (!p.weight.is_zero()) {
-        for (int c = 0; c < n; ++c) out[c] = static_cast<float>(s[c].value() / weight);
+        average(s, n, weight, out);
       } else {
         for (int c = 0; c < n; ++c) out[c] = 0.0f;
       }
@@ -403,14 +430,27 @@ void Film::resolve_pixel(std::size_t pixel, float* out) const {
   out[2] = v.b;
   out[3] = p.alpha();
   out += 4;
-  // Each AOV's channels follow the beauty in request order, as its layers do (layer_layout).
+  // Each AOV's channels follow the beauty in request order, as its layers do
+  // (layer_layout): the filtered averages (aov_values') a run at a time.
   const double weight = p.weight.is_zero() ? 0.0 : p.weight.value();
   const ExactSum* s = aov_sums_.data() + pixel * static_cast<std::size_t>(sum_stride_);
   const double* d = aov_values_.data() + pixel * static_cast<std::size_t>(value_stride_);
+  float* const channels = out - 4;
   for (std::size_t l = 0; l < aovs_.size(); ++l) {
-    aov_values(l, p, weight, s + sum_offset_[l], d + value_offset_[l], out);
+    if (averaged_[l] == 0)
+      aov_values(l, p, weight, s + sum_offset_[l], d + value_offset_[l], out);
     out += channel_count_[l];
   }
+  for (const AverageRun& run : average_runs_) {
+    if (!p.weight.is_zero()) {
+      average(s + run.sum, run.count, weight, channels + run.out);
+    } else {
+      std::fill_n(channels + run.out, run.count, 0.0f);
+    }
+  }
+  // A reflectance: a filter's negative lobes must not make it negative (as aov_values).
+  if (albedo_out_ >= 0)
+    for (int c = 0; c < 3; ++c) channels[albedo_out_ + c] = std::max(channels[albedo_out_ + c], 0.0f);
 }
 
 void Film::resolve_channels(std::size_t first, std::size_t count, float* out) const {

@@ -391,6 +391,12 @@ class Film {
   struct SumRun {
     int offset, count, ranks;
   };
+  // Adjacent filtered-average layers (most of a pixel's resolved channels):
+  // `count` sums from `sum` (in a pixel's AOV sums), resolved into a pixel's
+  // resolved channels from `out` (the beauty's 4 first) by one loop.
+  struct AverageRun {
+    int sum, out, count;
+  };
   int width_, height_;
   PixelRect crop_;
   std::vector<PixelSum> pixels_;
@@ -402,6 +408,10 @@ class Film {
   int sum_stride_ = 0, value_stride_ = 0;  // per pixel, for all AOVs
   bool wants_geometry_ = false, wants_lighting_ = false;
   std::vector<SumRun> sum_runs_;    // the AOV sums, in order, adjacent plain sums in one run
+  std::vector<AverageRun> average_runs_;  // the filtered-average layers, in order, adjacent ones in one run
+  std::vector<uint8_t> averaged_;         // per request: whether it is in average_runs_
+  int albedo_out_ = -1;                   // the albedo's first resolved channel, or -1 (none)
+  std::vector<std::size_t> value_layers_;  // the requests with plain values (first-sample, maxima), in order
   std::vector<ExactSum> aov_sums_;  // pixels * sum_stride_
   std::vector<double> aov_values_;  // pixels * value_stride_
   NonFiniteReport non_finite_;

@@ -48,7 +48,7 @@ bool Film::add_film(const Film& other, const PixelRect& c, bool other_first, std
 
 void Film::add_values(std::size_t pixel, const double* s, bool other_first) {
   double* d = aov_values_.data() + pixel * static_cast<std::size_t>(value_stride_);
-  for (std::size_t a = 0; a < aovs_.size(); ++a) {
+  for (const std::size_t a : value_layers_) {
     const AovInfo& info = *info_[a];
     double* dv = d + value_offset_[a];
     const double* sv = s + value_offset_[a];
@@ -62,7 +62,7 @@ void Film::add_values(std::size_t pixel, const double* s, bool other_first) {
 }
 
 void Film::first_values(double* v) const {
-  for (std::size_t a = 0; a < aovs_.size(); ++a) {
+  for (const std::size_t a : value_layers_) {
     const AovInfo& info = *info_[a];
     double* d = v + value_offset_[a];
     const auto n = static_cast<std::size_t>(info.values);
