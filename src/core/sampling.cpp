@@ -157,37 +157,8 @@ Distribution1D::Distribution1D(const std::vector<float>& f) : func_(f), cdf_(f.s
   if (n > 0) cdf_[n] = 1.0f;
 }
 
-void Distribution1D::add_guide() {
-  const std::size_t n = func_.size();
-  if (n < 2 || n > std::size_t{65536}) return;
-  std::size_t m = 1;
-  while (m < n) m *= 2;
-  guide_.assign(m, 0);
-  guide_scale_ = 0.0f;  // bisect while filling
-  for (std::size_t j = 0; j < m; ++j)
-    guide_[j] = static_cast<uint16_t>(find_cell(static_cast<float>(j) / static_cast<float>(m)));
-  guide_scale_ = static_cast<float>(m);
-}
-
 std::size_t Distribution1D::find_cell(float u) const {
   // The last i in [0, n) with cdf_[i] <= u: a cell of non-zero width containing u.
-  if (guide_scale_ > 0.0f && u >= 0.0f && u < 1.0f) {
-    // j / m <= u exactly (m is a power of two), so the cell of j / m is at or before u's:
-    // walk forward while the next cell starts at or below u.
-    // Where the next entry's cell is near (the usual case), walk; else (many cells of tiny
-    // probability inside one step of u) bisect between the two entries' cells.
-    const std::size_t n = func_.size();
-    const std::size_t j = static_cast<std::size_t>(u * guide_scale_);
-    std::size_t i = guide_[j];
-    const std::size_t last = j + 1 < guide_.size() ? std::size_t{guide_[j + 1]} : n - 1;  // the cell is <= last
-    if (last - i > 4) {
-      const auto it = std::upper_bound(cdf_.begin() + static_cast<std::ptrdiff_t>(i) + 1,
-                                       cdf_.begin() + static_cast<std::ptrdiff_t>(last) + 1, u);
-      return static_cast<std::size_t>(it - cdf_.begin()) - 1;
-    }
-    while (i < last && cdf_[i + 1] <= u) ++i;
-    return i;
-  }
   const auto it = std::upper_bound(cdf_.begin(), cdf_.end() - 1, u);
   const std::size_t i = static_cast<std::size_t>(it - cdf_.begin());
   return i == 0 ? 0 : std::min(i - 1, func_.size() - 1);

@@ -9,7 +9,6 @@
 #pragma once
 
 #include <cstddef>
-#include <cstdint>
 #include <vector>
 
 #include "core/math.h"
@@ -102,13 +101,6 @@ class Distribution1D {
   Distribution1D() = default;
   explicit Distribution1D(const std::vector<float>& f);
 
-  // Adds a cutpoint table (Chen and Asau's guide table) of one entry per cell,
-  // rounded up to a power of two: the cell of u = j / m for each j, from which
-  // a search walks forward over a cell or two instead of bisecting the whole
-  // cdf. The same cells as without it, to the bit; for tables sampled often
-  // (the light guide's leaves), at 2 bytes per entry (at most 65536 cells).
-  void add_guide();
-
   std::size_t size() const { return func_.size(); }
   // The integral of the function over [0, 1) (sum of values / n).
   float integral() const { return integral_; }
@@ -127,8 +119,6 @@ class Distribution1D {
 
   std::vector<float> func_;
   std::vector<float> cdf_;  // size n + 1, cdf_[0] = 0, cdf_[n] = 1
-  std::vector<uint16_t> guide_;  // add_guide: the cell of u = j / guide_.size(); empty: bisect
-  float guide_scale_ = 0.0f;  // guide_.size() as a float
   float integral_ = 0.0f;
 };
 

@@ -197,38 +197,6 @@ TEST(Warps, Distribution1DInversionIsMonotoneAndExact) {
   }
 }
 
-// add_guide changes how the cell is found, not which: over a fine grid of u,
-// random u and the range's ends, a guided table returns the same cell, point
-// and density as the bisecting one, to the bit, on the same hard functions
-// (zero runs, a spike, tiny cells) and on n that is and is not a power of two.
-TEST(Warps, Distribution1DGuideFindsTheSameCells) {
-  for (const std::size_t n : {std::size_t{1}, std::size_t{2}, std::size_t{7}, std::size_t{512}, std::size_t{1000}}) {
-    std::vector<float> f(n);
-    Rng rng(static_cast<uint64_t>(n) + 11);
-    for (std::size_t i = 0; i < n; ++i) f[i] = (i % 5 == 1) ? 0.0f : 1e-4f * rng.next_float();
-    for (std::size_t i = n / 4; i < n / 2; ++i) f[i] = 0.0f;
-    f[(3 * n) / 4] = static_cast<float>(n);  // the spike: many guide entries point into one cell
-    const Distribution1D plain(f);
-    Distribution1D guided(f);
-    guided.add_guide();
-    std::vector<float> us = {0.0f, kOneMinusEpsilon, 1.0f, -0.5f, std::nanf("")};
-    const int grid = 1 << 18;
-    for (int g = 0; g < grid; ++g) us.push_back(static_cast<float>(g) / static_cast<float>(grid));
-    for (int i = 0; i < 100000; ++i) us.push_back(rng.next_float());
-    for (const float u : us) {
-      float pdf_a = 0.0f, pdf_b = 0.0f;
-      std::size_t cell_a = 0, cell_b = 0;
-      const float xa = plain.sample_continuous(u, &pdf_a, &cell_a);
-      const float xb = guided.sample_continuous(u, &pdf_b, &cell_b);
-      ASSERT_EQ(cell_a, cell_b) << "n " << n << ", u " << u;
-      ASSERT_EQ(plain.sample_discrete(u), guided.sample_discrete(u)) << "n " << n << ", u " << u;
-      if (std::isnan(u)) continue;
-      ASSERT_EQ(xa, xb) << "n " << n << ", u " << u;
-      ASSERT_EQ(pdf_a, pdf_b) << "n " << n << ", u " << u;
-    }
-  }
-}
-
 TEST(Warps, AllZeroDistributionIsUniform) {
   const Distribution1D d(std::vector<float>{0, 0, 0, 0});
   EXPECT_FLOAT_EQ(d.pmf(2), 0.25f);

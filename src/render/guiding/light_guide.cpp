@@ -155,7 +155,6 @@ void LightGuide::learn_leaf(Leaf& leaf, const Record* first, std::size_t count) 
                   (1.0f - kPlainEnvironment) * static_cast<float>(weight[b] / sum);
   }
   leaf.environment = Distribution1D(weight);
-  leaf.environment.add_guide();  // sampled at every vertex: a cutpoint table instead of bisecting 512 bins
 }
 
 const LightGuide::Leaf* LightGuide::leaf(Vec3f p) const {
