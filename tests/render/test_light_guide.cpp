@@ -77,6 +77,46 @@ TEST(LightGuide, SamplesFollowItsDensity) {
   }
 }
 
+// The courtyard with its opening closed: no pre-pass test reaches the sky, so
+// no leaf learns environment directions, and (the sky being smooth) each leaf
+// samples the sky from the bins' coarse grid instead of the map's own tables
+// (LightGuide::coarse_plain_leaf). That sampling must still be a density that
+// integrates to one, and its samples must be what its pdf says: E[L / pdf]
+// is the map's integral, as in SamplesFollowItsDensity.
+TEST(LightGuide, LeavesThatSawNoSkyStillSampleItByItsDensity) {
+  SceneDescription d = test::courtyard_scene(false);
+  Quad lid;
+  const float o = 0.7f, h = 3.0f;  // wider than the opening, at the roof's height
+  lid.v[0] = {-o, h, -o}; lid.v[1] = {o, h, -o}; lid.v[2] = {o, h, o}; lid.v[3] = {-o, h, o};
+  test::add_shape(d, lid, d.shapes.front().material);  // the walls' white
+  const Learned l = learn(d, 2);
+  ASSERT_TRUE(l.guide && l.guide->active());
+  const int env = l.scene->lights.environment();
+  ASSERT_GE(env, 0);
+  Rng rng(5);
+  constexpr int kN = 200000;
+  double reference = 0.0;
+  for (int k = 0; k < kN; ++k) {
+    const Vec3f w = sample_uniform_sphere({rng.next_float(), rng.next_float()});
+    reference += l.scene->lights.escaped_radiance(w, RGB()).luminance() * 4.0 * kPi;
+  }
+  reference /= kN;
+  for (int point = 0; point < 3; ++point) {
+    const Vec3f p = courtyard_point(rng);
+    double integral = 0.0, estimate = 0.0;
+    for (int k = 0; k < kN; ++k) {
+      const Vec3f w = sample_uniform_sphere({rng.next_float(), rng.next_float()});
+      integral += static_cast<double>(l.guide->pdf(env, p, w, Vec3f(), Vec3f())) * 4.0 * kPi;
+      LightSample s;
+      if (!l.guide->sample(env, p, {rng.next_float(), rng.next_float()}, s)) continue;
+      ASSERT_NEAR(s.pdf, l.guide->pdf(env, p, s.wi, Vec3f(), Vec3f()), 1e-4f * s.pdf);
+      estimate += s.L.luminance() / s.pdf;
+    }
+    EXPECT_NEAR(integral / kN, 1.0, 0.03) << "point " << point;
+    EXPECT_NEAR(estimate / kN, reference, 0.02 * reference) << "point " << point;
+  }
+}
+
 // The bins' importance grids (environment_bins.h) on a 300 x 70 map (bins of
 // 9-10 x 4-5 texels: cells of 1-2 texels, uneven) with one bright texel: in
 // every bin the density integrates to one over the bin, samples land in their
