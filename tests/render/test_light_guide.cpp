@@ -78,11 +78,14 @@ TEST(LightGuide, SamplesFollowItsDensity) {
 }
 
 // The courtyard with its opening closed: no pre-pass test reaches the sky, so
-// no leaf learns environment directions, and (the sky being smooth) each leaf
-// samples the sky from the bins' coarse grid instead of the map's own tables
-// (LightGuide::coarse_plain_leaf). That sampling must still be a density that
-// integrates to one, and its samples must be what its pdf says: E[L / pdf]
-// is the map's integral, as in SamplesFollowItsDensity.
+// no leaf learns environment directions and each samples the sky the plain
+// way (session 16 tried the bins' coarse grid there instead of the map's own
+// tables: docs/bench/sample-cost.md). That sampling must still be a density
+// that integrates to one, and its samples must be what its pdf says:
+// E[L / pdf] is the map's integral, as in SamplesFollowItsDensity. The map's
+// own sample states the density of the texel it drew, and its direction mapped
+// back can land in the neighbouring texel (float rounding at a texel's edge):
+// the two densities then differ by that contrast, for a few samples in 10^4.
 TEST(LightGuide, LeavesThatSawNoSkyStillSampleItByItsDensity) {
   SceneDescription d = test::courtyard_scene(false);
   Quad lid;
@@ -104,14 +107,17 @@ TEST(LightGuide, LeavesThatSawNoSkyStillSampleItByItsDensity) {
   for (int point = 0; point < 3; ++point) {
     const Vec3f p = courtyard_point(rng);
     double integral = 0.0, estimate = 0.0;
+    int edge = 0;  // samples whose stated density is not pdf()'s at their direction
     for (int k = 0; k < kN; ++k) {
       const Vec3f w = sample_uniform_sphere({rng.next_float(), rng.next_float()});
       integral += static_cast<double>(l.guide->pdf(env, p, w, Vec3f(), Vec3f())) * 4.0 * kPi;
       LightSample s;
       if (!l.guide->sample(env, p, {rng.next_float(), rng.next_float()}, s)) continue;
-      ASSERT_NEAR(s.pdf, l.guide->pdf(env, p, s.wi, Vec3f(), Vec3f()), 1e-4f * s.pdf);
+      const float back = l.guide->pdf(env, p, s.wi, Vec3f(), Vec3f());
+      if (std::fabs(s.pdf - back) > 1e-4f * s.pdf) ++edge;
       estimate += s.L.luminance() / s.pdf;
     }
+    EXPECT_LT(edge, kN / 1000) << "point " << point;
     EXPECT_NEAR(integral / kN, 1.0, 0.03) << "point " << point;
     EXPECT_NEAR(estimate / kN, reference, 0.02 * reference) << "point " << point;
   }

@@ -116,7 +116,7 @@ LightGuide LightGuide::learn(const RenderScene& scene, WorkerPool& pool, int pat
 // kPriorTests pseudo-tests at the leaf's mean fraction (a bin without tests
 // keeps that mean), times the bin's share of the map's importance.
 void LightGuide::learn_leaf(Leaf& leaf, const Record* first, std::size_t count) const {
-  if (count < static_cast<std::size_t>(kMinLeafRecords)) return coarse_plain_leaf(leaf);
+  if (count < static_cast<std::size_t>(kMinLeafRecords)) return;
   const std::size_t n = lights_->size();
   std::vector<double> per_light(n, 0.0);
   const std::size_t bins = map_ != nullptr ? static_cast<std::size_t>(bins_.size()) : 0;
@@ -140,7 +140,7 @@ void LightGuide::learn_leaf(Leaf& leaf, const Record* first, std::size_t count) 
       leaf.choice[i] = kPlainChoice * plain_choice_[i] +
                        (1.0f - kPlainChoice) * static_cast<float>(per_light[i] / total);
   }
-  if (!(all_seen > 0.0)) return coarse_plain_leaf(leaf);
+  if (!(all_seen > 0.0)) return;
   const float mean = static_cast<float>(all_seen / all_tests);
   std::vector<float> weight(bins);
   double sum = 0.0;
@@ -154,18 +154,6 @@ void LightGuide::learn_leaf(Leaf& leaf, const Record* first, std::size_t count) 
       weight[b] = kPlainEnvironment * bins_.share(static_cast<int>(b)) +
                   (1.0f - kPlainEnvironment) * static_cast<float>(weight[b] / sum);
   }
-  leaf.environment = Distribution1D(weight);
-}
-
-// A leaf that learned no environment directions still samples the sky from
-// the bins' coarse grid where that is close enough to the map's own
-// distribution (coarse_plain_): the plain part of every other leaf's mixture,
-// alone. So its sample reads the bins' small tables instead of the map's
-// 4 MB of cdfs (two cold binary searches), as every other leaf's does.
-void LightGuide::coarse_plain_leaf(Leaf& leaf) const {
-  if (!coarse_plain_ || bins_.size() <= 0) return;
-  std::vector<float> weight(static_cast<std::size_t>(bins_.size()));
-  for (std::size_t b = 0; b < weight.size(); ++b) weight[b] = bins_.share(static_cast<int>(b));
   leaf.environment = Distribution1D(weight);
 }
 

@@ -21,8 +21,6 @@
 //    of the leaf's tests that arrived unoccluded there (within a bin, by the
 //    bin's coarse importance grid, environment_bins.h): directions the leaf's
 //    points see through an opening;
-//    A leaf that saw no sky in its tests (or has too few records) samples it
-//    from the plain part alone: the bins' coarse grid for a smooth sky;
 //  - when every light is infinite (sun and sky), the light is chosen with
 //    probability kPlainChoice x LightSet's + (1 - kPlainChoice) x the leaf's
 //    share of the learned contributions: shadowed regions sample the sky.
@@ -76,9 +74,7 @@ class LightGuide {
 
   struct Leaf {
     std::vector<float> choice;  // per light: its probability (empty: LightSet's)
-    // Over bins; empty: the map's own. A leaf that learned no sky directions has the
-    // bins' coarse shares here where the sky is smooth (coarse_plain_), else is empty.
-    Distribution1D environment;
+    Distribution1D environment;  // over bins (empty: the map's own)
   };
   // A shading point and its leaf, looked up once for the calls below.
   struct Site {
@@ -108,7 +104,6 @@ class LightGuide {
 
  private:
   void learn_leaf(Leaf& leaf, const Record* first, std::size_t count) const;
-  void coarse_plain_leaf(Leaf& leaf) const;
   const Leaf* leaf(Vec3f p) const;
   float environment_pdf(const Leaf* l, Vec2f uv) const;
   bool finish_environment_sample(const Leaf* lf, LightSample& s) const;
