@@ -82,10 +82,10 @@ TEST(LightGuide, SamplesFollowItsDensity) {
 // way (session 16 tried the bins' coarse grid there instead of the map's own
 // tables: docs/bench/sample-cost.md). That sampling must still be a density
 // that integrates to one, and its samples must be what its pdf says:
-// E[L / pdf] is the map's integral, as in SamplesFollowItsDensity. The map's
-// own sample states the density of the texel it drew, and its direction mapped
-// back can land in the neighbouring texel (float rounding at a texel's edge):
-// the two densities then differ by that contrast, for a few samples in 10^4.
+// E[L / pdf] is the map's integral, as in SamplesFollowItsDensity, and each
+// sample states exactly pdf() and the escaped radiance at its direction
+// (the map's sample once stated its drawn texel's, which float rounding at a
+// texel's edge could put next to the direction's texel: SamplesStateExactly...).
 TEST(LightGuide, LeavesThatSawNoSkyStillSampleItByItsDensity) {
   SceneDescription d = test::courtyard_scene(false);
   Quad lid;
@@ -107,19 +107,72 @@ TEST(LightGuide, LeavesThatSawNoSkyStillSampleItByItsDensity) {
   for (int point = 0; point < 3; ++point) {
     const Vec3f p = courtyard_point(rng);
     double integral = 0.0, estimate = 0.0;
-    int edge = 0;  // samples whose stated density is not pdf()'s at their direction
     for (int k = 0; k < kN; ++k) {
       const Vec3f w = sample_uniform_sphere({rng.next_float(), rng.next_float()});
       integral += static_cast<double>(l.guide->pdf(env, p, w, Vec3f(), Vec3f())) * 4.0 * kPi;
       LightSample s;
       if (!l.guide->sample(env, p, {rng.next_float(), rng.next_float()}, s)) continue;
-      const float back = l.guide->pdf(env, p, s.wi, Vec3f(), Vec3f());
-      if (std::fabs(s.pdf - back) > 1e-4f * s.pdf) ++edge;
+      ASSERT_EQ(s.pdf, l.guide->pdf(env, p, s.wi, Vec3f(), Vec3f())) << "point " << point << ", sample " << k;
+      ASSERT_EQ(s.L, l.scene->lights.escaped_radiance(s.wi, RGB())) << "point " << point << ", sample " << k;
       estimate += s.L.luminance() / s.pdf;
     }
-    EXPECT_LT(edge, kN / 1000) << "point " << point;
     EXPECT_NEAR(integral / kN, 1.0, 0.03) << "point " << point;
     EXPECT_NEAR(estimate / kN, reference, 0.02 * reference) << "point " << point;
+  }
+}
+
+// A sample's density and radiance are exactly pdf() and the escaped radiance
+// at its direction, for each of 10^5 samples: MIS weighs a BSDF ray escaping
+// in that direction by pdf() there, so a sample stating another density (its
+// drawn texel's, where float rounding puts the direction in the next texel)
+// would weigh the two strategies inconsistently. The map alone (a checkerboard
+// of contrast 2500, odd size, tilted and rotated) and the guide's three
+// environment paths: the plain map (a leaf that learned no sky), the mixture
+// with the map's own fine part (a sun in the map) and with the coarse grid.
+TEST(LightGuide, SamplesStateExactlyPdfAndRadianceAtTheirDirection) {
+  constexpr int kW = 97, kH = 43, kN = 100000;
+  Image img(kW, kH);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) img.at(x, y) = (x + y) % 2 ? RGB(50.0f, 40.0f, 30.0f) : RGB(0.02f);
+  const auto path = std::filesystem::temp_directory_path() / "pt_test_environment_checkerboard.exr";
+  std::string error;
+  ASSERT_TRUE(write_image(path.string(), img, DisplaySettings{}, error)) << error;
+  EnvironmentDesc desc;
+  desc.resolved = path.string();
+  desc.up.value = Vec3f(0.3f, 1.0f, 0.2f);
+  desc.rotation_deg.value = 37.0f;
+  const std::unique_ptr<EnvironmentMap> map = EnvironmentMap::load(desc, error);
+  ASSERT_TRUE(map) << error;
+  Rng rng(12);
+  int drawn = 0;
+  for (int k = 0; k < kN; ++k) {
+    LightSample s;
+    if (!map->sample({rng.next_float(), rng.next_float()}, s)) continue;
+    ++drawn;
+    ASSERT_EQ(s.pdf, map->pdf(s.wi)) << "sample " << k;
+    ASSERT_EQ(s.L, map->radiance(s.wi)) << "sample " << k;
+  }
+  EXPECT_GT(drawn, kN - kN / 1000);
+
+  SceneDescription closed = test::courtyard_scene(false);
+  Quad lid;
+  lid.v[0] = {-0.7f, 3.0f, -0.7f}; lid.v[1] = {0.7f, 3.0f, -0.7f}; lid.v[2] = {0.7f, 3.0f, 0.7f}; lid.v[3] = {-0.7f, 3.0f, 0.7f};
+  test::add_shape(closed, lid, closed.shapes.front().material);
+  const SceneDescription scenes[] = {closed, test::courtyard_scene(true, true), test::courtyard_scene(false)};
+  for (const SceneDescription& d : scenes) {
+    const Learned l = learn(d, 2);
+    ASSERT_TRUE(l.guide && l.guide->active());
+    const int env = l.scene->lights.environment();
+    ASSERT_GE(env, 0);
+    for (int point = 0; point < 2; ++point) {
+      const Vec3f p = courtyard_point(rng);
+      for (int k = 0; k < kN / 2; ++k) {
+        LightSample s;
+        if (!l.guide->sample(env, p, {rng.next_float(), rng.next_float()}, s)) continue;
+        ASSERT_EQ(s.pdf, l.guide->pdf(env, p, s.wi, Vec3f(), Vec3f())) << "point " << point << ", sample " << k;
+        ASSERT_EQ(s.L, l.scene->lights.escaped_radiance(s.wi, RGB())) << "point " << point << ", sample " << k;
+      }
+    }
   }
 }
 
