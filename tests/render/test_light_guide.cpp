@@ -77,6 +77,105 @@ TEST(LightGuide, SamplesFollowItsDensity) {
   }
 }
 
+// The courtyard with its opening closed: no pre-pass test reaches the sky, so
+// no leaf learns environment directions and each samples the sky the plain
+// way (session 16 tried the bins' coarse grid there instead of the map's own
+// tables: docs/bench/sample-cost.md). That sampling must still be a density
+// that integrates to one, and its samples must be what its pdf says:
+// E[L / pdf] is the map's integral, as in SamplesFollowItsDensity, and each
+// sample states exactly pdf() and the escaped radiance at its direction
+// (the map's sample once stated its drawn texel's, which float rounding at a
+// texel's edge could put next to the direction's texel: SamplesStateExactly...).
+TEST(LightGuide, LeavesThatSawNoSkyStillSampleItByItsDensity) {
+  SceneDescription d = test::courtyard_scene(false);
+  Quad lid;
+  const float o = 0.7f, h = 3.0f;  // wider than the opening, at the roof's height
+  lid.v[0] = {-o, h, -o}; lid.v[1] = {o, h, -o}; lid.v[2] = {o, h, o}; lid.v[3] = {-o, h, o};
+  test::add_shape(d, lid, d.shapes.front().material);  // the walls' white
+  const Learned l = learn(d, 2);
+  ASSERT_TRUE(l.guide && l.guide->active());
+  const int env = l.scene->lights.environment();
+  ASSERT_GE(env, 0);
+  Rng rng(5);
+  constexpr int kN = 200000;
+  double reference = 0.0;
+  for (int k = 0; k < kN; ++k) {
+    const Vec3f w = sample_uniform_sphere({rng.next_float(), rng.next_float()});
+    reference += l.scene->lights.escaped_radiance(w, RGB()).luminance() * 4.0 * kPi;
+  }
+  reference /= kN;
+  for (int point = 0; point < 3; ++point) {
+    const Vec3f p = courtyard_point(rng);
+    double integral = 0.0, estimate = 0.0;
+    for (int k = 0; k < kN; ++k) {
+      const Vec3f w = sample_uniform_sphere({rng.next_float(), rng.next_float()});
+      integral += static_cast<double>(l.guide->pdf(env, p, w, Vec3f(), Vec3f())) * 4.0 * kPi;
+      LightSample s;
+      if (!l.guide->sample(env, p, {rng.next_float(), rng.next_float()}, s)) continue;
+      ASSERT_EQ(s.pdf, l.guide->pdf(env, p, s.wi, Vec3f(), Vec3f())) << "point " << point << ", sample " << k;
+      ASSERT_EQ(s.L, l.scene->lights.escaped_radiance(s.wi, RGB())) << "point " << point << ", sample " << k;
+      estimate += s.L.luminance() / s.pdf;
+    }
+    EXPECT_NEAR(integral / kN, 1.0, 0.03) << "point " << point;
+    EXPECT_NEAR(estimate / kN, reference, 0.02 * reference) << "point " << point;
+  }
+}
+
+// A sample's density and radiance are exactly pdf() and the escaped radiance
+// at its direction, for each of 10^5 samples: MIS weighs a BSDF ray escaping
+// in that direction by pdf() there, so a sample stating another density (its
+// drawn texel's, where float rounding puts the direction in the next texel)
+// would weigh the two strategies inconsistently. The map alone (a checkerboard
+// of contrast 2500, odd size, tilted and rotated) and the guide's three
+// environment paths: the plain map (a leaf that learned no sky), the mixture
+// with the map's own fine part (a sun in the map) and with the coarse grid.
+TEST(LightGuide, SamplesStateExactlyPdfAndRadianceAtTheirDirection) {
+  constexpr int kW = 97, kH = 43, kN = 100000;
+  Image img(kW, kH);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) img.at(x, y) = (x + y) % 2 ? RGB(50.0f, 40.0f, 30.0f) : RGB(0.02f);
+  const auto path = std::filesystem::temp_directory_path() / "pt_test_environment_checkerboard.exr";
+  std::string error;
+  ASSERT_TRUE(write_image(path.string(), img, DisplaySettings{}, error)) << error;
+  EnvironmentDesc desc;
+  desc.resolved = path.string();
+  desc.up.value = Vec3f(0.3f, 1.0f, 0.2f);
+  desc.rotation_deg.value = 37.0f;
+  const std::unique_ptr<EnvironmentMap> map = EnvironmentMap::load(desc, error);
+  ASSERT_TRUE(map) << error;
+  Rng rng(12);
+  int drawn = 0;
+  for (int k = 0; k < kN; ++k) {
+    LightSample s;
+    if (!map->sample({rng.next_float(), rng.next_float()}, s)) continue;
+    ++drawn;
+    ASSERT_EQ(s.pdf, map->pdf(s.wi)) << "sample " << k;
+    ASSERT_EQ(s.L, map->radiance(s.wi)) << "sample " << k;
+  }
+  EXPECT_GT(drawn, kN - kN / 1000);
+
+  SceneDescription closed = test::courtyard_scene(false);
+  Quad lid;
+  lid.v[0] = {-0.7f, 3.0f, -0.7f}; lid.v[1] = {0.7f, 3.0f, -0.7f}; lid.v[2] = {0.7f, 3.0f, 0.7f}; lid.v[3] = {-0.7f, 3.0f, 0.7f};
+  test::add_shape(closed, lid, closed.shapes.front().material);
+  const SceneDescription scenes[] = {closed, test::courtyard_scene(true, true), test::courtyard_scene(false)};
+  for (const SceneDescription& d : scenes) {
+    const Learned l = learn(d, 2);
+    ASSERT_TRUE(l.guide && l.guide->active());
+    const int env = l.scene->lights.environment();
+    ASSERT_GE(env, 0);
+    for (int point = 0; point < 2; ++point) {
+      const Vec3f p = courtyard_point(rng);
+      for (int k = 0; k < kN / 2; ++k) {
+        LightSample s;
+        if (!l.guide->sample(env, p, {rng.next_float(), rng.next_float()}, s)) continue;
+        ASSERT_EQ(s.pdf, l.guide->pdf(env, p, s.wi, Vec3f(), Vec3f())) << "point " << point << ", sample " << k;
+        ASSERT_EQ(s.L, l.scene->lights.escaped_radiance(s.wi, RGB())) << "point " << point << ", sample " << k;
+      }
+    }
+  }
+}
+
 // The bins' importance grids (environment_bins.h) on a 300 x 70 map (bins of
 // 9-10 x 4-5 texels: cells of 1-2 texels, uneven) with one bright texel: in
 // every bin the density integrates to one over the bin, samples land in their

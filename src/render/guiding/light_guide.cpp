@@ -210,7 +210,7 @@ bool LightGuide::sample(int light, const Site& at, Vec2f u, LightSample& s) cons
   float v = u.x;
   if (!coarse_plain_) {
     if (u.x < kPlainEnvironment)
-      return map_->sample(Vec2f(std::min(u.x / kPlainEnvironment, kOneMinusEpsilon), u.y), s) &&
+      return map_->sample_direction(Vec2f(std::min(u.x / kPlainEnvironment, kOneMinusEpsilon), u.y), s.wi) &&
              finish_environment_sample(lf, s);
     v = std::min((u.x - kPlainEnvironment) / (1.0f - kPlainEnvironment), kOneMinusEpsilon);
   }

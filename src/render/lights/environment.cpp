@@ -99,7 +99,9 @@ std::unique_ptr<EnvironmentMap> EnvironmentMap::load(const EnvironmentDesc& desc
 }
 
 Vec2f EnvironmentMap::direction_to_uv(Vec3f dir) const {
-  const Vec3f d = frame_.to_local(dir);
+  // Normalised here, so that every lookup of a direction (radiance, pdf, the
+  // light guide's bins) maps it to the same texel, whatever its length.
+  const Vec3f d = normalize(frame_.to_local(dir));
   if (!is_finite(d)) return {0.0f, 0.0f};
   const float theta = std::acos(std::clamp(d.z, -1.0f, 1.0f));
   float u = 0.5f + std::atan2(d.x, d.y) * kInv2Pi + u_offset_;
@@ -122,18 +124,27 @@ const RGB& EnvironmentMap::texel(Vec2f uv) const {
   return image_.texel(std::max(x, 0), std::max(y, 0));
 }
 
-RGB EnvironmentMap::radiance(Vec3f dir) const { return texel(direction_to_uv(normalize(dir))) * intensity_; }
+RGB EnvironmentMap::radiance(Vec3f dir) const { return texel(direction_to_uv(dir)) * intensity_; }
 
-bool EnvironmentMap::sample(Vec2f u, LightSample& s) const {
+bool EnvironmentMap::sample_direction(Vec2f u, Vec3f& wi) const {
   float pdf_uv = 0.0f;
   const Vec2f uv = distribution_.sample(u, &pdf_uv);
   prefetch(uv);
-  const float sin_theta = std::sin(kPi * uv.y);
-  if (!(pdf_uv > 0.0f) || !(sin_theta > 0.0f)) return false;
-  s.wi = uv_to_direction(uv);
-  s.pdf = pdf_uv / (2.0f * kPi * kPi * sin_theta);
-  s.L = texel(uv) * intensity_;
+  if (!(pdf_uv > 0.0f) || !(std::sin(kPi * uv.y) > 0.0f)) return false;
+  wi = uv_to_direction(uv);
   return true;
+}
+
+// The density and radiance are those of the direction mapped back, not of the
+// drawn texel: at a texel's edge float rounding can put the direction in the
+// neighbouring texel, and the sample must state what pdf() and radiance() say
+// there (MIS weighs a BSDF ray escaping in that direction by pdf()).
+bool EnvironmentMap::sample(Vec2f u, LightSample& s) const {
+  if (!sample_direction(u, s.wi)) return false;
+  const Vec2f uv = direction_to_uv(s.wi);
+  s.pdf = pdf_at(uv);
+  s.L = radiance_at(uv);
+  return s.pdf > 0.0f;
 }
 
 float EnvironmentMap::pdf(Vec3f dir) const { return pdf_at(direction_to_uv(dir)); }

@@ -36,9 +36,15 @@ class EnvironmentMap {
   static std::unique_ptr<EnvironmentMap> load(const EnvironmentDesc& desc, std::string& error,
                                               const TextureLimits& limits = {}, std::string* warning = nullptr);
 
-  // Radiance arriving from direction `dir` (unit; pointing away from the scene).
+  // Radiance arriving from direction `dir` (pointing away from the scene; any
+  // non-zero length: direction_to_uv normalises it).
   RGB radiance(Vec3f dir) const;
+  // A direction drawn by the map's density and the radiance arriving along it;
+  // s.pdf and s.L are exactly pdf(s.wi) and radiance(s.wi).
   bool sample(Vec2f u, LightSample& s) const;
+  // Only the drawn direction (false where the draw has no density), for a
+  // caller that evaluates its own density there (the light guide's mixture).
+  bool sample_direction(Vec2f u, Vec3f& wi) const;
   float pdf(Vec3f dir) const;
   // The same from image coordinates (direction_to_uv), for a caller that has them:
   // the radiance, and the solid-angle density of sample() there.
@@ -51,7 +57,8 @@ class EnvironmentMap {
   void prefetch(Vec2f uv) const { __builtin_prefetch(&texel(uv)); }
   float power(float scene_radius) const;
 
-  // The direction <-> image coordinate mapping described above.
+  // The direction <-> image coordinate mapping described above (direction_to_uv
+  // takes a direction of any non-zero length; radiance() and pdf() both map through it).
   Vec2f direction_to_uv(Vec3f dir) const;
   Vec3f uv_to_direction(Vec2f uv) const;
   // The image's size in texels (the sampling distribution's grid).
