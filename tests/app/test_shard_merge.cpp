@@ -197,7 +197,7 @@ TEST(FilmMerge, StatesInMemoryAddInParallelToTheSameBits) {
 }
 
 // The band merge sets a band from the first state that covers it instead of
-// adding that state to a cleared band (Film::set_state_rows): the same bits,
+// adding that state to a cleared band (Film::set_state_rect): the same bits,
 // also for values that 0 + x would change (a maximum of -0.0, NaN or below
 // 0; first-sample values whose flag is -0.0, NaN or 0), over a band film
 // that held other rows, and after a refusal.
@@ -241,8 +241,8 @@ TEST(FilmMerge, SettingRowsGivesTheBitsOfAddingThemToAClearedFilm) {
       Film added(w, h, {0, 0, w, h}, all_aovs()), set(w, h, {0, 0, w, h}, all_aovs());
       ASSERT_TRUE(set.add_film(other, other.crop(), true, error)) << error;  // storage that holds other pixels
       added.recrop({0, y0, w, y1});
-      const std::size_t refused = added.add_state_rows(view, rules, y0, y1);
-      EXPECT_EQ(set.set_state_rows(view, rules, y0, y1), refused);
+      const std::size_t refused = added.add_state_rect(view, rules, {view.crop.x0, y0, view.crop.x1, y1});
+      EXPECT_EQ(set.set_state_rect(view, rules, {view.crop.x0, y0, view.crop.x1, y1}), refused);
       EXPECT_EQ(refused, most == 2 ? std::size_t{7} : SIZE_MAX);
       EXPECT_EQ(set.crop(), added.crop());
       const std::string want = state(added);
@@ -273,8 +273,8 @@ TEST(FilmMerge, BlocksOfABandGiveTheBandsBits) {
   const StateRules ra{a.crop(), std::vector<uint8_t>(n, 0), std::vector<uint64_t>(n, 3), y0 * w};
   const StateRules rb{b.crop(), std::vector<uint8_t>(n, 0), std::vector<uint64_t>(n, 4), y0 * w};
   Film whole(w, h, {0, y0, w, y1}, all_aovs());
-  ASSERT_EQ(whole.set_state_rows(va, ra, y0, y1), SIZE_MAX);
-  ASSERT_EQ(whole.add_state_rows(vb, rb, y0, y1), SIZE_MAX);
+  ASSERT_EQ(whole.set_state_rect(va, ra, {va.crop.x0, y0, va.crop.x1, y1}), SIZE_MAX);
+  ASSERT_EQ(whole.add_state_rect(vb, rb, {vb.crop.x0, y0, vb.crop.x1, y1}), SIZE_MAX);
   int blocks = 0;
   for (int x0 = 0; x0 < w; x0 += 3) {
     const PixelRect block{x0, y0, std::min(w, x0 + 3), y1};

@@ -128,7 +128,7 @@ struct StateRules {
   std::vector<uint8_t> other_first;
   std::vector<uint64_t> max_samples;
   // The vectors hold pixels [first, first + size) of the crop: the whole crop
-  // (first 0), or, for Film::add_state_rows, the rows being added.
+  // (first 0), or, for Film::add_state_rect, the rows of the block being added.
   std::size_t first = 0;
 };
 
@@ -159,7 +159,7 @@ struct StateCodec {
 
 // A complete film state in memory (a mapped shard file after its header),
 // its header and size checked (Film::view_state): its exceptions, its codec
-// and where its pixel records begin, for Film::add_state_rows. The records
+// and where its pixel records begin, for Film::add_state_rect. The records
 // need not be aligned.
 struct StateView {
   PixelRect crop;
@@ -262,25 +262,20 @@ class Film {
   // checks it (layout, crop, size), viewed in place.
   bool view_state(std::string_view state, const PixelRect& crop, const PixelRect& inside, StateView& view,
                   std::string& error) const;
-  // Adds rows [y0, y1) of a viewed state, which lie inside this film's crop
-  // and the state's; `rules` cover those rows (rules.first is their first
-  // pixel). One thread. The first pixel (of the state's crop) that breaks the
-  // rules, or SIZE_MAX; the pixels before it are added.
-  std::size_t add_state_rows(const StateView& view, const StateRules& rules, int y0, int y1);
-  // Moves this film to rows [y0, y1) of the state's columns and sets it to
-  // those rows of a viewed state: bit for bit what recrop() then
-  // add_state_rows() leave (values as add_values makes them from zeros:
-  // max(0, v), first-sample values kept only when flagged), without clearing
-  // first. The same return; after a refusal the pixels from the refused one
-  // on are cleared, as add_state_rows leaves them in a cleared film.
-  std::size_t set_state_rows(const StateView& view, const StateRules& rules, int y0, int y1);
-  // The same over `rect`, a block of the state's crop (not necessarily whole
-  // rows; `rules` cover its rows): add_state_rect adds the block (inside this
-  // film's crop), set_state_rect moves this film to the block and sets it.
-  // The pixels are taken row by row; the first refused pixel or SIZE_MAX.
+  // Adds a block `rect` of a viewed state (a rectangle of the state's crop,
+  // not necessarily whole rows, inside this film's crop); `rules` cover its
+  // rows (rules.first is their first pixel). One thread; the pixels are taken
+  // row by row. The first pixel (of the state's crop) that breaks the rules,
+  // or SIZE_MAX; the pixels before it are added.
   std::size_t add_state_rect(const StateView& view, const StateRules& rules, const PixelRect& rect);
+  // Moves this film to `rect` and sets it to that block of a viewed state:
+  // bit for bit what recrop() then add_state_rect() leave (values as
+  // add_values makes them from zeros: max(0, v), first-sample values kept
+  // only when flagged), without clearing first. The same return; after a
+  // refusal the pixels from the refused one on are cleared, as add_state_rect
+  // leaves them in a cleared film.
   std::size_t set_state_rect(const StateView& view, const StateRules& rules, const PixelRect& rect);
-  // The message for a pixel add_state_rows refused.
+  // The message for a pixel add_state_rect refused.
   std::string refusal(const StateView& view, std::size_t pixel, const StateRules& rules) const;
   // The bytes of one pixel's full record in a film state of this film's
   // AOVs (every slot at its type's width: a state's defaults, and the most a
@@ -302,7 +297,7 @@ class Film {
 
  private:
   // Moves this film to `crop` keeping what its storage holds (recrop's
-  // move, without the clear): set_state_rows then sets every pixel.
+  // move, without the clear): set_state_rect then sets every pixel.
   void move_to(const PixelRect& crop);
   // Adds another film's (or a scratch's) AOV sums `s` to pixel number `pixel`:
   // exact sums add, Cryptomatte slots merge (add_ranked).

@@ -536,14 +536,6 @@ std::size_t Film::state_slot_at(std::string_view state, std::size_t pixel, uint3
   return record + offset;
 }
 
-std::size_t Film::add_state_rows(const StateView& view, const StateRules& rules, int y0, int y1) {
-  return add_state_rect(view, rules, {view.crop.x0, y0, view.crop.x1, y1});
-}
-
-std::size_t Film::set_state_rows(const StateView& view, const StateRules& rules, int y0, int y1) {
-  return set_state_rect(view, rules, {view.crop.x0, y0, view.crop.x1, y1});
-}
-
 std::size_t Film::add_state_rect(const StateView& view, const StateRules& rules, const PixelRect& rect) {
   const auto width = static_cast<std::size_t>(view.crop.width()), count = static_cast<std::size_t>(rect.width());
   for (int y = rect.y0; y < rect.y1; ++y) {
