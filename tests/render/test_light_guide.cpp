@@ -3,6 +3,7 @@
 // is a function of the seed alone (the same for any thread count), and a
 // furnace renders exactly its albedo with it. That guided and plain renders
 // converge to the same image: PathAgreement.LightGuiding* (test_path_agreement.cpp).
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -199,7 +200,7 @@ TEST(LightGuide, EnvironmentBinsSampleTheirImportanceGrids) {
   const EnvironmentBins bins(*map);
   ASSERT_EQ(bins.size(), 32 * 16);
   EXPECT_LE(bins.table_bytes(), static_cast<std::size_t>(bins.size()) * EnvironmentBins::kCells *
-                                        EnvironmentBins::kCells * sizeof(float) + 8192);
+                                        EnvironmentBins::kCells * sizeof(float) + 16384);
   const auto texel_uv = [](int x, int y) { return Vec2f((x + 0.5f) / kW, (y + 0.5f) / kH); };
   std::vector<double> integral(static_cast<std::size_t>(bins.size()), 0.0), area(integral);
   for (int y = 0; y < kH; ++y)
@@ -315,6 +316,108 @@ TEST(LightGuide, InactiveWithNothingToGuideAndThenThePlainRenderBitForBit) {
 // pixel it covers, guided or not (the guide learns the sphere's visible
 // hemispheres; a wrong normalisation would scale the answer). Tolerance: 4
 // standard errors of the mean over the sphere's pixels.
+// Every unit normal falls in one of the 26 classes (light_guide.h) and lies
+// within kClassChord of its class's direction; the axes are their own classes.
+TEST(LightGuide, NormalClassesAreWithinTheirChord) {
+  Rng rng(21);
+  float worst = 0.0f;
+  for (int k = 0; k < 200000; ++k) {
+    const Vec3f n = sample_uniform_sphere({rng.next_float(), rng.next_float()});
+    const int c = LightGuide::normal_class(n);
+    ASSERT_GE(c, 0);
+    ASSERT_LT(c, LightGuide::kNormalClasses);
+    ASSERT_NE(c, 13) << "the zero pattern is no class";
+    worst = std::max(worst, length(n - LightGuide::class_direction(c)));
+  }
+  EXPECT_LE(worst, LightGuide::kClassChord);
+  EXPECT_GT(worst, 0.5f) << "the bound is near the classes' real extent (0.523)";
+  for (const Vec3f axis : {Vec3f(1, 0, 0), Vec3f(0, -1, 0), Vec3f(0, 0, 1)}) {
+    EXPECT_EQ(LightGuide::class_direction(LightGuide::normal_class(axis)), axis);
+  }
+  EXPECT_EQ(LightGuide::normal_class(Vec3f()), -1);
+}
+
+// EnvironmentBins::cosine_bound bounds the cosine between any direction of a
+// bin and any unit vector within `slack` of n: every bin of a tilted, rotated
+// map (so the bins' axes go through the map's frame), directions drawn in the
+// bin, normals at random and perturbed by up to 0.3.
+TEST(LightGuide, CosineBoundsHoldOverEveryBin) {
+  EnvironmentDesc desc;
+  desc.resolved = test::guide_test_environment(false);
+  desc.up.value = Vec3f(0.3f, 1.0f, 0.2f);
+  desc.rotation_deg.value = 37.0f;
+  std::string error;
+  const std::unique_ptr<EnvironmentMap> map = EnvironmentMap::load(desc, error);
+  ASSERT_TRUE(map) << error;
+  const EnvironmentBins bins(*map);
+  Rng rng(22);
+  int tight = 0;  // pairs where the bound is within 0.2 of the cosine: it is not vacuous
+  for (int b = 0; b < bins.size(); ++b) {
+    for (int k = 0; k < 200; ++k) {
+      const Vec3f x = map->uv_to_direction(bins.sample(b, {rng.next_float(), rng.next_float()}));
+      const Vec3f n = sample_uniform_sphere({rng.next_float(), rng.next_float()});
+      const Vec3f m = normalize(n + 0.3f * rng.next_float() * sample_uniform_sphere({rng.next_float(), rng.next_float()}));
+      const float slack = length(m - n);
+      ASSERT_LE(dot(n, x), bins.cosine_bound(b, n, 0.0f) + 1e-5f) << "bin " << b;
+      ASSERT_LE(dot(m, x), bins.cosine_bound(b, n, slack) + 1e-5f) << "bin " << b;
+      tight += bins.cosine_bound(b, n, 0.0f) - std::max(0.0f, dot(n, x)) < 0.2f;
+    }
+  }
+  EXPECT_GT(tight, bins.size() * 200 / 2);
+}
+
+// A site with a normal (site(p, n): the leaf's bins times the normal class's
+// cosine bounds) is a density that integrates to one, its samples state exactly
+// pdf() at their direction (MIS weighs a BSDF ray by it), E[L / pdf] is the
+// map's integral, and more of its samples lie in front of the normal than the
+// leaf's own distribution puts there. Floors, walls, a ceiling and slanted
+// normals of the courtyard.
+TEST(LightGuide, SitesWithANormalSampleTheSkyInFrontByTheirDensity) {
+  const Learned l = learn(test::courtyard_scene(false), 2);
+  ASSERT_TRUE(l.guide && l.guide->active());
+  const int env = l.scene->lights.environment();
+  ASSERT_GE(env, 0);
+  Rng rng(23);
+  constexpr int kN = 200000;
+  double reference = 0.0;
+  for (int k = 0; k < kN; ++k) {
+    const Vec3f w = sample_uniform_sphere({rng.next_float(), rng.next_float()});
+    reference += l.scene->lights.escaped_radiance(w, RGB()).luminance() * 4.0 * kPi;
+  }
+  reference /= kN;
+  const Vec3f normals[] = {Vec3f(0, 1, 0), Vec3f(1, 0, 0), Vec3f(0, 0, -1), Vec3f(0, -1, 0),
+                           normalize(Vec3f(0.3f, 0.8f, -0.5f)), normalize(Vec3f(-0.9f, 0.1f, 0.4f))};
+  int product_sites = 0;
+  for (const Vec3f n : normals) {
+    const Vec3f p = courtyard_point(rng);
+    const LightGuide::Site at = l.guide->site(p, n), plain = l.guide->site(p);
+    if (at.environment == nullptr) continue;  // a leaf that learned no sky
+    ++product_sites;
+    double integral = 0.0, estimate = 0.0;
+    int front = 0, plain_front = 0;
+    for (int k = 0; k < kN; ++k) {
+      const Vec3f w = sample_uniform_sphere({rng.next_float(), rng.next_float()});
+      integral += static_cast<double>(l.guide->pdf(env, at, w, Vec3f(), Vec3f())) * 4.0 * kPi;
+      const Vec2f u(rng.next_float(), rng.next_float());
+      LightSample s, q;
+      if (l.guide->sample(env, plain, u, q)) plain_front += dot(q.wi, n) > 0.0f;
+      if (!l.guide->sample(env, at, u, s)) continue;
+      ASSERT_EQ(s.pdf, l.guide->pdf(env, at, s.wi, Vec3f(), Vec3f())) << "normal " << n.x << " " << n.y << " " << n.z;
+      ASSERT_EQ(s.L, l.scene->lights.escaped_radiance(s.wi, RGB()));
+      estimate += s.L.luminance() / s.pdf;
+      front += dot(s.wi, n) > 0.0f;
+    }
+    EXPECT_NEAR(integral / kN, 1.0, 0.03) << "normal " << n.x << " " << n.y << " " << n.z;
+    EXPECT_NEAR(estimate / kN, reference, 0.02 * reference) << "normal " << n.x << " " << n.y << " " << n.z;
+    EXPECT_GE(front, plain_front) << "normal " << n.x << " " << n.y << " " << n.z;
+    EXPECT_GT(front, kN * 6 / 10) << "normal " << n.x << " " << n.y << " " << n.z;
+  }
+  EXPECT_GE(product_sites, 4);
+  // Without a normal (a transmitting BSDF), or with a zero one: the leaf's own distribution.
+  const Vec3f p = courtyard_point(rng);
+  EXPECT_EQ(l.guide->site(p, Vec3f()).environment, nullptr);
+}
+
 TEST(LightGuide, FurnaceSphereIsItsAlbedo) {
   const SceneDescription d = test::furnace_scene(0.8f);
   IntegratorSettings s = test::path_settings(64, 8, 1);

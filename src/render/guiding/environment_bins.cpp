@@ -79,6 +79,24 @@ EnvironmentBins::EnvironmentBins(const EnvironmentMap& map)
   share_.assign(weight.size(), 0.0f);
   for (std::size_t b = 0; b < weight.size(); ++b) share_[b] = total > 0.0 ? static_cast<float>(weight[b] / total) : 0.0f;
   coarse_chi2_ = total > 0.0 ? chi2_from_map(map, cell, total) : 0.0f;
+  // Each bin's central direction and a bound of the chord to any of its
+  // directions: from the centre along the meridian to the direction's polar
+  // angle (at most half the bin's polar span), then along that parallel (at
+  // most sin(theta) x half its azimuth span); a chord is at most the arc. The
+  // small margin covers the float rounding of the direction <-> image mapping.
+  for (int b = 0; b < size(); ++b) {
+    const int bx = b % bins_x_, by = b / bins_x_;
+    const float u0 = static_cast<float>(x0_[bx]) / static_cast<float>(width_);
+    const float u1 = static_cast<float>(x0_[bx + 1]) / static_cast<float>(width_);
+    const float v0 = static_cast<float>(y0_[by]) / static_cast<float>(height_);
+    const float v1 = static_cast<float>(y0_[by + 1]) / static_cast<float>(height_);
+    const Vec3f axis = map.uv_to_direction({0.5f * (u0 + u1), 0.5f * (v0 + v1)});
+    const float max_sin = (v0 <= 0.5f && v1 >= 0.5f) ? 1.0f : std::max(std::sin(kPi * v0), std::sin(kPi * v1));
+    axis_x_.push_back(axis.x);
+    axis_y_.push_back(axis.y);
+    axis_z_.push_back(axis.z);
+    radius_.push_back(0.5f * kPi * (v1 - v0) + max_sin * kPi * (u1 - u0) + 1e-3f);
+  }
 }
 
 // Sum over texels of p^2 / q - 1, p the texel's share of the map's importance, q
@@ -149,7 +167,7 @@ float EnvironmentBins::density(int b, Vec2f uv) const {
 }
 
 std::size_t EnvironmentBins::table_bytes() const {
-  return (cdf_.size() + share_.size()) * sizeof(float) +
+  return (cdf_.size() + share_.size() + axis_x_.size() + axis_y_.size() + axis_z_.size() + radius_.size()) * sizeof(float) +
          (x0_.size() + y0_.size() + column_bin_.size() + row_bin_.size() + cells_x_.size() + cells_y_.size()) * sizeof(int);
 }
 

@@ -10,6 +10,7 @@
 // whole map (128 KiB at 32 x 16 bins), shared by every leaf of the guide.
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "core/sampling.h"
@@ -25,6 +26,16 @@ class EnvironmentBins {
   explicit EnvironmentBins(const EnvironmentMap& map);
 
   int size() const { return bins_x_ * bins_y_; }
+  // An upper bound of max(0, cos) between any direction of bin b and any unit
+  // vector within chord `slack` of the unit vector n: max(0, n . axis(b) +
+  // radius(b) + slack), radius(b) bounding the chord from the bin's central
+  // direction to any of its directions (for such x and m: m . x <= n . axis
+  // + |x - axis| + |m - n|). Positive wherever some direction of the bin is
+  // in front of some such m.
+  float cosine_bound(int b, Vec3f n, float slack) const {
+    const std::size_t i = static_cast<std::size_t>(b);
+    return std::max(0.0f, n.x * axis_x_[i] + n.y * axis_y_[i] + n.z * axis_z_[i] + radius_[i] + slack);
+  }
   // The bin of image coordinates (EnvironmentMap::direction_to_uv).
   int bin_at(Vec2f uv) const;
   // The probability that the map's own sampling lands in bin b: the bin's
@@ -55,6 +66,7 @@ class EnvironmentBins {
   std::vector<int> column_bin_, row_bin_;  // per texel column (row): its bin column (row)
   std::vector<int> cells_x_, cells_y_;     // per bin column (row): cells per side, at most kCells
   std::vector<float> share_;
+  std::vector<float> axis_x_, axis_y_, axis_z_, radius_;  // per bin: its central direction, and the chord bound
   // Per bin, kCells^2 entries (row-major, cy * kCells + cx; unused ones 0): the
   // cumulative probability of the cells up to and including each.
   std::vector<float> cdf_;

@@ -22,6 +22,7 @@ struct Prepass {
   const EnvironmentMap* map;
   int environment;  // its light index, or -1
   int max_depth;
+  bool front_only;  // the learned visibility counts only tests in front of a reflecting surface
 };
 
 // Every infinite light tested from one vertex (the file comment of light_guide.h).
@@ -38,6 +39,10 @@ void test_lights(const Prepass& pp, const Intersection& isect, const Bsdf& bsdf,
       if (sample_light(lights[i], isect.geo.p, u, ls) && ls.pdf > 0.0f && !ls.L.is_black()) {
         if (env) r.bin = pp.bins.bin_at(pp.map->direction_to_uv(ls.wi));
         const RGB f = bsdf.f(wo, ls.wi);
+        // Where the render weighs the bins by the cosine (a reflecting BSDF, a
+        // coarse plain part), a direction behind the surface tells nothing of
+        // the bin's visibility: no test of the bin.
+        if (env && f.is_black() && pp.front_only && !bsdf.transmits()) r.bin = -1;
         if (!f.is_black() && !pp.scene.occluded(spawn_ray(isect.geo, ls.wi))) {
           const float cos_i = std::fabs(dot(ls.wi, bsdf.shading_normal()));
           r.contribution = (f * ls.L).luminance() * cos_i / (ls.pdf * static_cast<float>(tests));
@@ -101,7 +106,7 @@ LightGuide LightGuide::learn(const RenderScene& scene, WorkerPool& pool, int pat
   }
   const int64_t paths = std::min(kMaxPrepassPaths, int64_t{paths_per_pixel} * scene.width * scene.height);
   const Prepass pp{scene, guide.bins_, guide.map_, guide.map_ != nullptr ? env : -1,
-                   std::min(max_depth, kMaxPrepassDepth)};
+                   std::min(max_depth, kMaxPrepassDepth), guide.coarse_plain_};
   std::vector<Record> records = run_prepass<Record>(
       pool, paths, seed, kPrepassKey, [&](Rng& rng, std::vector<Record>& out) { trace_path(pp, rng, out); });
   guide.tree_.build(records, kLeafRecords, [&](const Record* first, std::size_t count) {
@@ -155,6 +160,40 @@ void LightGuide::learn_leaf(Leaf& leaf, const Record* first, std::size_t count) 
                   (1.0f - kPlainEnvironment) * static_cast<float>(weight[b] / sum);
   }
   leaf.environment = Distribution1D(weight);
+  if (coarse_plain_) {  // the product with each normal class's cosine bounds (the file comment of light_guide.h)
+    leaf.by_normal.resize(kNormalClasses);
+    std::vector<float> product(bins);
+    for (int c = 0; c < kNormalClasses; ++c) {
+      const Vec3f axis = class_direction(c);
+      if (!(dot(axis, axis) > 0.0f)) continue;
+      for (std::size_t b = 0; b < bins; ++b)
+        product[b] = weight[b] * (bins_.cosine_bound(static_cast<int>(b), axis, kClassChord) + kCosineFloor);
+      leaf.by_normal[static_cast<std::size_t>(c)] = Distribution1D(product);
+    }
+  }
+}
+
+int LightGuide::normal_class(Vec3f n) {
+  const float m = std::max({std::fabs(n.x), std::fabs(n.y), std::fabs(n.z)});
+  if (!(m > 0.0f)) return -1;
+  const float t = kTan22_5 * m;
+  const auto sign = [t](float v) { return v > t ? 2 : (v < -t ? 0 : 1); };
+  return sign(n.x) * 9 + sign(n.y) * 3 + sign(n.z);
+}
+
+Vec3f LightGuide::class_direction(int c) {
+  if (c < 0 || c >= kNormalClasses || c == 13) return {};
+  const Vec3f d(static_cast<float>(c / 9 - 1), static_cast<float>(c / 3 % 3 - 1), static_cast<float>(c % 3 - 1));
+  return normalize(d);
+}
+
+LightGuide::Site LightGuide::site(Vec3f p, Vec3f n) const {
+  Site at{p, leaf(p)};
+  if (at.leaf == nullptr || at.leaf->by_normal.empty()) return at;
+  const int c = normal_class(n);
+  if (c >= 0 && at.leaf->by_normal[static_cast<std::size_t>(c)].size() > 0)
+    at.environment = &at.leaf->by_normal[static_cast<std::size_t>(c)];
+  return at;
 }
 
 const LightGuide::Leaf* LightGuide::leaf(Vec3f p) const {
@@ -189,13 +228,15 @@ float LightGuide::pmf(const Site& at, Vec3f n, int light) const {
 // The mixture's density: the leaf's bin probability times the bin's density in
 // image coordinates, per solid angle, plus (unless the plain part is coarse and
 // already in the leaf's bins) the map's own; the map's alone where the leaf guides nothing.
-float LightGuide::environment_pdf(const Leaf* l, Vec2f uv) const {
+float LightGuide::environment_pdf(const Site& at, Vec2f uv) const {
+  const Leaf* l = at.leaf;
   if (l == nullptr || l->environment.size() == 0) return map_->pdf_at(uv);
   const float plain = coarse_plain_ ? 0.0f : map_->pdf_at(uv);
   const int b = bins_.bin_at(uv);
   const float sin_theta = std::sin(kPi * uv.y);
   if (!(sin_theta > 0.0f)) return kPlainEnvironment * plain;
-  const float guided = l->environment.pmf(static_cast<std::size_t>(b)) * bins_.density(b, uv) / (2.0f * kPi * kPi * sin_theta);
+  const float p_bin = (at.environment != nullptr ? *at.environment : l->environment).pmf(static_cast<std::size_t>(b));
+  const float guided = p_bin * bins_.density(b, uv) / (2.0f * kPi * kPi * sin_theta);
   return coarse_plain_ ? guided : kPlainEnvironment * plain + (1.0f - kPlainEnvironment) * guided;
 }
 
@@ -211,33 +252,33 @@ bool LightGuide::sample(int light, const Site& at, Vec2f u, LightSample& s) cons
   if (!coarse_plain_) {
     if (u.x < kPlainEnvironment)
       return map_->sample_direction(Vec2f(std::min(u.x / kPlainEnvironment, kOneMinusEpsilon), u.y), s.wi) &&
-             finish_environment_sample(lf, s);
+             finish_environment_sample(at, s);
     v = std::min((u.x - kPlainEnvironment) / (1.0f - kPlainEnvironment), kOneMinusEpsilon);
   }
   // The bin, and v's place inside the bin's step of the cdf as the first image coordinate's number.
+  const Distribution1D& bins = at.environment != nullptr ? *at.environment : lf->environment;
   float density = 0.0f;
   std::size_t b = 0;
-  const float x = lf->environment.sample_continuous(v, &density, &b);
-  const float w = std::clamp(x * static_cast<float>(lf->environment.size()) - static_cast<float>(b), 0.0f,
-                             kOneMinusEpsilon);
+  const float x = bins.sample_continuous(v, &density, &b);
+  const float w = std::clamp(x * static_cast<float>(bins.size()) - static_cast<float>(b), 0.0f, kOneMinusEpsilon);
   const Vec2f uv = bins_.sample(static_cast<int>(b), Vec2f(w, u.y));
   map_->prefetch(uv);  // the texel finish_environment_sample reads (through the direction, the same one but at a texel's edge)
   s.wi = map_->uv_to_direction(uv);
-  return finish_environment_sample(lf, s);
+  return finish_environment_sample(at, s);
 }
 
 // Radiance and density from the sampled direction, as pdf() gives them to a BSDF-sampled ray.
-bool LightGuide::finish_environment_sample(const Leaf* lf, LightSample& s) const {
+bool LightGuide::finish_environment_sample(const Site& at, LightSample& s) const {
   const Vec2f uv = map_->direction_to_uv(s.wi);
   s.L = map_->radiance_at(uv);
-  s.pdf = environment_pdf(lf, uv);
+  s.pdf = environment_pdf(at, uv);
   return s.pdf > 0.0f;
 }
 
 float LightGuide::pdf(int light, const Site& at, Vec3f wi, Vec3f q, Vec3f n) const {
   const Light& l = (*lights_)[static_cast<std::size_t>(light)];
   if (map_ == nullptr || light != lights_->environment()) return light_pdf(l, at.p, wi, q, n);
-  return environment_pdf(at.leaf, map_->direction_to_uv(wi));
+  return environment_pdf(at, map_->direction_to_uv(wi));
 }
 
 }  // namespace pt

@@ -21,6 +21,14 @@
 //    of the leaf's tests that arrived unoccluded there (within a bin, by the
 //    bin's coarse importance grid, environment_bins.h): directions the leaf's
 //    points see through an opening;
+//  - at a vertex whose sky cannot come from behind (a BSDF that does not
+//    transmit: site(p, n)), that distribution over bins (plain part included)
+//    times, per bin, an upper bound of the cosine between the bin's directions
+//    and the normal's class (the nearest of 26 directions: the cube's faces,
+//    edges and corners), plus kCosineFloor (EnvironmentBins::cosine_bound):
+//    the samples that a leaf mixing floors and walls spent behind the surface
+//    (about 40% on Sponza) go in front of it. One table per leaf and class,
+//    made with the leaf; only for the coarse plain part (a smooth sky);
 //  - when every light is infinite (sun and sky), the light is chosen with
 //    probability kPlainChoice x LightSet's + (1 - kPlainChoice) x the leaf's
 //    share of the learned contributions: shadowed regions sample the sky.
@@ -58,6 +66,15 @@ class LightGuide {
   static constexpr float kPlainChoice = 0.1f;
   static constexpr float kPriorTests = 2.0f;  // pseudo-tests per bin at the leaf's mean visibility
   static constexpr int64_t kMaxPrepassPaths = int64_t{1} << 18;
+  // Added to each bin's cosine bound (the file comment): every bin keeps a
+  // positive density for every class, so the estimator stays unbiased
+  // whatever normal a vertex gives.
+  static constexpr float kCosineFloor = 0.02f;
+  static constexpr int kNormalClasses = 27;  // 3^3 sign patterns; the zero one unused
+  static constexpr float kTan22_5 = 0.41421356f;
+  // A unit normal is within this chord of its class's direction (at most
+  // 0.523, about 30 degrees: LightGuide.NormalClassesAreWithinTheirChord).
+  static constexpr float kClassChord = 0.53f;
 
   // The inactive guide.
   explicit LightGuide(const LightSet& lights) : lights_(&lights) {}
@@ -75,13 +92,26 @@ class LightGuide {
   struct Leaf {
     std::vector<float> choice;  // per light: its probability (empty: LightSet's)
     Distribution1D environment;  // over bins (empty: the map's own)
+    // Per normal class (normal_class): the environment's distribution times
+    // the class's cosine bounds (empty: no product in this leaf).
+    std::vector<Distribution1D> by_normal;
   };
-  // A shading point and its leaf, looked up once for the calls below.
+  // A shading point, its leaf and the leaf's distribution over bins there,
+  // looked up once for the calls below.
   struct Site {
     Vec3f p;
     const Leaf* leaf = nullptr;
+    const Distribution1D* environment = nullptr;  // the sky's bins at this point (null: the leaf's own)
   };
   Site site(Vec3f p) const { return {p, leaf(p)}; }
+  // `n`: the unit normal on the side the sky may light (a reflecting BSDF's
+  // shading normal towards wo); a zero vector: no product with the cosine.
+  Site site(Vec3f p, Vec3f n) const;
+  // The class of a normal (the nearest of the 26 directions, by the signs of
+  // its components larger than tan(22.5 degrees) x the largest), or -1 for the zero vector.
+  static int normal_class(Vec3f n);
+  // Its central direction (unit).
+  static Vec3f class_direction(int c);
 
   // LightSet::choose and pmf, guided.
   int choose(const Site& at, Vec3f n, float u, float& pmf) const;
@@ -105,8 +135,9 @@ class LightGuide {
  private:
   void learn_leaf(Leaf& leaf, const Record* first, std::size_t count) const;
   const Leaf* leaf(Vec3f p) const;
-  float environment_pdf(const Leaf* l, Vec2f uv) const;
-  bool finish_environment_sample(const Leaf* lf, LightSample& s) const;
+  float environment_pdf(const Site& at, Vec2f uv) const;
+  bool finish_environment_sample(const Site& at, LightSample& s) const;
+
 
   const LightSet* lights_;
   const EnvironmentMap* map_ = nullptr;
