@@ -369,29 +369,42 @@ TEST(LightGuide, CosineBoundsHoldOverEveryBin) {
 // A site with a normal (site(p, n): the leaf's bins times the normal class's
 // cosine bounds) is a density that integrates to one, its samples state exactly
 // pdf() at their direction (MIS weighs a BSDF ray by it), E[L / pdf] is the
-// map's integral, and more of its samples lie in front of the normal than the
-// leaf's own distribution puts there. Floors, walls, a ceiling and slanted
-// normals of the courtyard.
+// map's integral, and at least as many of its samples lie in front of the
+// normal as the leaf's own distribution puts there (most, on the floor and the
+// walls). Points on the courtyard's floor, walls and roof with their normals
+// (tables exist for the classes a leaf's pre-pass records had).
 TEST(LightGuide, SitesWithANormalSampleTheSkyInFrontByTheirDensity) {
   const Learned l = learn(test::courtyard_scene(false), 2);
   ASSERT_TRUE(l.guide && l.guide->active());
   const int env = l.scene->lights.environment();
   ASSERT_GE(env, 0);
   Rng rng(23);
-  constexpr int kN = 200000;
+  constexpr int kN = 100000;
   double reference = 0.0;
-  for (int k = 0; k < kN; ++k) {
+  for (int k = 0; k < 4 * kN; ++k) {
     const Vec3f w = sample_uniform_sphere({rng.next_float(), rng.next_float()});
     reference += l.scene->lights.escaped_radiance(w, RGB()).luminance() * 4.0 * kPi;
   }
-  reference /= kN;
-  const Vec3f normals[] = {Vec3f(0, 1, 0), Vec3f(1, 0, 0), Vec3f(0, 0, -1), Vec3f(0, -1, 0),
-                           normalize(Vec3f(0.3f, 0.8f, -0.5f)), normalize(Vec3f(-0.9f, 0.1f, 0.4f))};
+  reference /= 4 * kN;
+  struct Surface {
+    Vec3f p, n;
+    bool roof;
+  };
+  std::vector<Surface> surfaces;
+  const auto in = [&](float lo, float hi) { return lo + (hi - lo) * rng.next_float(); };
+  for (int i = 0; i < 2; ++i) {
+    surfaces.push_back({{in(-1.9f, 1.9f), 1e-3f, in(-1.9f, 1.9f)}, {0, 1, 0}, false});
+    surfaces.push_back({{-2.0f + 1e-3f, in(0.1f, 2.9f), in(-1.9f, 1.9f)}, {1, 0, 0}, false});
+    surfaces.push_back({{2.0f - 1e-3f, in(0.1f, 2.9f), in(-1.9f, 1.9f)}, {-1, 0, 0}, false});
+    surfaces.push_back({{in(-1.9f, 1.9f), in(0.1f, 2.9f), -2.0f + 1e-3f}, {0, 0, 1}, false});
+    surfaces.push_back({{in(-1.9f, 1.9f), in(0.1f, 2.9f), 2.0f - 1e-3f}, {0, 0, -1}, false});
+    surfaces.push_back({{in(0.8f, 1.9f), 3.0f - 1e-3f, in(-1.9f, 1.9f)}, {0, -1, 0}, true});
+  }
   int product_sites = 0;
-  for (const Vec3f n : normals) {
-    const Vec3f p = courtyard_point(rng);
-    const LightGuide::Site at = l.guide->site(p, n), plain = l.guide->site(p);
-    if (at.environment == nullptr) continue;  // a leaf that learned no sky
+  for (const Surface& sf : surfaces) {
+    const Vec3f n = sf.n;
+    const LightGuide::Site at = l.guide->site(sf.p, n), plain = l.guide->site(sf.p);
+    if (at.environment == nullptr) continue;  // no table for this class in this leaf
     ++product_sites;
     double integral = 0.0, estimate = 0.0;
     int front = 0, plain_front = 0;
@@ -408,14 +421,16 @@ TEST(LightGuide, SitesWithANormalSampleTheSkyInFrontByTheirDensity) {
       front += dot(s.wi, n) > 0.0f;
     }
     EXPECT_NEAR(integral / kN, 1.0, 0.03) << "normal " << n.x << " " << n.y << " " << n.z;
-    EXPECT_NEAR(estimate / kN, reference, 0.02 * reference) << "normal " << n.x << " " << n.y << " " << n.z;
+    EXPECT_NEAR(estimate / kN, reference, 0.03 * reference) << "normal " << n.x << " " << n.y << " " << n.z;
     EXPECT_GE(front, plain_front) << "normal " << n.x << " " << n.y << " " << n.z;
-    EXPECT_GT(front, kN * 6 / 10) << "normal " << n.x << " " << n.y << " " << n.z;
+    if (!sf.roof) EXPECT_GT(front, kN * 6 / 10) << "normal " << n.x << " " << n.y << " " << n.z;
   }
-  EXPECT_GE(product_sites, 4);
-  // Without a normal (a transmitting BSDF), or with a zero one: the leaf's own distribution.
-  const Vec3f p = courtyard_point(rng);
-  EXPECT_EQ(l.guide->site(p, Vec3f()).environment, nullptr);
+  EXPECT_GE(product_sites, 8);
+  // Without a normal (a transmitting BSDF), or with a zero one, or of a class
+  // no record of the leaf had (no surface of the courtyard faces a corner of
+  // the cube): the leaf's own distribution.
+  EXPECT_EQ(l.guide->site(surfaces.front().p, Vec3f()).environment, nullptr);
+  EXPECT_EQ(l.guide->site(surfaces.front().p, normalize(Vec3f(1, 1, 1))).environment, nullptr);
 }
 
 TEST(LightGuide, FurnaceSphereIsItsAlbedo) {

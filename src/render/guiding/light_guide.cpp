@@ -29,11 +29,12 @@ struct Prepass {
 void test_lights(const Prepass& pp, const Intersection& isect, const Bsdf& bsdf, Vec3f wo, Rng& rng,
                  std::vector<LightGuide::Record>& out) {
   const LightSet& lights = pp.scene.lights;
+  const int normal_class = LightGuide::normal_class(LightGuide::sky_normal(bsdf, wo));
   for (std::size_t i = 0; i < lights.size(); ++i) {
     const bool env = static_cast<int>(i) == pp.environment;
     const int tests = env ? LightGuide::kEnvironmentTests : 1;
     for (int t = 0; t < tests; ++t) {
-      LightGuide::Record r{isect.geo.p, static_cast<int>(i), -1, 0.0f};
+      LightGuide::Record r{isect.geo.p, static_cast<int>(i), -1, 0.0f, normal_class};
       LightSample ls;
       const Vec2f u(rng.next_float(), rng.next_float());
       if (sample_light(lights[i], isect.geo.p, u, ls) && ls.pdf > 0.0f && !ls.L.is_black()) {
@@ -42,7 +43,7 @@ void test_lights(const Prepass& pp, const Intersection& isect, const Bsdf& bsdf,
         // Where the render weighs the bins by the cosine (a reflecting BSDF, a
         // coarse plain part), a direction behind the surface tells nothing of
         // the bin's visibility: no test of the bin.
-        if (env && f.is_black() && pp.front_only && !bsdf.transmits()) r.bin = -1;
+        if (env && f.is_black() && pp.front_only && normal_class >= 0) r.bin = -1;
         if (!f.is_black() && !pp.scene.occluded(spawn_ray(isect.geo, ls.wi))) {
           const float cos_i = std::fabs(dot(ls.wi, bsdf.shading_normal()));
           r.contribution = (f * ls.L).luminance() * cos_i / (ls.pdf * static_cast<float>(tests));
@@ -161,16 +162,25 @@ void LightGuide::learn_leaf(Leaf& leaf, const Record* first, std::size_t count) 
   }
   leaf.environment = Distribution1D(weight);
   if (coarse_plain_) {  // the product with each normal class's cosine bounds (the file comment of light_guide.h)
+    std::vector<int> of_class(kNormalClasses, 0);
+    for (std::size_t i = 0; i < count; ++i)
+      if (first[i].normal_class >= 0) ++of_class[static_cast<std::size_t>(first[i].normal_class)];
     leaf.by_normal.resize(kNormalClasses);
     std::vector<float> product(bins);
     for (int c = 0; c < kNormalClasses; ++c) {
       const Vec3f axis = class_direction(c);
-      if (!(dot(axis, axis) > 0.0f)) continue;
+      if (!(dot(axis, axis) > 0.0f) || of_class[static_cast<std::size_t>(c)] < kMinClassRecords) continue;
       for (std::size_t b = 0; b < bins; ++b)
         product[b] = weight[b] * (bins_.cosine_bound(static_cast<int>(b), axis, kClassChord) + kCosineFloor);
       leaf.by_normal[static_cast<std::size_t>(c)] = Distribution1D(product);
     }
   }
+}
+
+Vec3f LightGuide::sky_normal(const Bsdf& bsdf, Vec3f wo) {
+  if (bsdf.transmits() || bsdf.delta_only()) return {};
+  const Vec3f n = bsdf.shading_normal();
+  return dot(n, wo) < 0.0f ? -n : n;
 }
 
 int LightGuide::normal_class(Vec3f n) {

@@ -28,7 +28,9 @@
 //    edges and corners), plus kCosineFloor (EnvironmentBins::cosine_bound):
 //    the samples that a leaf mixing floors and walls spent behind the surface
 //    (about 40% on Sponza) go in front of it. One table per leaf and class,
-//    made with the leaf; only for the coarse plain part (a smooth sky);
+//    made with the leaf for the classes of at least kMinClassRecords of its
+//    records (a vertex of another class samples the leaf's own); only for the
+//    coarse plain part (a smooth sky);
 //  - when every light is infinite (sun and sky), the light is chosen with
 //    probability kPlainChoice x LightSet's + (1 - kPlainChoice) x the leaf's
 //    share of the learned contributions: shadowed regions sample the sky.
@@ -50,6 +52,7 @@
 
 namespace pt {
 
+class Bsdf;
 class WorkerPool;
 struct RenderScene;
 
@@ -71,6 +74,7 @@ class LightGuide {
   // whatever normal a vertex gives.
   static constexpr float kCosineFloor = 0.02f;
   static constexpr int kNormalClasses = 27;  // 3^3 sign patterns; the zero one unused
+  static constexpr int kMinClassRecords = 16;  // a leaf's records of a class for its table
   static constexpr float kTan22_5 = 0.41421356f;
   // A unit normal is within this chord of its class's direction (at most
   // 0.523, about 30 degrees: LightGuide.NormalClassesAreWithinTheirChord).
@@ -107,6 +111,10 @@ class LightGuide {
   // `n`: the unit normal on the side the sky may light (a reflecting BSDF's
   // shading normal towards wo); a zero vector: no product with the cosine.
   Site site(Vec3f p, Vec3f n) const;
+  // The normal the sky's bins are weighed by at a vertex with this BSDF seen
+  // from wo: the shading normal on wo's side where the BSDF only reflects, a
+  // zero vector (no product) where light may come through or it is all delta.
+  static Vec3f sky_normal(const Bsdf& bsdf, Vec3f wo);
   // The class of a normal (the nearest of the 26 directions, by the signs of
   // its components larger than tan(22.5 degrees) x the largest), or -1 for the zero vector.
   static int normal_class(Vec3f n);
@@ -130,6 +138,7 @@ class LightGuide {
     int light;
     int bin;  // the environment's bin, or -1
     float contribution;
+    int normal_class = -1;  // normal_class(sky_normal(...)) of the vertex, or -1
   };
 
  private:

@@ -89,7 +89,7 @@ class PathTracer {
       const Bsdf bsdf(m, isect.geo, wo);
       if (bsdf.black()) break;
       if (rec.active() && depth == 0) rec.first_vertex(bsdf);
-      const LightGuide::Site site = guide_.site(isect.geo.p, sky_normal(bsdf, wo));
+      const LightGuide::Site site = guide_.site(isect.geo.p, LightGuide::sky_normal(bsdf, wo));
       const PathGuide::Leaf* region = bsdf.delta_only() ? nullptr : path_guide_.leaf(isect.geo.p, bsdf.shading_normal());
       if (!bsdf.delta_only()) L += next_event(isect, site, region, bsdf, wo, beta, depth, sampler, rec);
 
@@ -126,15 +126,6 @@ class PathTracer {
   }
 
  private:
-  // The normal the light guide weighs the sky's bins by at this vertex
-  // (light_guide.h): the shading normal on wo's side where the BSDF only
-  // reflects, none (a zero vector) where light may come through.
-  static Vec3f sky_normal(const Bsdf& bsdf, Vec3f wo) {
-    if (bsdf.transmits() || bsdf.delta_only()) return {};
-    const Vec3f n = bsdf.shading_normal();
-    return dot(n, wo) < 0.0f ? -n : n;
-  }
-
   // The MIS weight of the sky sampled with density `a` against the other
   // strategy's `b`, at the vertex `at`: where the light guide weighs the sky's
   // bins by the normal (site(p, n)), the balance heuristic, else the power
