@@ -255,6 +255,55 @@ TEST(FilmMerge, SettingRowsGivesTheBitsOfAddingThemToAClearedFilm) {
   }
 }
 
+// The add of a state keeps a scratch of the state's defaults and adds only
+// the slots a record holds (Film::add_records); its Cryptomatte check reads
+// the held slots where a layer's defaults are 0, the slots themselves where
+// not. Both kinds of state add to add_film's bits: one whose rank-0 ids every
+// pixel shares (a default not 0), and one whose ids vary; a shared id made
+// out of order (above rank 1's) is refused in the add as in the read.
+TEST(FilmMerge, AddingAStateWithSharedCryptomatteIdsGivesAddFilmsBits) {
+  constexpr int w = 40, h = 3;
+  Film a(w, h, {0, 0, w, h}, all_aovs()), b(w, h, {0, 0, w, h}, all_aovs());
+  render(a, a.crop(), {0, 2});
+  render(b, b.crop(), {2, 4});
+  AovScratch scratch = b.make_scratch();
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {  // an id below every other (0.25 < 0.5, 1): rank 0 of every pixel
+      scratch.clear();
+      AovSample s;
+      s.hit = true;
+      s.crypto_object = s.crypto_material = 0.25f;
+      b.accumulate(scratch, s, RGB(), 0.5f, false);
+      b.add_aovs(x, y, scratch);
+    }
+  std::size_t id0 = 6;  // CryptoObject's rank-0 id slot
+  for (const AovRequest& r : b.aovs()) {
+    if (r.type == AovType::CryptoObject) break;
+    id0 += static_cast<std::size_t>(aov_state_sums(r));
+  }
+  const std::string state_b = state(b);
+  const StateParts parts = expand(b, state_b);
+  const std::size_t defaults = 89 + 3 * b.aovs().size();  // where the state's defaults begin
+  ASSERT_EQ(read_at<float>(state_b, defaults + parts.offset[id0]), 0.25f) << "the shared id is the state's default";
+  const auto n = static_cast<std::size_t>(w * h);
+  const StateRules rules{a.crop(), std::vector<uint8_t>(n, 0), std::vector<uint64_t>(n, 4)};
+  Film by_film(w, h, {0, 0, w, h}, all_aovs()), by_state(w, h, {0, 0, w, h}, all_aovs());
+  std::string error;
+  for (const Film* f : {&a, &b}) {
+    ASSERT_TRUE(by_film.add_film(*f, f->crop(), false, error)) << error;
+    by_film.add_non_finite(f->non_finite());  // add_state merges the report, add_film does not
+    ASSERT_TRUE(by_state.add_state(std::string_view(state(*f)), rules, error)) << error;
+  }
+  EXPECT_EQ(state(by_state), state(by_film));
+  // The shared id made larger than pixel 5's rank-1 id: refused there.
+  StateParts bad = parts;
+  const float big = 100.0f;
+  for (std::string& record : bad.full) std::memcpy(&record[bad.offset[id0]], &big, sizeof big);
+  Film refused(w, h, {0, 0, w, h}, all_aovs());
+  EXPECT_FALSE(refused.add_state(std::string_view(pack(bad)), rules, error));
+  EXPECT_NE(error.find("Cryptomatte slots of pixel (0, 0)"), std::string::npos) << error;
+}
+
 // The streamed merge takes a band in blocks of columns (Film::set_state_rect,
 // add_state_rect): every block of a band, set from one state and added to
 // from another, holds the bits the whole band holds there, and setting a

@@ -296,27 +296,67 @@ void Film::add_aovs(int x, int y, const AovScratch& scratch) {
   }
 }
 
-bool Film::valid_ranked(const ExactSum* s) const {
-  for (const SumRun& run : sum_runs_) {
-    if (run.ranks == 0) continue;
-    const ExactSum* slots = s + run.offset;
-    uint32_t previous = 0;
-    for (int k = 0; k < run.ranks; ++k) {
-      const ExactSum& id = slots[2 * k];
-      const uint32_t bits = slot_id(id), exponent = (bits >> 23) & 0xffu;
-      if (id.raw() >> 32 != 0) return false;
-      if (bits == 0) {  // free: so are the rest, without weight
-        if (!slots[2 * k + 1].is_zero()) return false;
-        previous = ~0u;
-      } else if (bits <= previous || exponent == 0 || exponent == 255) {
-        return false;  // out of order, after a free slot, or not an id
-      } else {
-        previous = bits;
-      }
-    }
+namespace {
+// Whether the first `used` ranks of Cryptomatte slots `slots` hold ids (32
+// bits, a float's that is neither 0, denormal nor infinite or NaN) in
+// increasing order.
+bool ranked_ids(const ExactSum* slots, int used) {
+  uint32_t previous = 0;
+  for (int k = 0; k < used; ++k) {
+    const ExactSum& id = slots[2 * k];
+    const uint32_t bits = slot_id(id), exponent = (bits >> 23) & 0xffu;
+    if (id.raw() >> 32 != 0 || bits <= previous || exponent == 0 || exponent == 255) return false;
+    previous = bits;
   }
   return true;
 }
+
+// Whether a Cryptomatte layer's slots `slots` of `ranks` ranks are as
+// add_ranked leaves them: the ranks before the first free one (id 0) hold
+// ids in increasing order; from it on, ids and weights are all 0.
+bool valid_layer(const ExactSum* slots, int ranks) {
+  int used = 0;
+  while (used < ranks && !slots[2 * used].is_zero()) ++used;
+  UInt128 rest = 0;
+  for (int j = 2 * used; j < 2 * ranks; ++j) rest |= slots[j].raw();
+  return rest == 0 && ranked_ids(slots, used);
+}
+}  // namespace
+
+bool Film::valid_ranked(const ExactSum* s) const {
+  for (const SumRun& run : sum_runs_)
+    if (run.ranks > 0 && !valid_layer(s + run.offset, run.ranks)) return false;
+  return true;
+}
+
+bool Film::valid_ranked(const ExactSum* s, const std::array<uint64_t, kStateWords>& held,
+                        const std::array<uint64_t, kStateWords>& varying) const {
+  static_assert(kStateWords == 2 && 2 * kCryptomatteMaxRanks < 64, "a layer's slots are bits of one 128-bit mask");
+  const UInt128 h = held[0] | static_cast<UInt128>(held[1]) << 64;
+  const UInt128 zero = varying[0] | static_cast<UInt128>(varying[1]) << 64;
+  for (const SumRun& run : sum_runs_) {
+    if (run.ranks == 0) continue;
+    const auto first = kAovSlot + static_cast<std::size_t>(run.offset);
+    const uint64_t all = (uint64_t{1} << (2 * run.ranks)) - 1;  // the layer's slots, ids at the even bits
+    if ((static_cast<uint64_t>(zero >> first) & all) != all) {  // a default not 0: the slots themselves
+      if (!valid_layer(s + run.offset, run.ranks)) return false;
+      continue;
+    }
+    // Every default 0: a slot is not 0 exactly when it is held.
+    const uint64_t bits = static_cast<uint64_t>(h >> first) & all;
+    int used = 0;
+    while (used < run.ranks && ((bits >> (2 * used)) & 1) != 0) ++used;
+    if ((bits >> (2 * used)) != 0 || !ranked_ids(s + run.offset, used)) return false;
+  }
+  return true;
+}
+
+namespace {
+// Adds a Cryptomatte layer's slots `s` (`ranks` ranks) into `d`: its used ranks, by id (add_ranked).
+void add_layer(ExactSum* d, const ExactSum* s, int ranks) {
+  for (int k = 0; k < ranks && !s[2 * k].is_zero(); ++k) add_ranked(d, ranks, slot_id(s[2 * k]), s[2 * k + 1]);
+}
+}  // namespace
 
 void Film::add_sums(std::size_t pixel, const ExactSum* s) {
   ExactSum* d = aov_sums_.data() + pixel * static_cast<std::size_t>(sum_stride_);
@@ -324,12 +364,18 @@ void Film::add_sums(std::size_t pixel, const ExactSum* s) {
     ExactSum* dl = d + run.offset;
     const ExactSum* sl = s + run.offset;
     if (run.ranks > 0) {
-      for (int k = 0; k < run.ranks && !sl[2 * k].is_zero(); ++k)
-        add_ranked(dl, run.ranks, slot_id(sl[2 * k]), sl[2 * k + 1]);
+      add_layer(dl, sl, run.ranks);
     } else {
       for (int k = 0; k < run.count; ++k) dl[k].add(sl[k]);
     }
   }
+}
+
+void Film::add_sums(std::size_t pixel, const ExactSum* s, const std::array<uint64_t, kStateWords>& slots) {
+  ExactSum* d = aov_sums_.data() + pixel * static_cast<std::size_t>(sum_stride_);
+  for_each_slot(slots, plain_sum_slots_, [&](std::size_t k) { d[k - kAovSlot].add(s[k - kAovSlot]); });
+  for (const SumRun& run : sum_runs_)
+    if (run.ranks > 0) add_layer(d + run.offset, s + run.offset, run.ranks);
 }
 
 void Film::aov_values(std::size_t layer, std::size_t pixel, float* out) const {

@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <iosfwd>
 #include <string>
@@ -306,15 +307,44 @@ class Film {
   // add_ranked leaves them (ids in increasing order, free slots last and
   // empty); a film state read from a file may hold anything.
   bool valid_ranked(const ExactSum* s) const;
+  // The same of a decoded record's AOV sums `s`, which held slots `held`
+  // (DecodedPixel::held) of a state whose zero defaults are `varying`
+  // (StateCodec::varying): where a layer's defaults are all 0, from the
+  // slots held alone, without reading its slots but the used ids.
+  bool valid_ranked(const ExactSum* s, const std::array<uint64_t, kStateWords>& held,
+                    const std::array<uint64_t, kStateWords>& varying) const;
+  // add_sums of only the plain sums among state slots `slots` (the others
+  // of `s` are 0) and every Cryptomatte layer: a decoded record's.
+  void add_sums(std::size_t pixel, const ExactSum* s, const std::array<uint64_t, kStateWords>& slots);
+  // Calls `f(k)` for every state slot k in both `a` and `b`, in increasing order.
+  template <typename F>
+  static void for_each_slot(const std::array<uint64_t, kStateWords>& a, const std::array<uint64_t, kStateWords>& b,
+                            F&& f) {
+    for (std::size_t w = 0; w < kStateWords; ++w)
+      for (uint64_t m = a[w] & b[w]; m != 0; m &= m - 1) f(64 * w + static_cast<std::size_t>(std::countr_zero(m)));
+  }
   // Adds another film's plain AOV values `s` (first-sample layers, maxima) to pixel number `pixel`.
   void add_values(std::size_t pixel, const double* s, bool other_first);
+  // Where a pixel's record decodes to: its sums, AOV sums and plain values.
+  // With `defaults`, the AOV sums and values already hold the state's
+  // defaults (a scratch that is cleared back to them: add_records), and
+  // decode_record writes only the slots the record and its exceptions hold;
+  // it sets `held` to those.
+  struct DecodedPixel {
+    PixelSum* sum;
+    ExactSum* sums;
+    double* values;
+    bool defaults = false;
+    std::array<uint64_t, kStateWords> held{};
+  };
   // The film state's records (film_state_codec.cpp; the layout in
   // film_state.cpp). Slots of a pixel: state_slots(), numbered as
   // StateException::slot. A full record holds every slot at its type's
   // width (record_bytes_); a state's record, a mask of the slots that differ
   // from the state's defaults (bitmap_bytes_), then those slots.
   void init_state_layout();
-  std::size_t state_slots() const { return 6 + static_cast<std::size_t>(sum_stride_ + value_stride_); }
+  static constexpr std::size_t kAovSlot = 6;  // a state's first AOV sum slot (after the beauty's 5 sums and count)
+  std::size_t state_slots() const { return kAovSlot + static_cast<std::size_t>(sum_stride_ + value_stride_); }
   // Whether `e` is a slot of a state of `pixels` pixels whose value its
   // record could not hold (anything else is not how write_state writes it).
   bool valid_exception(const StateException& e, std::size_t pixels, const StateCodec& codec) const;
@@ -331,10 +361,11 @@ class Film {
   // 0 when its mask is not as pack_record writes it or it passes `end`.
   std::size_t record_size(const char* in, const char* end, const StateCodec& codec) const;
   // The record at `in` (ending by `end`) and its pixel's exceptions [ex,
-  // ex_end) into a pixel's sums, AOV sums and values, `in` moved past it;
-  // false when they are not as pack_record writes them.
+  // ex_end) into `to` (the defaults first, unless to.defaults), `in` moved
+  // past it and to.held set to the slots they hold; false when they are not
+  // as pack_record writes them.
   bool decode_record(const char*& in, const char* end, const StateCodec& codec, const StateException* ex,
-                     const StateException* ex_end, PixelSum& sum, ExactSum* sums, double* values) const;
+                     const StateException* ex_end, DecodedPixel& to) const;
   // codec.pixel, sums and values from codec.defaults.
   void decode_defaults(StateCodec& codec) const;
   // The parts of a state's header after the non-finite report: the
@@ -351,6 +382,15 @@ class Film {
   // moved to the next group's end.
   static bool next_record(const StateView& view, std::size_t pixel, std::size_t pixels, const char* at,
                           const char*& end);
+  // The walk over the records of pixels [first, first + count) of a viewed
+  // state that read_state, add_records and set_records share: each record
+  // (with its exceptions) decoded where `target(i)` says (a DecodedPixel),
+  // checked (as written; Cryptomatte slots; where its group ends), then
+  // handed to `use(i, decoded)`, which may refuse it (false). The first
+  // pixel refused, or SIZE_MAX. Defined in film_state.cpp, its only user.
+  template <typename Target, typename Use>
+  std::size_t for_each_record(const StateView& view, std::size_t first, std::size_t count, Target&& target,
+                              Use&& use) const;
   // add_state's work on pixels [first, first + count) of a viewed state
   // (rules over its crop): the first pixel that breaks the rules (too many
   // samples; corrupt Cryptomatte slots; a record not as written), or
@@ -411,11 +451,11 @@ class Film {
   std::vector<double> aov_values_;  // pixels * value_stride_
   NonFiniteReport non_finite_;
   std::vector<uint8_t> sum_kinds_;  // per AOV sum: how a state's record holds it (film_state_codec.cpp)
-  // sum_kinds_ as runs of one kind (kind, count), in order: decode_record's loops.
-  std::vector<std::pair<uint8_t, int>> kind_runs_;
   std::vector<uint32_t> slot_offset_;  // per state slot: where a full record holds it
   std::vector<uint8_t> slot_kind_;     // per state slot: what it is and where it decodes to (film_state_codec.cpp)
   std::array<uint64_t, kStateWords> wide_slots_{};  // the state slots held in 8 bytes (the others in 4)
+  std::array<uint64_t, kStateWords> aov_sum_slots_{}, value_slots_{};  // the state slots of the AOV sums, of the values
+  std::array<uint64_t, kStateWords> plain_sum_slots_{};  // the AOV sums' slots outside Cryptomatte layers
   std::size_t record_bytes_ = 0;    // a full record of one pixel
   std::size_t bitmap_bytes_ = 0;    // a record's mask of the slots it holds
 };

@@ -304,17 +304,10 @@ bool Film::read_state(std::istream& in, std::string& error) {
   std::vector<double> values(aov_values_.size());
   std::size_t bad = SIZE_MAX;
   const bool read = read_groups(in, view, n, [&](std::size_t first, std::size_t count) {
-    const char *at = nullptr, *end = nullptr;
-    const StateException* ex = exceptions_from(view.exceptions, first);
-    if (!seek_record(view, first, at, end)) bad = first;
-    for (std::size_t i = first; i < first + count && bad == SIZE_MAX; ++i) {
-      const StateException* ex_end = exceptions_end(view.exceptions, ex, i);
-      if (!decode_record(at, end, view.codec, ex, ex_end, pixels[i], sums.data() + i * stride,
-                         values.data() + i * vstride) ||
-          !valid_ranked(sums.data() + i * stride) || !next_record(view, i, n, at, end))
-        bad = i;
-      ex = ex_end;
-    }
+    bad = for_each_record(
+        view, first, count,
+        [&](std::size_t i) { return DecodedPixel{&pixels[i], sums.data() + i * stride, values.data() + i * vstride}; },
+        [](std::size_t, const DecodedPixel&) { return true; });
     return bad == SIZE_MAX;
   });
   if (bad != SIZE_MAX) {
@@ -372,55 +365,70 @@ std::size_t pixels_of(const PixelRect& crop) {
 }
 }  // namespace
 
-std::size_t Film::add_records(const StateView& view, std::size_t first, std::size_t count, const StateRules& rules) {
-  const auto width = static_cast<std::size_t>(rules.crop.width());
+template <typename Target, typename Use>
+std::size_t Film::for_each_record(const StateView& view, std::size_t first, std::size_t count, Target&& target,
+                                  Use&& use) const {
   const std::size_t n = pixels_of(view.crop);
-  std::vector<ExactSum> sums(static_cast<std::size_t>(sum_stride_));
-  std::vector<double> values(static_cast<std::size_t>(value_stride_));
   const StateException* ex = exceptions_from(view.exceptions, first);
   const char *at = nullptr, *end = nullptr;
   if (!seek_record(view, first, at, end)) return first;
   for (std::size_t i = first; i < first + count; ++i) {
     prefetch_records(at);
     const StateException* ex_end = exceptions_end(view.exceptions, ex, i);
-    PixelSum sum;
-    if (!decode_record(at, end, view.codec, ex, ex_end, sum, sums.data(), values.data()) ||
-        sum.samples > rules.max_samples[i - rules.first] || !valid_ranked(sums.data()) ||
-        !next_record(view, i, n, at, end))
+    DecodedPixel d = target(i);
+    if (!decode_record(at, end, view.codec, ex, ex_end, d) || !valid_ranked(d.sums, d.held, view.codec.varying) ||
+        !next_record(view, i, n, at, end) || !use(i, d))
       return i;
     ex = ex_end;
-    const std::size_t to = index(rules.crop.x0 + static_cast<int>(i % width), rules.crop.y0 + static_cast<int>(i / width));
-    pixels_[to].add(sum);
-    add_sums(to, sums.data());
-    add_values(to, values.data(), rules.other_first[i - rules.first] != 0);
   }
   return SIZE_MAX;
+}
+
+std::size_t Film::add_records(const StateView& view, std::size_t first, std::size_t count, const StateRules& rules) {
+  const auto width = static_cast<std::size_t>(rules.crop.width());
+  // A scratch that holds the state's defaults but for the slots the last
+  // record held (all of them 0 by default), which are cleared after it is
+  // added: the plain sums added are those it held and the defaults that are
+  // not 0, not every slot.
+  PixelSum sum;
+  std::vector<ExactSum> sums(view.codec.sums);
+  std::vector<double> values(view.codec.values);
+  const DecodedPixel scratch{&sum, sums.data(), values.data(), true};
+  std::array<uint64_t, kStateWords> shared{};  // the slots whose default is not 0
+  for (std::size_t w = 0; w < kStateWords; ++w) shared[w] = ~view.codec.varying[w];
+  std::size_t x = first % width, y = first / width;  // pixel i's, in the crop (no division per pixel)
+  return for_each_record(view, first, count, [&](std::size_t) { return scratch; },
+                         [&](std::size_t i, const DecodedPixel& d) {
+                           if (d.sum->samples > rules.max_samples[i - rules.first]) return false;
+                           const std::size_t to = index(rules.crop.x0 + static_cast<int>(x), rules.crop.y0 + static_cast<int>(y));
+                           if (++x == width) x = 0, ++y;
+                           pixels_[to].add(*d.sum);
+                           std::array<uint64_t, kStateWords> slots{};
+                           for (std::size_t w = 0; w < kStateWords; ++w) slots[w] = d.held[w] | shared[w];
+                           add_sums(to, d.sums, slots);
+                           add_values(to, d.values, rules.other_first[i - rules.first] != 0);
+                           for_each_slot(d.held, aov_sum_slots_, [&](std::size_t k) { d.sums[k - kAovSlot] = ExactSum{}; });
+                           const std::size_t v0 = kAovSlot + static_cast<std::size_t>(sum_stride_);
+                           for_each_slot(d.held, value_slots_, [&](std::size_t k) { d.values[k - v0] = 0.0; });
+                           return true;
+                         });
 }
 
 std::size_t Film::set_records(const StateView& view, std::size_t first, std::size_t count, const StateRules& rules,
                               std::size_t to0) {
   const auto stride = static_cast<std::size_t>(sum_stride_), vstride = static_cast<std::size_t>(value_stride_);
-  const std::size_t n = pixels_of(view.crop);
-  const StateException* ex = exceptions_from(view.exceptions, first);
-  const char *at = nullptr, *end = nullptr;
-  if (!seek_record(view, first, at, end)) return first;
-  for (std::size_t i = first; i < first + count; ++i) {
-    prefetch_records(at);
-    const StateException* ex_end = exceptions_end(view.exceptions, ex, i);
+  // Integer sums: 0 + x is x, and valid Cryptomatte slots (ids increasing,
+  // free slots last and empty) are what add_ranked makes of them from
+  // empty slots. The plain values are not: first_values.
+  const auto target = [&](std::size_t i) {
     const std::size_t to = to0 + (i - first);
-    ExactSum* sums = aov_sums_.data() + to * stride;
-    double* values = aov_values_.data() + to * vstride;
-    // Integer sums: 0 + x is x, and valid Cryptomatte slots (ids increasing,
-    // free slots last and empty) are what add_ranked makes of them from
-    // empty slots. The plain values are not: first_values.
-    if (!decode_record(at, end, view.codec, ex, ex_end, pixels_[to], sums, values) ||
-        pixels_[to].samples > rules.max_samples[i - rules.first] || !valid_ranked(sums) ||
-        !next_record(view, i, n, at, end))
-      return i;
-    ex = ex_end;
-    first_values(values);
-  }
-  return SIZE_MAX;
+    return DecodedPixel{&pixels_[to], aov_sums_.data() + to * stride, aov_values_.data() + to * vstride};
+  };
+  return for_each_record(view, first, count, target, [&](std::size_t i, const DecodedPixel& d) {
+    if (d.sum->samples > rules.max_samples[i - rules.first]) return false;
+    first_values(d.values);
+    return true;
+  });
 }
 
 std::string Film::too_many_samples(std::size_t pixel, uint64_t samples, const StateRules& rules) {
@@ -437,11 +445,12 @@ std::string Film::refusal(const StateView& view, std::size_t pixel, const StateR
   PixelSum sum;
   std::vector<ExactSum> sums(static_cast<std::size_t>(sum_stride_));
   std::vector<double> values(static_cast<std::size_t>(value_stride_));
+  DecodedPixel d{&sum, sums.data(), values.data()};
   const auto width = static_cast<std::size_t>(view.crop.width());
   const std::string where = "pixel (" + std::to_string(view.crop.x0 + static_cast<int>(pixel % width)) + ", " +
                             std::to_string(view.crop.y0 + static_cast<int>(pixel / width)) + ")";
   const char *at = nullptr, *end = nullptr;
-  if (!seek_record(view, pixel, at, end) || !decode_record(at, end, view.codec, ex, ex_end, sum, sums.data(), values.data()))
+  if (!seek_record(view, pixel, at, end) || !decode_record(at, end, view.codec, ex, ex_end, d))
     return "corrupt film state (" + where + ": a value not stored as this pathtracer stores it)";
   if (sum.samples > rules.max_samples[pixel - rules.first]) return too_many_samples(pixel, sum.samples, rules);
   if (!valid_ranked(sums.data())) return "corrupt film state (Cryptomatte slots of " + where + ")";

@@ -98,11 +98,6 @@ void Film::init_state_layout() {
   sum_kinds_.assign(static_cast<std::size_t>(sum_stride_), kWide64);
   for (const SumRun& run : sum_runs_)
     for (int k = 0; k < run.ranks; ++k) sum_kinds_[static_cast<std::size_t>(run.offset + 2 * k)] = kNarrow32;
-  kind_runs_.clear();
-  for (uint8_t kind : sum_kinds_) {
-    if (kind_runs_.empty() || kind_runs_.back().first != kind) kind_runs_.emplace_back(kind, 0);
-    ++kind_runs_.back().second;
-  }
   // Every slot's kind, in slot order: the beauty's sums and count, the AOV
   // sums, the values.
   std::vector<uint8_t> kinds(kBeautySums, kWide64);
@@ -118,6 +113,19 @@ void Film::init_state_layout() {
   slot_kind_.insert(slot_kind_.end(), static_cast<std::size_t>(value_stride_), kValueSlot);
   slot_offset_.clear();
   wide_slots_.fill(0);
+  aov_sum_slots_.fill(0);
+  value_slots_.fill(0);
+  plain_sum_slots_.fill(0);
+  for (std::size_t k = kAovSlot; k < kinds.size(); ++k) {
+    auto& set = slot_kind_[k] == kValueSlot ? value_slots_ : aov_sum_slots_;
+    set[k / 64] |= uint64_t{1} << (k % 64);
+  }
+  for (const SumRun& run : sum_runs_) {
+    for (int j = 0; j < run.count && run.ranks == 0; ++j) {
+      const std::size_t k = kAovSlot + static_cast<std::size_t>(run.offset + j);
+      plain_sum_slots_[k / 64] |= uint64_t{1} << (k % 64);
+    }
+  }
   record_bytes_ = 0;
   for (std::size_t k = 0; k < kinds.size(); ++k) {
     slot_offset_.push_back(static_cast<uint32_t>(record_bytes_));
@@ -235,7 +243,10 @@ std::size_t Film::record_size(const char* in, const char* end, const StateCodec&
 }
 
 bool Film::decode_record(const char*& in, const char* end, const StateCodec& codec, const StateException* ex,
-                         const StateException* ex_end, PixelSum& p, ExactSum* sums, double* values) const {
+                         const StateException* ex_end, DecodedPixel& to) const {
+  PixelSum& p = *to.sum;
+  ExactSum* sums = to.sums;
+  double* values = to.values;
   // Near its group's end the record's size is checked before it is read;
   // elsewhere no record can reach the end.
   const auto room = static_cast<std::size_t>(end - in);
@@ -251,50 +262,49 @@ bool Film::decode_record(const char*& in, const char* end, const StateCodec& cod
       if ((mask[w] & ~codec.varying[w]) != 0) return false;  // a slot past the last, or one every pixel shares
     }
   }
-  // The defaults, then the slots the record holds, in slot order.
+  // The defaults, then the slots the record holds, in slot order: the
+  // beauty's sums and count, the AOV sums, the values (a loop for each, so
+  // that the slot's kind is not looked up per slot).
   p = codec.pixel;
   const auto n = static_cast<std::size_t>(sum_stride_);
-  std::copy(codec.sums.begin(), codec.sums.end(), sums);
-  std::copy(codec.values.begin(), codec.values.end(), values);
+  if (!to.defaults) {
+    std::copy(codec.sums.begin(), codec.sums.end(), sums);
+    std::copy(codec.values.begin(), codec.values.end(), values);
+  }
   ExactSum* beauty[kBeautySums] = {&p.r, &p.g, &p.b, &p.weight, &p.coverage};
   const char* at = in + bitmap_bytes_;
   bool bad = false;  // a slot held as 0 (only a default is), or a float that is not plain
-  for (std::size_t w = 0; w < kStateWords; ++w) {
-    for (uint64_t m = mask[w]; m != 0; m &= m - 1) {
-      const std::size_t k = 64 * w + static_cast<std::size_t>(std::countr_zero(m));
-      switch (slot_kind_[k]) {
-        case kBeautySlot:
-          *beauty[k] = from_int64(load<int64_t>(at));
-          bad |= beauty[k]->is_zero();
-          break;
-        case kCountSlot:
-          p.samples = load<uint32_t>(at);
-          bad |= p.samples == 0;
-          break;
-        case kWideSumSlot:
-          sums[k - kBeautySums - 1] = from_int64(load<int64_t>(at));
-          bad |= sums[k - kBeautySums - 1].is_zero();
-          break;
-        case kNarrowSumSlot: {
-          const auto v = load<uint32_t>(at);
-          sums[k - kBeautySums - 1].set_raw(v);
-          bad |= v == 0;
-          break;
-        }
-        default: {
-          const auto bits = load<uint32_t>(at);
-          bad |= bits == 0 || !plain_float(bits);
-          values[k - kBeautySums - 1 - n] = static_cast<double>(std::bit_cast<float>(bits));
-        }
-      }
-    }
+  for (uint64_t m = mask[0] & ((uint64_t{1} << kBeautySums) - 1); m != 0; m &= m - 1) {
+    ExactSum& sum = *beauty[std::countr_zero(m)];
+    sum = from_int64(load<int64_t>(at));
+    bad |= sum.is_zero();
   }
+  if (((mask[0] >> kBeautySums) & 1) != 0) {
+    p.samples = load<uint32_t>(at);
+    bad |= p.samples == 0;
+  }
+  for_each_slot(mask, aov_sum_slots_, [&](std::size_t k) {
+    ExactSum& sum = sums[k - kBeautySums - 1];
+    if (((wide_slots_[k / 64] >> (k % 64)) & 1) != 0) {
+      sum = from_int64(load<int64_t>(at));
+    } else {
+      sum.set_raw(load<uint32_t>(at));
+    }
+    bad |= sum.is_zero();
+  });
+  for_each_slot(mask, value_slots_, [&](std::size_t k) {
+    const auto bits = load<uint32_t>(at);
+    bad |= bits == 0 || !plain_float(bits);
+    values[k - kBeautySums - 1 - n] = static_cast<double>(std::bit_cast<float>(bits));
+  });
   if (bad) return false;
+  to.held = mask;
   // The exceptions' slots are not held (the defaults of those slots are 0:
   // valid_exception); their values replace the zeros.
   for (const StateException* e = ex; e != ex_end; ++e) {
     const uint32_t k = e->slot;
     if (((mask[k / 64] >> (k % 64)) & 1) != 0) return false;
+    to.held[k / 64] |= uint64_t{1} << (k % 64);
     if (k < kBeautySums) {
       beauty[k]->set_raw(e->value);
     } else if (k == kBeautySums) {
