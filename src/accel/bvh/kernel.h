@@ -52,41 +52,27 @@ struct StackEntry {
 
 inline uint32_t item_count(uint32_t ref) { return ((ref >> kLeafCountShift) & (kMaxLeafItems - 1)) + 1; }
 
-// Nearest hit, two or more hit children (`first`, and the rest in `mask`):
-// pushes all but the nearest, farthest first, and returns the nearest.
-// Static: each kernel's file gets its own copy, compiled for its instruction
-// set (a shared inline copy could be the AVX2 one; layout.h).
-__attribute__((always_inline)) static inline uint32_t push_nearer_hits(const Node8& node, const float* dist,
-                                                                        uint32_t first, uint32_t mask,
-                                                                        StackEntry* stack, int& sp) {
-  const uint32_t second = static_cast<uint32_t>(__builtin_ctz(mask));
-  if ((mask & (mask - 1)) == 0) {
-    // Two hit children (the commonest case after one): the nearer descended
-    // into, the other pushed, chosen without a branch (the insertion sort's
-    // order: the lower slot on a tie).
-    const uint32_t swap = 0u - static_cast<uint32_t>(dist[second] < dist[first]);
-    const uint32_t near = first ^ ((first ^ second) & swap);
-    const uint32_t far = near ^ first ^ second;
-    stack[sp++] = StackEntry{node.child[far], dist[far]};
-    return node.child[near];
-  }
-  // Insertion sort by entry distance (stable: ties keep slot order).
-  StackEntry hits[8];
-  int n = 1;
-  hits[0] = StackEntry{node.child[first], dist[first]};
+// Any hit, two or more hit children (`first`, and the rest in `mask`):
+// farthest entry first: a shadow ray leaves a surface, and what blocks it
+// lies towards its end far more often than among the boxes around its origin
+// (measured: docs/bvh.md). Pushes all but the farthest, unsorted, and returns
+// the farthest. Static: each kernel's file gets its own copy, compiled for its
+// instruction set (a shared inline copy could be the AVX2 one; layout.h).
+__attribute__((always_inline)) static inline uint32_t push_nearer_entries(const Node8& node, const float* dist,
+                                                                           uint32_t first, uint32_t mask,
+                                                                           StackEntry* stack, int& sp) {
+  uint32_t far = first;
   do {
     const uint32_t i = static_cast<uint32_t>(__builtin_ctz(mask));
     mask &= mask - 1;
-    const StackEntry e{node.child[i], dist[i]};
-    int k = n++;
-    while (k > 0 && hits[k - 1].dist > e.dist) {
-      hits[k] = hits[k - 1];
-      --k;
+    if (dist[i] > dist[far]) {
+      stack[sp++] = StackEntry{node.child[far], dist[far]};
+      far = i;
+    } else {
+      stack[sp++] = StackEntry{node.child[i], dist[i]};
     }
-    hits[k] = e;
   } while (mask != 0);
-  for (int k = n - 1; k >= 1; --k) stack[sp++] = hits[k];
-  return hits[0].ref;
+  return node.child[far];
 }
 
 // Depth-first traversal from `root`: nearest child first for the nearest hit,
@@ -117,24 +103,38 @@ inline bool traverse(const Ops& ops, const Node8* nodes, uint32_t root, RayQuery
           continue;
         }
         if constexpr (kAnyHit) {
-          // Farthest entry first: a shadow ray leaves a surface, and what
-          // blocks it lies towards its end far more often than among the
-          // boxes around its origin (measured: docs/bvh.md).
-          uint32_t far = first;
+          ref = push_nearer_entries(node, dist, first, mask, stack, sp);
+          continue;
+        } else {
+          const uint32_t second = static_cast<uint32_t>(__builtin_ctz(mask));
+          if ((mask & (mask - 1)) == 0) {
+            // Two hit children (the commonest case after one): the nearer
+            // descended into, the other pushed, chosen without a branch (the
+            // insertion sort's order: the lower slot on a tie).
+            const uint32_t swap = 0u - static_cast<uint32_t>(dist[second] < dist[first]);
+            const uint32_t near = first ^ ((first ^ second) & swap);
+            const uint32_t far = near ^ first ^ second;
+            stack[sp++] = StackEntry{node.child[far], dist[far]};
+            ref = node.child[near];
+            continue;
+          }
+          // Insertion sort by entry distance (stable: ties keep slot order).
+          StackEntry hits[8];
+          int n = 1;
+          hits[0] = StackEntry{node.child[first], dist[first]};
           do {
             const uint32_t i = static_cast<uint32_t>(__builtin_ctz(mask));
             mask &= mask - 1;
-            if (dist[i] > dist[far]) {
-              stack[sp++] = StackEntry{node.child[far], dist[far]};
-              far = i;
-            } else {
-              stack[sp++] = StackEntry{node.child[i], dist[i]};
+            const StackEntry e{node.child[i], dist[i]};
+            int k = n++;
+            while (k > 0 && hits[k - 1].dist > e.dist) {
+              hits[k] = hits[k - 1];
+              --k;
             }
+            hits[k] = e;
           } while (mask != 0);
-          ref = node.child[far];
-          continue;
-        } else {
-          ref = push_nearer_hits(node, dist, first, mask, stack, sp);
+          for (int k = n - 1; k >= 1; --k) stack[sp++] = hits[k];
+          ref = hits[0].ref;
           continue;
         }
       }
