@@ -1,8 +1,8 @@
 // The traversal loop shared by the kernels, parameterised on each kernel's
 // SIMD routines (an `Ops` object built once per ray):
-//   uint32_t ops.intersect_node(const Node8&, float tmax, float dist[8]):
-//       mask of the children whose box the ray enters before tmax, their entry
-//       distances in dist;
+//   uint32_t ops.intersect_node(const Node8&, float tmax_exit, float dist[8]):
+//       mask of the children whose box the ray enters before tmax_exit (the
+//       current tmax widened by kExitScale), their entry distances in dist;
 //   bool ops.intersect_leaf<kAnyHit>(const TriangleBlock* blocks, uint32_t count, uint32_t object,
 //                                    RayQuery&, HitRecord&): the leaf's `count` blocks, nearest hit
 //       (the first block's lowest lane on a tie, as if tested in order) or any hit.
@@ -52,6 +52,29 @@ struct StackEntry {
 
 inline uint32_t item_count(uint32_t ref) { return ((ref >> kLeafCountShift) & (kMaxLeafItems - 1)) + 1; }
 
+// Any hit, two or more hit children (`first`, and the rest in `mask`):
+// farthest entry first: a shadow ray leaves a surface, and what blocks it
+// lies towards its end far more often than among the boxes around its origin
+// (measured: docs/bvh.md). Pushes all but the farthest, unsorted, and returns
+// the farthest. Static: each kernel's file gets its own copy, compiled for its
+// instruction set (a shared inline copy could be the AVX2 one; layout.h).
+__attribute__((always_inline)) static inline uint32_t push_nearer_entries(const Node8& node, const float* dist,
+                                                                           uint32_t first, uint32_t mask,
+                                                                           StackEntry* stack, int& sp) {
+  uint32_t far = first;
+  do {
+    const uint32_t i = static_cast<uint32_t>(__builtin_ctz(mask));
+    mask &= mask - 1;
+    if (dist[i] > dist[far]) {
+      stack[sp++] = StackEntry{node.child[far], dist[far]};
+      far = i;
+    } else {
+      stack[sp++] = StackEntry{node.child[i], dist[i]};
+    }
+  } while (mask != 0);
+  return node.child[far];
+}
+
 // Depth-first traversal from `root`: nearest child first for the nearest hit,
 // farthest child first for any hit. `leaf(ref)` tests a leaf and returns
 // whether it found a hit.
@@ -62,12 +85,16 @@ inline bool traverse(const Ops& ops, const Node8* nodes, uint32_t root, RayQuery
   int sp = 0;
   uint32_t ref = root;
   bool found = false;
+  // The current tmax widened for the exits (kExitScale), kept in a register
+  // across the node tests and pops: q.tmax changes only in a leaf that finds
+  // a hit.
+  float tmax_exit = q.tmax * kExitScale;
   for (;;) {
     if ((ref & kLeafBit) == 0) {
       const Node8& node = nodes[ref];
       if constexpr (kCount) ++counters->nodes;
       alignas(32) float dist[8];
-      uint32_t mask = ops.intersect_node(node, q.tmax, dist);
+      uint32_t mask = ops.intersect_node(node, tmax_exit, dist);
       if (mask != 0) {
         const uint32_t first = static_cast<uint32_t>(__builtin_ctz(mask));
         mask &= mask - 1;
@@ -76,23 +103,21 @@ inline bool traverse(const Ops& ops, const Node8* nodes, uint32_t root, RayQuery
           continue;
         }
         if constexpr (kAnyHit) {
-          // Farthest entry first: a shadow ray leaves a surface, and what
-          // blocks it lies towards its end far more often than among the
-          // boxes around its origin (measured: docs/bvh.md).
-          uint32_t far = first;
-          do {
-            const uint32_t i = static_cast<uint32_t>(__builtin_ctz(mask));
-            mask &= mask - 1;
-            if (dist[i] > dist[far]) {
-              stack[sp++] = StackEntry{node.child[far], dist[far]};
-              far = i;
-            } else {
-              stack[sp++] = StackEntry{node.child[i], dist[i]};
-            }
-          } while (mask != 0);
-          ref = node.child[far];
+          ref = push_nearer_entries(node, dist, first, mask, stack, sp);
           continue;
         } else {
+          const uint32_t second = static_cast<uint32_t>(__builtin_ctz(mask));
+          if ((mask & (mask - 1)) == 0) {
+            // Two hit children (the commonest case after one): the nearer
+            // descended into, the other pushed, chosen without a branch (the
+            // insertion sort's order: the lower slot on a tie).
+            const uint32_t swap = 0u - static_cast<uint32_t>(dist[second] < dist[first]);
+            const uint32_t near = first ^ ((first ^ second) & swap);
+            const uint32_t far = near ^ first ^ second;
+            stack[sp++] = StackEntry{node.child[far], dist[far]};
+            ref = node.child[near];
+            continue;
+          }
           // Insertion sort by entry distance (stable: ties keep slot order).
           StackEntry hits[8];
           int n = 1;
@@ -116,12 +141,13 @@ inline bool traverse(const Ops& ops, const Node8* nodes, uint32_t root, RayQuery
     } else if (leaf(ref)) {
       found = true;
       if constexpr (kAnyHit) return true;
+      tmax_exit = q.tmax * kExitScale;
     }
     // Pop the next subtree that can still hold a closer hit.
     for (;;) {
       if (sp == 0) return found;
       const StackEntry e = stack[--sp];
-      if (kAnyHit || e.dist <= q.tmax * kExitScale) {
+      if (kAnyHit || e.dist <= tmax_exit) {
         ref = e.ref;
         break;
       }

@@ -23,8 +23,8 @@ class Sse2Ops {
   // Slab test, the bounds as two-level trees: conservative when a distance is
   // NaN (0 * inf, an origin on a slab plane: kernel.h). The wide kernels make
   // exactly these operations (their node counts are compared in the tests).
-  uint32_t intersect_node(const Node8& node, float tmax, float* dist) const {
-    const __m128 tmax4 = _mm_set1_ps(tmax * kernel::kExitScale);
+  uint32_t intersect_node(const Node8& node, float tmax_exit, float* dist) const {
+    const __m128 tmax4 = _mm_set1_ps(tmax_exit);
     const float* b = &node.bounds[0][0];
     uint32_t mask = 0;
     for (int h = 0; h < 8; h += 4) {

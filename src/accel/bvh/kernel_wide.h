@@ -245,8 +245,9 @@ class Avx2Ops {
 
   // Slab test; see kernel.h (exit_rdir, and why the two-level trees of the
   // bounds are conservative when a distance is NaN). Exits are widened through
-  // rdir_far_ and tmax * kExitScale, so no multiply follows the minimum.
-  uint32_t intersect_node(const Node8& node, float tmax, float* dist) const {
+  // rdir_far_ and tmax_exit (tmax * kExitScale), so no multiply follows the
+  // minimum. AVX-512: the compare straight into a mask register.
+  uint32_t intersect_node(const Node8& node, float tmax_exit, float* dist) const {
     const float* b = &node.bounds[0][0];
     const __m256 nx = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(b + near_[0]), org_[0]), rdir_[0]);
     const __m256 ny = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(b + 16 + near_[1]), org_[1]), rdir_[1]);
@@ -254,11 +255,15 @@ class Avx2Ops {
     const __m256 fx = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(b + far_[0]), org_[0]), rdir_far_[0]);
     const __m256 fy = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(b + 16 + far_[1]), org_[1]), rdir_far_[1]);
     const __m256 fz = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(b + 32 + far_[2]), org_[2]), rdir_far_[2]);
-    const __m256 tmax8 = _mm256_set1_ps(tmax * kernel::kExitScale);
+    const __m256 tmax8 = _mm256_set1_ps(tmax_exit);
     const __m256 tnear = _mm256_max_ps(_mm256_max_ps(nx, ny), _mm256_max_ps(nz, tmin_));
     const __m256 tfar = _mm256_min_ps(_mm256_min_ps(fx, fy), _mm256_min_ps(fz, tmax8));
     _mm256_store_ps(dist, tnear);
+#ifdef __AVX512VL__
+    return static_cast<uint32_t>(_mm256_cmp_ps_mask(tnear, tfar, _CMP_LE_OQ));
+#else
     return static_cast<uint32_t>(_mm256_movemask_ps(_mm256_cmp_ps(tnear, tfar, _CMP_LE_OQ)));
+#endif
   }
 
   // A leaf's blocks, two at a time (8 lanes), then the last one alone.
