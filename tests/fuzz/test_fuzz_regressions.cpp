@@ -54,13 +54,12 @@ TEST_P(Replay, SeedsAndPastCrashesKeepEveryInvariant) {
   }
 }
 
-// The film-state seeds are states this build reads (a new state version
-// converts them: tools/dev/film_state_v5_to_v6.py), so the fuzzer starts
-// past the version check.
-TEST(Seeds, FilmStatesAreReadByOneOfTheTargetFilms) {
-  const fs::path tests(PT_TEST_DATA_DIR);
-  const std::vector<fs::path> seeds = files_in(tests / "fuzz" / "seeds" / "film_state");
-  ASSERT_FALSE(seeds.empty());
+// Each seed in the folder is read by one of the target films (the
+// fuzzer starts past the version and catalogue checks).
+template <typename ReadFn>
+void expect_each_read_by_one(const fs::path& folder, ReadFn read_fn) {
+  const std::vector<fs::path> seeds = files_in(folder);
+  ASSERT_FALSE(seeds.empty()) << folder;
   for (const fs::path& p : seeds) {
     const std::string bytes = read(p);
     bool read_by_one = false;
@@ -68,32 +67,30 @@ TEST(Seeds, FilmStatesAreReadByOneOfTheTargetFilms) {
     for (Film& film : target_films()) {
       std::istringstream in(bytes);
       std::string error;
-      read_by_one = read_by_one || film.read_state(in, error);
+      read_by_one = read_by_one || read_fn(in, p, film, error);
       errors += error + "; ";
     }
     EXPECT_TRUE(read_by_one) << p << ": " << errors;
   }
 }
 
+// The film-state seeds are states this build reads (a new state version
+// converts them: tools/dev/film_state_v5_to_v6.py).
+TEST(Seeds, FilmStatesAreReadByOneOfTheTargetFilms) {
+  expect_each_read_by_one(fs::path(PT_TEST_DATA_DIR) / "fuzz" / "seeds" / "film_state",
+                          [](std::istream& in, const fs::path&, Film& film, std::string& error) {
+                            return film.read_state(in, error);
+                          });
+}
+
 // So are the checkpoint seeds (all.ckpt was one of a film with an older
 // AOV catalogue, which no target film read, until session 17).
 TEST(Seeds, CheckpointsAreReadByOneOfTheTargetFilms) {
-  const fs::path tests(PT_TEST_DATA_DIR);
-  const std::vector<fs::path> seeds = files_in(tests / "fuzz" / "seeds" / "checkpoint");
-  ASSERT_FALSE(seeds.empty());
-  for (const fs::path& p : seeds) {
-    const std::string bytes = read(p);
-    bool read_by_one = false;
-    std::string errors;
-    for (Film& film : target_films()) {
-      std::istringstream in(bytes);
-      CheckpointInfo info;
-      std::string error;
-      read_by_one = read_by_one || read_checkpoint(in, p.filename().string(), info, film, error);
-      errors += error + "; ";
-    }
-    EXPECT_TRUE(read_by_one) << p << ": " << errors;
-  }
+  expect_each_read_by_one(fs::path(PT_TEST_DATA_DIR) / "fuzz" / "seeds" / "checkpoint",
+                          [](std::istream& in, const fs::path& p, Film& film, std::string& error) {
+                            CheckpointInfo info;
+                            return read_checkpoint(in, p.filename().string(), info, film, error);
+                          });
 }
 
 INSTANTIATE_TEST_SUITE_P(Harnesses, Replay, ::testing::ValuesIn(harnesses()),
