@@ -7,9 +7,13 @@
 //                                    RayQuery&, HitRecord&): the leaf's `count` blocks, nearest hit
 //       (the first block's lowest lane on a tie, as if tested in order) or any hit.
 //
-// Included only by kernel_sse2.cpp and kernel_avx2.cpp, whose Ops types live in
+// Included only by the kernels (kernel_sse2.cpp; kernel_wide.h for AVX2 and
+// AVX-512) and the traversal-order test, whose Ops types live in
 // anonymous namespaces, so every instantiation has internal linkage and is
-// compiled for its file's instruction set. Plain code only: no std:: calls
+// compiled for its file's instruction set; the non-template helpers are
+// `static` for the same reason (an inline function with external linkage
+// could be emitted as the AVX-512 file's copy and linked into the SSE2
+// kernel's callers). Plain code only: no std:: calls
 // (see layout.h).
 #pragma once
 
@@ -32,7 +36,7 @@ inline constexpr float kExitScale = 1.0f + 2.0f * ((3.0f * 0x1p-24f) / (1.0f - 3
 // of roundings as ((plane - org) * rdir) * kExitScale, the same bound (Ize),
 // and no multiply after the node's minimum (tmax is widened by the same
 // factor, outside the chain that waits for the node).
-inline float exit_rdir(const RayQuery& q, int a) { return q.rdir[a] * kExitScale; }
+static inline float exit_rdir(const RayQuery& q, int a) { return q.rdir[a] * kExitScale; }
 
 // A slab distance (plane - org) * r is NaN (0 * inf) only for an origin on a
 // plane with an infinite reciprocal (a zero or tiny direction component). The
@@ -50,7 +54,7 @@ struct StackEntry {
   float dist;  // entry distance of the box; stale once a closer hit is found
 };
 
-inline uint32_t item_count(uint32_t ref) { return ((ref >> kLeafCountShift) & (kMaxLeafItems - 1)) + 1; }
+static inline uint32_t item_count(uint32_t ref) { return ((ref >> kLeafCountShift) & (kMaxLeafItems - 1)) + 1; }
 
 // Any hit, two or more hit children (`first`, and the rest in `mask`):
 // farthest entry first: a shadow ray leaves a surface, and what blocks it
