@@ -423,7 +423,9 @@ TEST(LightGuide, SitesWithANormalSampleTheSkyInFrontByTheirDensity) {
     EXPECT_NEAR(integral / kN, 1.0, 0.03) << "normal " << n.x << " " << n.y << " " << n.z;
     EXPECT_NEAR(estimate / kN, reference, 0.03 * reference) << "normal " << n.x << " " << n.y << " " << n.z;
     EXPECT_GE(front, plain_front) << "normal " << n.x << " " << n.y << " " << n.z;
-    if (!sf.roof) EXPECT_GT(front, kN * 6 / 10) << "normal " << n.x << " " << n.y << " " << n.z;
+    if (!sf.roof) {
+      EXPECT_GT(front, kN * 6 / 10) << "normal " << n.x << " " << n.y << " " << n.z;
+    }
   }
   EXPECT_GE(product_sites, 8);
   // Without a normal (a transmitting BSDF), or with a zero one, or of a class
