@@ -88,6 +88,13 @@ inline float power_heuristic(float f_pdf, float g_pdf) {
   return f + g > 0.0f ? f / (f + g) : 0.0f;
 }
 
+// Veach's balance heuristic for one sample of each of two strategies: the
+// weight of a sample of strategy f, f / (f + g); the same guards as above.
+inline float balance_heuristic(float f_pdf, float g_pdf) {
+  if (f_pdf == kInfinity) return 1.0f;
+  return f_pdf + g_pdf > 0.0f ? f_pdf / (f_pdf + g_pdf) : 0.0f;
+}
+
 // Azimuth of a direction in a local frame: phi in [0, 2 pi) from +x towards +y.
 float spherical_phi(Vec3f v);
 

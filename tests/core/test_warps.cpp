@@ -214,6 +214,15 @@ TEST(Warps, PowerHeuristic) {
   EXPECT_FLOAT_EQ(power_heuristic(kInfinity, 5.0f), 1.0f);
 }
 
+TEST(Warps, BalanceHeuristic) {
+  EXPECT_FLOAT_EQ(balance_heuristic(1.0f, 1.0f), 0.5f);
+  EXPECT_FLOAT_EQ(balance_heuristic(3.0f, 1.0f), 0.75f);
+  EXPECT_FLOAT_EQ(balance_heuristic(1.0f, 0.0f), 1.0f);
+  EXPECT_FLOAT_EQ(balance_heuristic(0.0f, 1.0f), 0.0f);
+  EXPECT_FLOAT_EQ(balance_heuristic(0.0f, 0.0f), 0.0f);
+  EXPECT_FLOAT_EQ(balance_heuristic(kInfinity, 5.0f), 1.0f);
+}
+
 TEST(Warps, HarnessRejectsAWrongDensity) {
   // The harness must be able to fail: cosine-weighted samples against the
   // uniform hemisphere density, and uniform samples outside the claimed support.

@@ -133,8 +133,7 @@ class PathTracer {
   // weights still sum to one. (On Sponza under its sky the balance heuristic
   // had 0.92x the variance of the power heuristic; docs/bench/sponza-s17.md.)
   static float sky_weight(const LightGuide::Site& at, float a, float b) {
-    if (at.environment == nullptr) return power_heuristic(a, b);
-    return a / (a + b);
+    return at.environment == nullptr ? power_heuristic(a, b) : balance_heuristic(a, b);
   }
 
   // MIS weight of an environment seen through a BSDF-sampled direction.
@@ -218,11 +217,11 @@ class PathTracer {
     if (f.is_black()) return {};
     if (scene_.occluded(light_shadow_ray(isect.geo, ls))) return {};
     const float light_pdf = pmf * ls.pdf;
-    const float w = (ls.delta || strategy_ == LightStrategy::LightOnly)
-                        ? 1.0f
-                        : index == lights_.environment()
-                            ? sky_weight(site, light_pdf, PathGuide::bounce_pdf(bsdf, region, wo, ls.wi))
-                            : power_heuristic(light_pdf, PathGuide::bounce_pdf(bsdf, region, wo, ls.wi));
+    float w = 1.0f;
+    if (!ls.delta && strategy_ != LightStrategy::LightOnly) {
+      const float bounce_pdf = PathGuide::bounce_pdf(bsdf, region, wo, ls.wi);
+      w = index == lights_.environment() ? sky_weight(site, light_pdf, bounce_pdf) : power_heuristic(light_pdf, bounce_pdf);
+    }
     const float cos_i = std::fabs(dot(ls.wi, bsdf.shading_normal()));
     return f * ls.L * (cos_i * w / light_pdf);
   }
