@@ -95,6 +95,7 @@ void store_narrow(char*& p, UInt128 v, uint64_t pixel, uint32_t slot, std::vecto
 }  // namespace
 
 void Film::init_state_layout() {
+  static_assert(kAovSlot == kBeautySums + 1, "a state's AOV sums follow the beauty's sums and its count");
   sum_kinds_.assign(static_cast<std::size_t>(sum_stride_), kWide64);
   for (const SumRun& run : sum_runs_)
     for (int k = 0; k < run.ranks; ++k) sum_kinds_[static_cast<std::size_t>(run.offset + 2 * k)] = kNarrow32;
